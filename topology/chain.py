@@ -1,0 +1,226 @@
+"""Planar kinematic chains: links joined by joints.
+
+A chain is stored as data only (frozen dataclasses); the algorithms that act on it
+live in the sibling modules (:mod:`~baranov.topology.graphs`,
+:mod:`~baranov.topology.rigidity`, :mod:`~baranov.topology.automorphisms`).
+
+Conventions (thesis §2.2, §3.1):
+
+* links are numbered ``0 .. L-1`` (the vertices of the *link graph*); the user's own
+  labels, when the chain came from a labelled graph, are kept in
+  :attr:`KinematicChain.link_labels` and are what error messages show;
+* every joint connects exactly two distinct links (a revolute pair, or a slider
+  joint, thesis ch. 4) and is named ``P1, P2, ...`` unless names are given;
+* a chain is connected, every link carries at least two joints, and no two joints
+  join the same pair of links (two such joints would weld the links together).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Hashable, Iterable, Sequence
+from dataclasses import dataclass, field
+from enum import Enum
+
+import networkx as nx
+
+from .errors import TopologyError
+
+
+class JointKind(str, Enum):
+    """Kind of a joint. Slider joints are stored only (thesis ch. 4 uses them)."""
+
+    REVOLUTE = "revolute"
+    SLIDER = "slider"
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A joint (kinematic pair) between two links.
+
+    Attributes:
+        name: user-facing name, e.g. ``"P3"``.
+        links: the two link indices it connects, in increasing order.
+        kind: revolute (default) or slider.
+    """
+
+    name: str
+    links: tuple[int, int]
+    kind: JointKind = JointKind.REVOLUTE
+
+
+@dataclass(frozen=True)
+class KinematicChain:
+    """A planar kinematic chain: ``number_of_links`` links and the joints between them.
+
+    Build one with :func:`chain_from_link_graph`; the constructor validates the
+    structure (see the module docstring) and raises :class:`TopologyError`.
+
+    >>> pentad = chain_from_link_graph([(0, 2), (0, 3), (0, 4), (1, 2), (1, 3), (1, 4)])
+    >>> pentad.number_of_links, len(pentad.joints)
+    (5, 6)
+    >>> pentad.joints[0]
+    Joint(name='P1', links=(0, 2), kind=<JointKind.REVOLUTE: 'revolute'>)
+    >>> pentad.link_degrees
+    (3, 3, 2, 2, 2)
+    """
+
+    number_of_links: int
+    joints: tuple[Joint, ...]
+    link_labels: tuple[Hashable, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        if not self.link_labels:
+            object.__setattr__(self, "link_labels", tuple(range(self.number_of_links)))
+        _validate_structure(self)
+
+    @property
+    def number_of_joints(self) -> int:
+        return len(self.joints)
+
+    @property
+    def link_degrees(self) -> tuple[int, ...]:
+        """Number of joints on each link (2 = binary link, 3 = ternary, ...)."""
+        degree = [0] * self.number_of_links
+        for joint in self.joints:
+            for link in joint.links:
+                degree[link] += 1
+        return tuple(degree)
+
+    def link_name(self, link: int) -> str:
+        """User-facing name of a link: ``L<label>``."""
+        return f"L{self.link_labels[link]}"
+
+    def joint(self, name: str) -> Joint:
+        """The joint called ``name``; :class:`TopologyError` if there is none."""
+        for joint in self.joints:
+            if joint.name == name:
+                return joint
+        raise TopologyError(f"joint {name}: no such joint in this chain")
+
+    def with_joint_kinds(self, sliders: Iterable[str]) -> KinematicChain:
+        """The same chain with the named joints turned into slider joints."""
+        sliders = set(sliders)
+        unknown = sliders - {joint.name for joint in self.joints}
+        if unknown:
+            raise TopologyError(f"joint {sorted(unknown)[0]}: no such joint in this chain")
+        joints = tuple(
+            Joint(j.name, j.links, JointKind.SLIDER if j.name in sliders else j.kind)
+            for j in self.joints
+        )
+        return KinematicChain(self.number_of_links, joints, self.link_labels)
+
+
+def _validate_structure(chain: KinematicChain) -> None:
+    """Check the structural rules of the module docstring; raise TopologyError."""
+    n = chain.number_of_links
+    if n < 2:
+        raise TopologyError(f"a kinematic chain needs at least two links, got {n}")
+    names = Counter(joint.name for joint in chain.joints)
+    repeated = sorted(name for name, count in names.items() if count > 1)
+    if repeated:
+        raise TopologyError(f"joint {repeated[0]}: name used more than once")
+    pairs: dict[tuple[int, int], str] = {}
+    for joint in chain.joints:
+        a, b = joint.links
+        for link in (a, b):
+            if not (isinstance(link, int) and 0 <= link < n):
+                raise TopologyError(f"joint {joint.name}: link index {link!r} out of range 0..{n - 1}")
+        if a == b:
+            raise TopologyError(f"joint {joint.name}: joins link {chain.link_name(a)} to itself")
+        if a > b:
+            raise TopologyError(f"joint {joint.name}: links must be given in increasing order")
+        if (a, b) in pairs:
+            raise TopologyError(
+                f"links {chain.link_name(a)}, {chain.link_name(b)}: two joints between the same "
+                f"pair of links ({pairs[(a, b)]} and {joint.name})"
+            )
+        pairs[(a, b)] = joint.name
+    degrees = chain.link_degrees
+    weak = [link for link in range(n) if degrees[link] < 2]
+    if weak:
+        listed = ", ".join(chain.link_name(link) for link in weak)
+        raise TopologyError(f"link {listed}: fewer than two joints")
+    graph = nx.Graph()
+    graph.add_nodes_from(range(n))
+    graph.add_edges_from(pairs)
+    if not nx.is_connected(graph):
+        parts = sorted(sorted(c) for c in nx.connected_components(graph))
+        listed = ", ".join(chain.link_name(link) for link in parts[1])
+        raise TopologyError(f"chain is disconnected: links {listed} are not joined to link {chain.link_name(0)}")
+
+
+LinkGraphInput = nx.Graph | Sequence[tuple[Hashable, Hashable]] | str | bytes
+
+
+def chain_from_link_graph(
+    link_graph: LinkGraphInput,
+    joint_names: Sequence[str] | None = None,
+) -> KinematicChain:
+    """Build a chain of revolute joints from its link graph.
+
+    Args:
+        link_graph: a :class:`networkx.Graph` (links = vertices, joints = edges), an
+            edge list of link pairs, or a graph6 string (with or without the
+            ``>>graph6<<`` header).
+        joint_names: names of the joints in the order of the edges sorted by their
+            (link, link) indices; default ``P1, P2, ...``.
+
+    Links are renumbered ``0..L-1`` in the sorted order of the given labels (graph6:
+    as encoded). Raises :class:`TopologyError` for repeated joints between two links,
+    self-joints, links with fewer than two joints, a disconnected chain, or an
+    unreadable graph6 string.
+
+    >>> chain_from_link_graph("Bw").link_degrees  # graph6 of the triangle: the triad
+    (2, 2, 2)
+    >>> chain_from_link_graph([(0, 1), (1, 2)])
+    Traceback (most recent call last):
+    ...
+    baranov.topology.errors.TopologyError: link L0, L2: fewer than two joints
+    """
+    if isinstance(link_graph, (str, bytes)):
+        labels, pairs = _parse_graph6(link_graph)
+    elif isinstance(link_graph, nx.Graph):
+        if link_graph.is_directed() or link_graph.is_multigraph():
+            multi = [(u, v) for u, v, k in link_graph.edges(keys=True) if k] if link_graph.is_multigraph() else []
+            if multi:
+                u, v = multi[0]
+                raise TopologyError(f"links L{u}, L{v}: two joints between the same pair of links")
+            link_graph = nx.Graph(link_graph)
+        labels = _sorted_labels(link_graph.nodes)
+        pairs = list(link_graph.edges)
+    else:
+        pairs = [tuple(edge) for edge in link_graph]
+        for edge in pairs:
+            if len(edge) != 2:
+                raise TopologyError(f"edge {edge!r}: a joint joins exactly two links")
+        labels = _sorted_labels({x for edge in pairs for x in edge})
+    index = {label: i for i, label in enumerate(labels)}
+    edges = sorted(tuple(sorted((index[u], index[v]))) for u, v in pairs)
+    if joint_names is None:
+        joint_names = [f"P{k + 1}" for k in range(len(edges))]
+    elif len(joint_names) != len(edges):
+        raise TopologyError(f"{len(joint_names)} joint names given for {len(edges)} joints")
+    joints = tuple(Joint(name, edge) for name, edge in zip(joint_names, edges))
+    return KinematicChain(len(labels), joints, tuple(labels))
+
+
+def _sorted_labels(labels: Iterable[Hashable]) -> list[Hashable]:
+    labels = list(labels)
+    try:
+        return sorted(labels)
+    except TypeError:
+        return sorted(labels, key=repr)
+
+
+def _parse_graph6(text: str | bytes) -> tuple[list[int], list[tuple[int, int]]]:
+    raw = text.encode() if isinstance(text, str) else text
+    raw = raw.strip()
+    if raw.startswith(b">>graph6<<"):
+        raw = raw[len(b">>graph6<<"):]
+    try:
+        graph = nx.from_graph6_bytes(raw)
+    except (nx.NetworkXError, ValueError, IndexError) as error:
+        shown = raw.decode(errors="replace")
+        raise TopologyError(f"graph6 {shown!r}: not a valid graph6 string ({error})") from None
+    return list(range(graph.number_of_nodes())), list(graph.edges)
