@@ -1,0 +1,1 @@
+"""The ``baranov`` command line: catalog regeneration (and, later, show/solve)."""

@@ -1,0 +1,33 @@
+# One venv for everything; `make catalog` and `make test` each set it up when needed.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed
+# nauty's geng for the brute-force cross-check; --no-deps keeps it to one ~40 MB wheel.
+GENG_WHEEL := passagemath-nauty==10.8.13
+
+.PHONY: catalog catalog-13 test test-slow bench clean
+
+$(STAMP): pyproject.toml Makefile
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install --quiet -e ".[test]"
+	$(BIN)/pip install --quiet --no-deps "$(GENG_WHEEL)" || echo "geng unavailable: the brute-force cross-check will be skipped"
+	touch $(STAMP)
+
+catalog: $(STAMP)  ## main job: regenerate catalog/ for 3-11 links and print its summary
+	$(BIN)/baranov catalog --links 3-11 --out catalog
+
+catalog-13: $(STAMP)  ## the 13-link class too (about 3 minutes with its cross-check; not committed)
+	$(BIN)/baranov catalog --links 3-13 --out catalog-13
+
+test: $(STAMP)  ## default test suite (a few minutes)
+	$(BIN)/pytest -q
+
+test-slow: $(STAMP)  ## long checks: 13-link enumeration by both methods
+	$(BIN)/pytest -q -m slow
+
+bench: $(STAMP)  ## timing and memory medians
+	$(BIN)/python bench/bench_enumeration.py
+
+clean:
+	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis

@@ -1,0 +1,107 @@
+"""Command-line interface: ``baranov catalog ...``.
+
+Bad input gives a one-line message on stderr and exit code 2, with nothing written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+from baranov.enumerate import check_link_count
+
+from .catalog import build_catalog
+from .files import check_writable_folder
+
+#: The catalog command accepts link counts up to this one (13 links: about 10 s).
+CATALOG_MAX_LINKS = 13
+
+
+class UsageError(Exception):
+    """Bad command-line input: reported in one line, exit code 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line, no usage block
+        raise UsageError(message)
+
+
+def parse_link_counts(text: str) -> list[int]:
+    """``"3,5,7"`` or ``"3-11"`` (odd counts in the range) → sorted link counts."""
+    counts: set[int] = set()
+    for part in text.split(","):
+        part = part.strip()
+        try:
+            if "-" in part:
+                low, high = (int(x) for x in part.split("-", 1))
+                if low > high or low % 2 == 0:
+                    raise UsageError(f"--links {text}: a range must go from an odd count up, e.g. 3-11")
+                counts.update(range(low, high + 1, 2))
+            else:
+                counts.add(int(part))
+        except ValueError:
+            raise UsageError(f"--links {text}: expected odd link counts such as 3,5,7 or 3-11") from None
+    for links in sorted(counts):
+        try:
+            check_link_count(links)
+        except ValueError as error:
+            raise UsageError(f"--links {links}: {str(error).split(': ', 1)[1]}") from None
+        if links > CATALOG_MAX_LINKS:
+            raise UsageError(f"--links {links}: the catalog goes up to {CATALOG_MAX_LINKS} links")
+    return sorted(counts)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="baranov", description="Position analysis of planar linkages by bilateration.")
+    commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    catalog = commands.add_parser("catalog", help="regenerate the catalog of Baranov trusses")
+    catalog.add_argument("--links", default="3-11", help="odd link counts, e.g. 3,5,7 or 3-11 (default 3-11; 13 is opt-in)")
+    catalog.add_argument("--out", default="catalog", type=Path, help="output folder (default: catalog/)")
+    catalog.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="worker processes (default: all cores)")
+    catalog.add_argument("--force", action="store_true", help="recompute even where complete files exist")
+    catalog.add_argument("--no-crosscheck", action="store_true", help="skip the brute-force enumeration with geng")
+    catalog.add_argument("--quiet", action="store_true", help="print no progress")
+    return parser
+
+
+def run_catalog(args: argparse.Namespace) -> int:
+    link_counts = parse_link_counts(args.links)
+    if args.workers < 1:
+        raise UsageError(f"--workers {args.workers}: must be at least 1")
+    try:
+        check_writable_folder(args.out)
+    except OSError as error:
+        raise UsageError(f"--out {args.out}: cannot write there ({error.strerror or error})") from None
+    log = (lambda message: None) if args.quiet else (lambda message: print(message, file=sys.stderr))
+    summary = build_catalog(
+        link_counts,
+        args.out,
+        workers=args.workers,
+        force=args.force,
+        crosscheck=not args.no_crosscheck,
+        show_progress=not args.quiet and sys.stderr.isatty(),
+        log=log,
+    )
+    print(summary, end="")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``baranov`` command."""
+    try:
+        args = _parser().parse_args(argv)
+        if args.command == "catalog":
+            return run_catalog(args)
+    except UsageError as error:
+        print(f"baranov: error: {error}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("baranov: interrupted; complete catalog files are kept, rerun to resume", file=sys.stderr)
+        return 130
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

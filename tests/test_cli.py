@@ -1,0 +1,113 @@
+"""The `baranov catalog` command: output, determinism, resume, atomicity, bad input."""
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from baranov.cli.main import main
+from baranov.enumerate.crosscheck import find_geng
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def run(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "baranov.cli", *args], capture_output=True, text=True)
+
+
+def test_catalog_files_and_fields(tmp_path):
+    assert main(["catalog", "--links", "3,5,7", "--out", str(tmp_path), "--quiet", "--workers", "1"]) == 0
+    names = sorted(p.name for p in tmp_path.iterdir())
+    expected = ["summary.md", "trusses-3.json", "trusses-5.json", "trusses-7.json"]
+    assert [n for n in names if n != "crosscheck.json"] == expected
+    pentad = json.loads((tmp_path / "trusses-5.json").read_text())
+    assert pentad == [{
+        "name": "5/N1", "link_graph6": "DFw", "links": 5,
+        "joints": {"P1": [0, 3], "P2": [0, 4], "P3": [1, 3], "P4": [1, 4], "P5": [2, 3], "P6": [2, 4]},
+        "link_degrees": [2, 2, 2, 3, 3], "automorphism_group_order": 12,
+        "link_orbits": [[0, 1, 2], [3, 4]], "joint_orbits": [["P1", "P2", "P3", "P4", "P5", "P6"]],
+        "planar": True, "assur_groups": 2, "slider_chains": 10,
+    }]
+    sevens = json.loads((tmp_path / "trusses-7.json").read_text())
+    assert [e["name"] for e in sevens] == ["7/N1", "7/N2", "7/N3"]
+    assert sum(e["assur_groups"] for e in sevens) == 10
+
+
+def test_rerun_is_byte_identical_and_reuses_complete_files(tmp_path, capsys):
+    args = ["catalog", "--links", "3-9", "--out", str(tmp_path), "--workers", "2"]
+    assert main(args) == 0
+    first = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    capsys.readouterr()
+    assert main(args) == 0
+    assert "reusing" in capsys.readouterr().err
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == first
+    assert main([*args, "--force", "--workers", "1"]) == 0
+    assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == first
+
+
+def test_truncated_file_is_recomputed(tmp_path):
+    args = ["catalog", "--links", "7", "--out", str(tmp_path), "--quiet"]
+    assert main(args) == 0
+    good = (tmp_path / "trusses-7.json").read_bytes()
+    (tmp_path / "trusses-7.json").write_bytes(good[: len(good) // 2])
+    assert main(args) == 0
+    assert (tmp_path / "trusses-7.json").read_bytes() == good
+    assert not list(tmp_path.glob(".*.tmp"))
+
+
+def test_committed_catalog_regenerates_byte_identically(tmp_path):
+    committed = REPO / "catalog"
+    assert main(["catalog", "--links", "3-11", "--out", str(tmp_path), "--quiet", "--workers", "2"]) == 0
+    for name in ["trusses-3.json", "trusses-5.json", "trusses-7.json", "trusses-9.json", "trusses-11.json"]:
+        assert (tmp_path / name).read_bytes() == (committed / name).read_bytes(), name
+    if find_geng() is not None:  # the summary records the cross-check, which needs geng
+        assert (tmp_path / "summary.md").read_bytes() == (committed / "summary.md").read_bytes()
+        assert (tmp_path / "crosscheck.json").read_bytes() == (committed / "crosscheck.json").read_bytes()
+
+
+def test_summary_is_printed(tmp_path):
+    result = run("catalog", "--links", "3,5", "--out", str(tmp_path), "--quiet")
+    assert result.returncode == 0
+    assert "| 5 | 1 |" in result.stdout
+    assert result.stderr == ""
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--links", "4"], "--links 4: a Baranov truss has an odd number of links, at least 3"),
+        (["--links", "1"], "--links 1: a Baranov truss has an odd number of links"),
+        (["--links", "x"], "--links x: expected odd link counts"),
+        (["--links", "3,x"], "--links 3,x: expected odd link counts"),
+        (["--links", "15"], "--links 15: the catalog goes up to 13 links"),
+        (["--workers", "0"], "--workers 0: must be at least 1"),
+        (["--bogus"], "unrecognized arguments: --bogus"),
+    ],
+)
+def test_bad_input_is_one_line_exit_2_nothing_written(tmp_path, args, message):
+    out = tmp_path / "out"
+    result = run("catalog", "--out", str(out), *args)
+    assert result.returncode == 2
+    assert result.stderr.strip() == f"baranov: error: {message}" or message in result.stderr
+    assert result.stderr.count("\n") == 1
+    assert "Traceback" not in result.stderr
+    assert result.stdout == ""
+    assert not out.exists()
+
+
+def test_unwritable_out_is_one_line_exit_2(tmp_path):
+    blocker = tmp_path / "a-file"
+    blocker.write_text("x")
+    result = run("catalog", "--links", "3", "--out", str(blocker / "catalog"))
+    assert result.returncode == 2
+    assert result.stderr.startswith(f"baranov: error: --out {blocker / 'catalog'}: cannot write there")
+    assert result.stderr.count("\n") == 1
+    assert blocker.read_text() == "x"
+
+
+def test_no_command_is_an_error():
+    result = run()
+    assert result.returncode == 2
+    assert result.stderr.count("\n") == 1

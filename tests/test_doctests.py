@@ -1,0 +1,25 @@
+"""Run the examples in every docstring of the installed ``baranov`` package."""
+
+import doctest
+import importlib
+import pkgutil
+
+import pytest
+
+import baranov.cli
+import baranov.enumerate
+import baranov.topology
+
+MODULES = sorted(
+    info.name
+    for package in (baranov.topology, baranov.enumerate, baranov.cli)
+    for info in pkgutil.walk_packages(package.__path__, package.__name__ + ".")
+    if not info.name.endswith("__main__")
+) + ["baranov.topology", "baranov.enumerate"]
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_docstring_examples(name):
+    module = importlib.import_module(name)
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS)
+    assert result.failed == 0
