@@ -183,7 +183,8 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
         "Table 3.1 (after Yang & Yao 1994) and thesis ch. 4 (slider chains). Method A: the",
         "library's generator; method B: brute force over nauty's geng output.",
         "",
-        "| links | trusses (method A) | trusses (method B) | trusses (literature) | Assur groups | Assur groups (literature) | slider chains | slider chains (literature) |",
+        "| links | trusses (method A) | trusses (method B) | trusses (literature) | Assur groups "
+        "| Assur groups (literature) | slider chains | slider chains (literature) |",
         "|---|---|---|---|---|---|---|---|",
     ]
     for links in sorted(set(catalogs) | set(LITERATURE)):
@@ -199,7 +200,8 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
             sliders = None if None in slider_values else sum(slider_values)
         b_count = None
         if check:
-            b_count = f"{check['trusses']} (of {check['candidates']} candidates; same classes: {'yes' if check['same_isomorphism_classes'] else 'NO'})"
+            same = "yes" if check["same_isomorphism_classes"] else "NO"
+            b_count = f"{check['trusses']} (of {check['candidates']} candidates; same classes: {same})"
         lines.append(
             f"| {links} | {_cell(a_count)} | {_cell(b_count)} | {_cell(literature.get('trusses'))} | "
             f"{_cell(assur)} | {_cell(literature.get('assur_groups'))} | {_cell(sliders)} | "
@@ -207,7 +209,8 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
         )
     lines += ["", "## Invariants per link count", ""]
     lines += [
-        "| links | non-planar | automorphism group orders (order: trusses) | largest link degree (degree: trusses) |",
+        "| links | non-planar | automorphism group orders (order: trusses) "
+        "| largest link degree (degree: trusses) |",
         "|---|---|---|---|",
     ]
     for links, entries in sorted(catalogs.items()):

@@ -42,7 +42,6 @@ import numpy as np
 
 from baranov.topology import (
     KinematicChain,
-    adjacency_masks,
     canonical_link_graph6,
     chain_from_link_graph,
     degree_sequence,
@@ -51,10 +50,6 @@ from baranov.topology.automorphisms import link_graph_certificate
 from baranov.topology.rigidity import subset_edge_counts
 
 Masks = tuple[int, ...]
-
-#: Link counts for which the literature (and this project) define Baranov trusses.
-SUPPORTED_LINKS = range(3, 24, 2)
-
 
 def check_link_count(links: int) -> None:
     """Raise ValueError unless ``links`` is an odd number ≥ 3 (J = 3(L-1)/2 must be whole)."""

@@ -60,13 +60,7 @@ class AutomorphismGroup:
 
     @cached_property
     def _group(self) -> PermutationGroup:
-        n = self.number_of_links
-        index = {name: k for k, name in enumerate(self.joint_names)}
-        perms = [
-            Permutation(list(g.links) + [n + index[name] for name in g.joints])
-            for g in self.generators
-        ]
-        return PermutationGroup(perms or [Permutation(list(range(n + len(self.joint_names))))])
+        return _permutation_group(self.generators, self.number_of_links, self.joint_names)
 
     def elements(self) -> list[Automorphism]:
         """Every automorphism as link and joint permutations, identity first (|G| items)."""
@@ -77,6 +71,16 @@ class AutomorphismGroup:
             joints = tuple(self.joint_names[form[n + k] - n] for k in range(len(self.joint_names)))
             result.append(Automorphism(tuple(form[:n]), joints))
         return result
+
+
+def _permutation_group(
+    generators: Sequence[Automorphism], number_of_links: int, joint_names: Sequence[str]
+) -> PermutationGroup:
+    """The group as sympy permutations of links 0..L-1 followed by joints L..L+J-1."""
+    n = number_of_links
+    index = {name: k for k, name in enumerate(joint_names)}
+    perms = [Permutation(list(g.links) + [n + index[name] for name in g.joints]) for g in generators]
+    return PermutationGroup(perms or [Permutation(list(range(n + len(joint_names))))])
 
 
 def _incidence_graph(chain: KinematicChain) -> pynauty.Graph:
@@ -113,8 +117,7 @@ def automorphism_group(chain: KinematicChain) -> AutomorphismGroup:
         tuple(names[k] for k in orbit)
         for orbit in _orbits_from_representatives([r - n for r in orbits[n:]], range(len(names)))
     )
-    group = AutomorphismGroup(1, generators, link_orbits, joint_orbits, names, n)
-    order = int(group._group.order()) if generators else 1
+    order = int(_permutation_group(generators, n, names).order()) if generators else 1
     return AutomorphismGroup(order, generators, link_orbits, joint_orbits, names, n)
 
 
