@@ -21,10 +21,9 @@ from collections.abc import Callable, Iterable
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from tqdm import tqdm
-
 from baranov.enumerate import baranov_link_graphs
 from baranov.enumerate.crosscheck import baranov_link_graphs_by_filter, find_geng
+from baranov.enumerate.literature import thesis_joint_names, thesis_name
 from baranov.enumerate.sliders import count_slider_chains
 from baranov.enumerate.trusses import chains_from_masks
 from baranov.topology import (
@@ -35,6 +34,7 @@ from baranov.topology import (
     is_planar,
 )
 from baranov.topology.automorphisms import link_graph_certificate
+from tqdm import tqdm
 
 from .files import write_atomically
 
@@ -52,7 +52,7 @@ LITERATURE = {
 SLIDER_CHAINS_MAX_LINKS = 11
 
 ENTRY_FIELDS = (
-    "name", "link_graph6", "links", "joints", "link_degrees", "automorphism_group_order",
+    "id", "name", "name_evidence", "thesis_joint_names", "link_graph6", "links", "joints", "link_degrees", "automorphism_group_order",
     "link_orbits", "joint_orbits", "planar", "assur_groups", "slider_chains",
 )
 
@@ -60,13 +60,22 @@ Progress = Callable[[str], None]
 
 
 def truss_entry(item: tuple[str, str]) -> dict:
-    """The catalog object of one truss, from its name and canonical graph6."""
-    name, graph6 = item
+    """The catalog object of one truss, from its project id and canonical graph6.
+
+    ``name`` is the thesis name where the truss is isomorphic to one recorded in
+    :mod:`baranov.enumerate.literature` (``name_evidence`` says where it was read),
+    otherwise the project id.
+    """
+    identifier, graph6 = item
     chain = chain_from_link_graph(graph6)
     group = automorphism_group(chain)
     sliders = count_slider_chains(chain, group) if chain.number_of_links <= SLIDER_CHAINS_MAX_LINKS else None
+    published = thesis_name(chain)
     return {
-        "name": name,
+        "id": identifier,
+        "name": published.name if published else identifier,
+        "name_evidence": f"isomorphic to the truss of {published.source}" if published else None,
+        "thesis_joint_names": thesis_joint_names(chain, published) if published else None,
         "link_graph6": graph6,
         "links": chain.number_of_links,
         "joints": {joint.name: list(joint.links) for joint in chain.joints},
@@ -82,7 +91,7 @@ def truss_entry(item: tuple[str, str]) -> dict:
 
 def dump_entries(entries: list[dict]) -> str:
     """JSON list with one truss per line (compact, diff-friendly, deterministic)."""
-    lines = [json.dumps(entry, separators=(",", ":")) for entry in entries]
+    lines = [json.dumps(entry, separators=(",", ":"), ensure_ascii=False) for entry in entries]
     return "[\n" + ",\n".join(lines) + "\n]\n"
 
 

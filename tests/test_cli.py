@@ -23,15 +23,21 @@ def test_catalog_files_and_fields(tmp_path):
     expected = ["summary.md", "trusses-3.json", "trusses-5.json", "trusses-7.json"]
     assert [n for n in names if n != "crosscheck.json"] == expected
     pentad = json.loads((tmp_path / "trusses-5.json").read_text())
+    mapping = pentad[0].pop("thesis_joint_names")  # validity: tests/test_literature.py
+    assert sorted(mapping) == sorted(mapping.values()) == ["P1", "P2", "P3", "P4", "P5", "P6"]
     assert pentad == [{
-        "name": "5/N1", "link_graph6": "DFw", "links": 5,
+        "id": "5/N1", "name": "5/B1",
+        "name_evidence": "isomorphic to the truss of thesis §2.7, eq. (2.24)-(2.25): ternary links "
+                         "△P1P3P2, △P4P5P6; binary links P1P4 (Z6,1,4), P3P6 (Z1,6,3), P2P5 (closure s2,5)",
+        "link_graph6": "DFw", "links": 5,
         "joints": {"P1": [0, 3], "P2": [0, 4], "P3": [1, 3], "P4": [1, 4], "P5": [2, 3], "P6": [2, 4]},
         "link_degrees": [2, 2, 2, 3, 3], "automorphism_group_order": 12,
         "link_orbits": [[0, 1, 2], [3, 4]], "joint_orbits": [["P1", "P2", "P3", "P4", "P5", "P6"]],
         "planar": True, "assur_groups": 2, "slider_chains": 10,
     }]
     sevens = json.loads((tmp_path / "trusses-7.json").read_text())
-    assert [e["name"] for e in sevens] == ["7/N1", "7/N2", "7/N3"]
+    assert [e["id"] for e in sevens] == ["7/N1", "7/N2", "7/N3"]
+    assert [e["name"] for e in sevens] == ["7/B3", "7/B1", "7/B2"]
     assert sum(e["assur_groups"] for e in sevens) == 10
 
 

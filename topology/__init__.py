@@ -17,7 +17,7 @@ from .automorphisms import (
     canonical_link_graph6,
     certificate,
 )
-from .chain import Joint, JointKind, KinematicChain, chain_from_link_graph
+from .chain import Joint, JointKind, KinematicChain, chain_from_link_graph, chain_from_links
 from .errors import TopologyError
 from .graphs import degree_sequence, is_planar, joint_graph, joints_of_links, link_graph
 from .rigidity import (
@@ -44,6 +44,7 @@ __all__ = [
     "canonical_link_graph6",
     "certificate",
     "chain_from_link_graph",
+    "chain_from_links",
     "degree_sequence",
     "is_baranov_link_graph",
     "is_baranov_truss",

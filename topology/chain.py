@@ -17,6 +17,7 @@ Conventions (thesis §2.2, §3.1):
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 from collections.abc import Hashable, Iterable, Sequence
 from dataclasses import dataclass, field
@@ -203,6 +204,47 @@ def chain_from_link_graph(
         raise TopologyError(f"{len(joint_names)} joint names given for {len(edges)} joints")
     joints = tuple(Joint(name, edge) for name, edge in zip(joint_names, edges))
     return KinematicChain(len(labels), joints, tuple(labels))
+
+
+def chain_from_links(links: Sequence[Iterable[str]], link_labels: Sequence[Hashable] | None = None) -> KinematicChain:
+    """Build a chain from its links, each given as the names of the joints it carries.
+
+    This is how the thesis describes trusses (e.g. the 7/B1 truss by its triangles
+    △P2P4P7, △P3P5P4, ... and binary links): every joint must lie on exactly two of the
+    given links. Joints are ordered by name, numbers compared as numbers (P2 < P10).
+
+    >>> pentad = chain_from_links([("P1", "P2", "P3"), ("P4", "P5", "P6"),
+    ...                            ("P1", "P4"), ("P2", "P5"), ("P3", "P6")])
+    >>> pentad.joint("P5").links
+    (1, 3)
+    >>> chain_from_links([("P1", "P2"), ("P2", "P3")])
+    Traceback (most recent call last):
+    ...
+    baranov.topology.errors.TopologyError: joint P1: lies on 1 link (L0); a joint joins exactly two links
+    """
+    links = [tuple(link) for link in links]
+    labels = tuple(link_labels) if link_labels is not None else tuple(range(len(links)))
+    if len(labels) != len(links):
+        raise TopologyError(f"{len(labels)} link labels given for {len(links)} links")
+    carriers: dict[str, list[int]] = {}
+    for index, link in enumerate(links):
+        if len(set(link)) != len(link):
+            raise TopologyError(f"link L{labels[index]}: a joint is listed twice")
+        for name in link:
+            carriers.setdefault(name, []).append(index)
+    for name, on in carriers.items():
+        if len(on) != 2:
+            listed = ", ".join(f"L{labels[i]}" for i in on)
+            raise TopologyError(f"joint {name}: lies on {len(on)} link{'s' if len(on) != 1 else ''} ({listed}); "
+                                "a joint joins exactly two links")
+    names = sorted(carriers, key=_natural_key)
+    joints = tuple(Joint(name, (carriers[name][0], carriers[name][1])) for name in names)
+    return KinematicChain(len(links), joints, labels)
+
+
+def _natural_key(name: str) -> tuple:
+    """Sort key comparing digit runs as numbers: P2 < P10."""
+    return tuple(int(part) if part.isdigit() else part for part in re.split(r"(\d+)", name))
 
 
 def _sorted_labels(labels: Iterable[Hashable]) -> list[Hashable]:

@@ -1,0 +1,57 @@
+"""Trusses read from the thesis: consistent, Baranov, and found in the catalog."""
+
+import pytest
+
+from baranov.enumerate import baranov_trusses
+from baranov.enumerate.literature import THESIS_TRUSSES, thesis_joint_names, thesis_name, thesis_truss
+from baranov.topology import TopologyError, chain_from_links, is_baranov_truss, joint_graph
+
+
+@pytest.mark.parametrize("published", THESIS_TRUSSES, ids=lambda t: t.name)
+def test_thesis_truss_is_a_baranov_truss(published):
+    chain = published.chain()
+    assert is_baranov_truss(chain)
+    assert [j.name for j in chain.joints] == [f"P{k}" for k in range(1, chain.number_of_joints + 1)]
+
+
+@pytest.mark.parametrize("links", [3, 5, 7])
+def test_every_catalog_truss_gets_a_distinct_thesis_name(links):
+    names = [thesis_name(t).name for t in baranov_trusses(links)]
+    assert sorted(names) == sorted(t.name for t in THESIS_TRUSSES if t.name.startswith(f"{links}/"))
+
+
+def test_degree_sequences_match_the_thesis_descriptions():
+    # §3.3: 7/B1 and 7/B2 have four ternary and three binary links; 7/B3 one quaternary,
+    # two ternary and four binary links.
+    assert sorted(thesis_truss("7/B1").chain().link_degrees) == [2, 2, 2, 3, 3, 3, 3]
+    assert sorted(thesis_truss("7/B2").chain().link_degrees) == [2, 2, 2, 3, 3, 3, 3]
+    assert sorted(thesis_truss("7/B3").chain().link_degrees) == [2, 2, 2, 2, 3, 3, 4]
+
+
+@pytest.mark.parametrize("links", [3, 5, 7])
+def test_thesis_joint_names_are_an_isomorphism(links):
+    for truss in baranov_trusses(links):
+        published = thesis_name(truss)
+        mapping = thesis_joint_names(truss, published)
+        ours, theirs = joint_graph(truss), joint_graph(published.chain())
+        assert sorted(mapping.values()) == sorted(theirs.nodes)
+        assert {frozenset((mapping[u], mapping[v])) for u, v in ours.edges} == {frozenset(e) for e in theirs.edges}
+
+
+def test_unknown_name_and_non_isomorphic_chain():
+    with pytest.raises(ValueError, match="9/B28"):
+        thesis_truss("9/B28")
+    with pytest.raises(ValueError, match="not isomorphic to 7/B1"):
+        thesis_joint_names(baranov_trusses(7)[0], thesis_truss("7/B1"))
+
+
+@pytest.mark.parametrize(
+    ("links", "message"),
+    [
+        ([("P1", "P2"), ("P2", "P3"), ("P3", "P1", "P2")], "joint P2: lies on 3 links"),
+        ([("P1", "P1"), ("P1", "P2")], "link L0: a joint is listed twice"),
+    ],
+)
+def test_chain_from_links_errors(links, message):
+    with pytest.raises(TopologyError, match=message):
+        chain_from_links(links)
