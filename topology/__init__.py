@@ -26,6 +26,8 @@ from .rigidity import (
     is_baranov_truss,
     mobility,
     require_baranov_truss,
+    require_rigid_chain,
+    smallest_overconstrained_subchain,
     smallest_rigid_subchain,
 )
 
@@ -54,5 +56,7 @@ __all__ = [
     "link_graph",
     "mobility",
     "require_baranov_truss",
+    "require_rigid_chain",
+    "smallest_overconstrained_subchain",
     "smallest_rigid_subchain",
 ]

@@ -69,14 +69,17 @@ def subset_edge_counts(masks: Sequence[int]) -> np.ndarray:
     return counts
 
 
-def rigid_subset_masks(masks: Sequence[int]) -> np.ndarray:
-    """Bit masks of all proper link subsets S, |S| ≥ 2, with 2·e(S) ≥ 3|S| - 3."""
+def rigid_subset_masks(masks: Sequence[int], excess: int = 0, proper: bool = True) -> np.ndarray:
+    """Bit masks of the link subsets S, |S| ≥ 2 (and S ≠ all links when ``proper``), with
+    2·e(S) - 3|S| + 3 ≥ ``excess``: rigid for excess 0, over-constrained for excess 1."""
     n = len(masks)
     counts = subset_edge_counts(masks).astype(np.int32)
     subsets = np.arange(1 << n, dtype=np.int64)
     sizes = np.bitwise_count(subsets).astype(np.int32)
-    rigid = (2 * counts >= 3 * sizes - 3) & (sizes >= 2) & (sizes < n)
-    return subsets[rigid]
+    selected = (2 * counts - 3 * sizes + 3 >= excess) & (sizes >= 2)
+    if proper:
+        selected &= sizes < n
+    return subsets[selected]
 
 
 def smallest_rigid_subchain(chain: KinematicChain) -> tuple[int, ...] | None:
@@ -94,22 +97,13 @@ def smallest_rigid_subchain(chain: KinematicChain) -> tuple[int, ...] | None:
     >>> smallest_rigid_subchain(chain)
     (0, 1, 2)
     """
-    masks = adjacency_masks(chain)
-    n = len(masks)
-    if n <= SUBSET_TABLE_LIMIT:
-        rigid = rigid_subset_masks(masks)
-        if rigid.size == 0:
-            return None
-        sizes = np.bitwise_count(rigid)
-        best = int(rigid[sizes == sizes.min()].min())
-        return tuple(i for i in range(n) if best >> i & 1)
-    return _smallest_rigid_connected_set(masks)
+    return _smallest_subset(chain, 0, proper=True)
 
 
-def _smallest_rigid_connected_set(masks: Sequence[int]) -> tuple[int, ...] | None:
+def _smallest_rigid_connected_set(masks: Sequence[int], excess: int = 0, proper: bool = True) -> tuple[int, ...] | None:
     n = len(masks)
     level = {1 << i for i in range(n)}
-    for size in range(2, n):
+    for size in range(2, n if proper else n + 1):
         grown = set()
         for subset in level:
             frontier = 0
@@ -121,12 +115,67 @@ def _smallest_rigid_connected_set(masks: Sequence[int]) -> tuple[int, ...] | Non
                 bit = frontier & -frontier
                 frontier ^= bit
                 grown.add(subset | bit)
-        rigid = [s for s in grown if 2 * _edges_inside(masks, s) >= 3 * size - 3]
+        rigid = [s for s in grown if 2 * _edges_inside(masks, s) - 3 * size + 3 >= excess]
         if rigid:
             best = min(rigid)
             return tuple(i for i in range(n) if best >> i & 1)
         level = grown
     return None
+
+
+def _smallest_subset(chain: KinematicChain, excess: int, proper: bool) -> tuple[int, ...] | None:
+    masks = adjacency_masks(chain)
+    n = len(masks)
+    if n > SUBSET_TABLE_LIMIT:
+        return _smallest_rigid_connected_set(masks, excess, proper)
+    found = rigid_subset_masks(masks, excess, proper)
+    if found.size == 0:
+        return None
+    sizes = np.bitwise_count(found)
+    best = int(found[sizes == sizes.min()].min())
+    return tuple(i for i in range(n) if best >> i & 1)
+
+
+def smallest_overconstrained_subchain(chain: KinematicChain) -> tuple[int, ...] | None:
+    """The smallest set of ≥ 2 links (the whole chain included) with more joints than
+    rigidity needs, 2·e(S) > 3|S| - 3, or ``None``. Same method as
+    :func:`smallest_rigid_subchain`.
+
+    >>> from baranov.topology import chain_from_link_graph
+    >>> smallest_overconstrained_subchain(chain_from_link_graph([(0, 1), (1, 2), (2, 3), (3, 0), (0, 2)]))
+    (0, 1, 2, 3)
+    """
+    return _smallest_subset(chain, 1, proper=False)
+
+
+def require_rigid_chain(chain: KinematicChain) -> None:
+    """Raise :class:`TopologyError` unless ``chain`` is rigid and not over-constrained:
+    mobility 0 and no set of links with 2·e(S) > 3|S| - 3. Rigid proper sub-chains are
+    allowed (a chain of triads is rigid: thesis §2.5.2, "ruler and compass").
+
+    >>> from baranov.topology import chain_from_link_graph
+    >>> two_triads = [(0, 1), (1, 2), (0, 2), (2, 3), (3, 4), (4, 2)]  # sharing link 2
+    >>> require_rigid_chain(chain_from_link_graph(two_triads))
+    >>> require_rigid_chain(chain_from_link_graph([(0, 1), (1, 2), (2, 3), (3, 0), (0, 2)]))
+    Traceback (most recent call last):
+    ...
+    baranov.topology.errors.TopologyError: mobility F = 3(L-1) - 2J = -1 with L = 4 links and J = 5 joints; a rigid chain needs F = 0
+    """
+    f = mobility(chain)
+    if f != 0:
+        raise TopologyError(
+            f"mobility F = 3(L-1) - 2J = {f} with L = {chain.number_of_links} links and "
+            f"J = {chain.number_of_joints} joints; a rigid chain needs F = 0"
+        )
+    over = smallest_overconstrained_subchain(chain)
+    if over is not None:
+        subset = sum(1 << i for i in over)
+        joints = _edges_inside(adjacency_masks(chain), subset)
+        listed = ", ".join(chain.link_name(link) for link in over)
+        raise TopologyError(
+            f"links {listed} are over-constrained ({len(over)} links, {joints} joints, "
+            f"mobility {3 * (len(over) - 1) - 2 * joints})"
+        )
 
 
 def _edges_inside(masks: Sequence[int], subset: int) -> int:

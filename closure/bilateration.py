@@ -1,0 +1,53 @@
+"""Bilateration matrices as complex numbers.
+
+A perpendicular matrix [[a, -b], [b, a]] acts on plane vectors as multiplication by the
+complex number a + ib acts on x + iy; such matrices add and multiply like complex numbers
+and det = |a + ib|² (thesis §2.4). A bilateration matrix (thesis eq. 2.7)
+
+    Z_{i,j,k} = 1/(2 s_{i,j}) [[s_{i,j} + s_{i,k} - s_{j,k}, -4 A_{i,j,k}],
+                              [4 A_{i,j,k}, s_{i,j} + s_{i,k} - s_{j,k}]]
+
+is therefore the complex number (s_{i,j} + s_{i,k} - s_{j,k} + 4i A_{i,j,k}) / (2 s_{i,j}),
+where A_{i,j,k} = ±¼ √((s_{i,j} + s_{i,k} + s_{j,k})² - 2(s_{i,j}² + s_{i,k}² + s_{j,k}²))
+is the oriented area of △P_i P_j P_k, positive when P_k lies left of p_{i,j}.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def oriented_area(s_ij, s_ik, s_jk, sign):
+    """A_{i,j,k} from the three squared distances and the orientation sign (±1), thesis
+    eq. (2.7). NaN where the radicand is negative (the triangle does not exist).
+    Vectorised over numpy arrays.
+
+    >>> float(oriented_area(25.0, 9.0, 16.0, 1))  # 3-4-5 right triangle: area 6
+    6.0
+    """
+    s_ij, s_ik, s_jk = (np.asarray(x, dtype=float) for x in (s_ij, s_ik, s_jk))
+    radicand = (s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)
+    with np.errstate(invalid="ignore"):
+        return sign * np.sqrt(np.where(radicand >= 0, radicand, np.nan)) / 4
+
+
+def bilateration_matrix(s_ij, s_ik, s_jk, sign):
+    """Z_{i,j,k} as a complex number (array), so that p_{i,k} = Z_{i,j,k} p_{i,j}.
+
+    >>> z = bilateration_matrix(25.0, 9.0, 16.0, 1)   # P_i=(0,0), P_j=(5,0), P_k=(9/5, 12/5)
+    >>> complex(np.round(z * 5, 12))                   # p_{i,k} = Z p_{i,j}
+    (1.8+2.4j)
+    """
+    area = oriented_area(s_ij, s_ik, s_jk, sign)
+    s_ij, s_ik, s_jk = (np.asarray(x, dtype=float) for x in (s_ij, s_ik, s_jk))
+    return (s_ij + s_ik - s_jk + 4j * area) / (2 * s_ij)
+
+
+def perpendicular_matrix(z) -> np.ndarray:
+    """The 2×2 perpendicular matrix [[a, -b], [b, a]] of the complex number a + ib.
+
+    >>> perpendicular_matrix(1 + 2j).tolist()
+    [[1.0, -2.0], [2.0, 1.0]]
+    """
+    z = complex(z)
+    return np.array([[z.real, -z.imag], [z.imag, z.real]])
