@@ -52,7 +52,8 @@ LITERATURE = {
 SLIDER_CHAINS_MAX_LINKS = 11
 
 ENTRY_FIELDS = (
-    "id", "name", "name_evidence", "thesis_joint_names", "link_graph6", "links", "joints", "link_degrees", "automorphism_group_order",
+    "id", "name", "name_evidence", "thesis_joint_names", "link_graph6", "links", "joints", "link_degrees",
+    "automorphism_group_order",
     "link_orbits", "joint_orbits", "planar", "assur_groups", "slider_chains",
 )
 

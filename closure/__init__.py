@@ -3,9 +3,29 @@ variants from automorphisms, text/LaTeX/sympy forms, and compiled numeric evalua
 
 from .bilateration import bilateration_matrix, oriented_area, perpendicular_matrix
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression, closure_system, sympy_condition
+from .evaluate import CompiledSystem, compile_from_coordinates, sign_branches
+from .notation import parse_matrix_expression
+from .symmetry import (
+    SymmetricFormulation,
+    conditions_by_symmetry,
+    permute_condition,
+    permute_plan,
+    symmetric_formulation,
+    symmetric_variants,
+)
 
 __all__ = [
     "ClosureSystem",
+    "CompiledSystem",
+    "compile_from_coordinates",
+    "conditions_by_symmetry",
+    "parse_matrix_expression",
+    "permute_condition",
+    "permute_plan",
+    "sign_branches",
+    "SymmetricFormulation",
+    "symmetric_formulation",
+    "symmetric_variants",
     "DistanceCondition",
     "MatrixExpression",
     "bilateration_matrix",

@@ -19,7 +19,7 @@ from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
 from .bilateration import bilateration_matrix
-from .conditions import ClosureSystem
+from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
 
 Triangle = tuple[str, str, str]
 Pair = frozenset[str]
@@ -31,7 +31,7 @@ def sign_branches(count: int) -> np.ndarray:
     >>> sign_branches(2).tolist()
     [[1, 1], [1, -1], [-1, 1], [-1, -1]]
     """
-    return np.array(list(product((1, -1), repeat=count)), dtype=float).reshape(2**count, count)
+    return np.array(list(product((1, -1), repeat=count)), dtype=int).reshape(2**count, count)
 
 
 class CompiledSystem:
@@ -146,7 +146,38 @@ def true_parameters_and_signs(system: ClosureSystem, coordinates) -> tuple[np.nd
     return values, signs
 
 
+def value_at_configuration(expression: MatrixExpression, coordinates) -> complex:
+    """Ω evaluated at a configuration, with Z_{i,j,k} = (P_k - P_i) / (P_j - P_i) as complex
+    numbers (exactly what bilateration computes there, thesis eq. 2.6).
+
+    An expression is right for a closure s_{u,v} = det(Ω) s_{a,b} exactly when
+    |Ω|² s_{a,b} = s_{u,v} on every configuration; this needs no radicals, so it checks
+    the *structure* of a derivation or a transcription independently of the evaluator.
+    """
+    point = {name: complex(*coordinates[name]) for name in coordinates}
+    total = 0j
+    for monomial, coefficient in expression.terms:
+        product = complex(coefficient)
+        for i, j, k in monomial:
+            product *= (point[k] - point[i]) / (point[j] - point[i])
+        total += product
+    return total
+
+
+def condition_residual_at_configuration(condition: DistanceCondition, coordinates) -> float:
+    """Relative residual of ``s_{u,v} = det(Ω) s_ref`` at a configuration (see
+    :func:`value_at_configuration`)."""
+    def squared(u, v):
+        return abs(complex(*coordinates[v]) - complex(*coordinates[u])) ** 2
+
+    target = squared(*condition.pair)
+    value = abs(value_at_configuration(condition.omega, coordinates)) ** 2 * squared(*condition.reference)
+    return (value - target) / target
+
+
 __all__ = [
+    "condition_residual_at_configuration",
+    "value_at_configuration",
     "CompiledSystem",
     "compile_from_coordinates",
     "known_distances",

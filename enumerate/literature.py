@@ -73,6 +73,14 @@ THESIS_TRUSSES: tuple[PublishedTruss, ...] = (
         "binary links P2P4 (Z1,4,2, eq. 3.35), P1P3 (Z4,1,3, eq. 3.37), P6P8 (Z5,6,8, "
         "eq. 3.38), P7P9 (closure s7,9)",
     ),
+    PublishedTruss(
+        "9/B28",
+        (("P1", "P8", "P3"), ("P3", "P6", "P4"), ("P4", "P7", "P5"), ("P2", "P5", "P11"),
+         ("P8", "P12", "P9"), ("P10", "P12", "P11"), ("P1", "P2"), ("P6", "P10"), ("P7", "P9")),
+        "thesis §3.4.1: ternary links △P1P8P3, △P3P6P4, △P4P7P5, △P2P5P11, △P8P12P9, "
+        "△P10P12P11; binary links P1P2 (Z4,1,2 with parameters s1,4, s2,4, Appendix A), "
+        "P6P10 and P7P9 (closures s6,10, s7,9)",
+    ),
 )
 
 

@@ -161,17 +161,10 @@ def require_rigid_chain(chain: KinematicChain) -> None:
     ...
     baranov.topology.errors.TopologyError: mobility F = 3(L-1) - 2J = -1 with L = 4 links and J = 5 joints; a rigid chain needs F = 0
     """
-    f = mobility(chain)
-    if f != 0:
-        raise TopologyError(
-            f"mobility F = 3(L-1) - 2J = {f} with L = {chain.number_of_links} links and "
-            f"J = {chain.number_of_joints} joints; a rigid chain needs F = 0"
-        )
+    _require_zero_mobility(chain, "a rigid chain")
     over = smallest_overconstrained_subchain(chain)
     if over is not None:
-        subset = sum(1 << i for i in over)
-        joints = _edges_inside(adjacency_masks(chain), subset)
-        listed = ", ".join(chain.link_name(link) for link in over)
+        listed, joints = _describe_links(chain, over)
         raise TopologyError(
             f"links {listed} are over-constrained ({len(over)} links, {joints} joints, "
             f"mobility {3 * (len(over) - 1) - 2 * joints})"
@@ -223,19 +216,26 @@ def require_baranov_truss(chain: KinematicChain) -> None:
     ...
     baranov.topology.errors.TopologyError: mobility F = 3(L-1) - 2J = 1 with L = 4 links and J = 4 joints; a truss needs F = 0
     """
-    f = mobility(chain)
-    if f != 0:
-        raise TopologyError(
-            f"mobility F = 3(L-1) - 2J = {f} with L = {chain.number_of_links} links and "
-            f"J = {chain.number_of_joints} joints; a truss needs F = 0"
-        )
+    _require_zero_mobility(chain, "a truss")
     rigid = smallest_rigid_subchain(chain)
     if rigid is not None:
-        masks = adjacency_masks(chain)
-        subset = sum(1 << i for i in rigid)
-        joints = _edges_inside(masks, subset)
-        listed = ", ".join(chain.link_name(link) for link in rigid)
+        listed, joints = _describe_links(chain, rigid)
         raise TopologyError(
             f"links {listed} form a rigid sub-chain ({len(rigid)} links, {joints} joints): "
             "not a Baranov truss"
         )
+
+
+def _require_zero_mobility(chain: KinematicChain, what: str) -> None:
+    f = mobility(chain)
+    if f != 0:
+        raise TopologyError(
+            f"mobility F = 3(L-1) - 2J = {f} with L = {chain.number_of_links} links and "
+            f"J = {chain.number_of_joints} joints; {what} needs F = 0"
+        )
+
+
+def _describe_links(chain: KinematicChain, links: tuple[int, ...]) -> tuple[str, int]:
+    """User-facing list of ``links`` and the number of joints among them."""
+    joints = _edges_inside(adjacency_masks(chain), sum(1 << i for i in links))
+    return ", ".join(chain.link_name(link) for link in links), joints
