@@ -14,6 +14,14 @@ def test_thesis_truss_is_a_baranov_truss(published):
     assert [j.name for j in chain.joints] == [f"P{k}" for k in range(1, chain.number_of_joints + 1)]
 
 
+def test_exactly_one_nine_link_truss_is_named_and_it_is_non_planar():
+    from baranov.topology import is_planar
+
+    named = [t for t in baranov_trusses(9) if thesis_name(t) is not None]
+    assert [thesis_name(t).name for t in named] == ["9/B28"]
+    assert not is_planar(named[0])  # thesis §3.4.1: 9/B28 is one of the three non-planar trusses
+
+
 @pytest.mark.parametrize("links", [3, 5, 7])
 def test_every_catalog_truss_gets_a_distinct_thesis_name(links):
     names = [thesis_name(t).name for t in baranov_trusses(links)]
@@ -39,8 +47,8 @@ def test_thesis_joint_names_are_an_isomorphism(links):
 
 
 def test_unknown_name_and_non_isomorphic_chain():
-    with pytest.raises(ValueError, match="9/B28"):
-        thesis_truss("9/B28")
+    with pytest.raises(ValueError, match="9/B1"):
+        thesis_truss("9/B1")
     with pytest.raises(ValueError, match="not isomorphic to 7/B1"):
         thesis_joint_names(baranov_trusses(7)[0], thesis_truss("7/B1"))
 
