@@ -1,4 +1,4 @@
-"""Command-line interface: ``baranov catalog ...``.
+"""Command-line interface: ``baranov catalog ...`` and ``baranov show ...``.
 
 Bad input gives a one-line message on stderr and exit code 2, with nothing written.
 """
@@ -14,6 +14,7 @@ from baranov.enumerate import check_link_count
 
 from .catalog import build_catalog
 from .files import check_writable_folder
+from .show import show
 
 #: The catalog command accepts link counts up to this one (13 links: about 10 s).
 CATALOG_MAX_LINKS = 13
@@ -63,6 +64,13 @@ def _parser() -> argparse.ArgumentParser:
     catalog.add_argument("--force", action="store_true", help="recompute even where complete files exist")
     catalog.add_argument("--no-crosscheck", action="store_true", help="skip the brute-force enumeration with geng")
     catalog.add_argument("--quiet", action="store_true", help="print no progress")
+    show = commands.add_parser("show", help="topology, plan and closure conditions of one chain")
+    show.add_argument("chain", help="thesis name (9/B28), catalog id (11/N123), graph6 string, or a file")
+    show.add_argument("--latex", action="store_true", help="closure conditions in LaTeX")
+    show.add_argument("--reference", help="fix the reference pair, e.g. P1,P6")
+    show.add_argument("--parameter", action="append", help="allow this parameter pair (repeatable), e.g. P1,P6")
+    show.add_argument("--plans", type=int, default=1, help="show the N best plans (default 1)")
+    show.add_argument("--catalog", default="catalog", type=Path, help="catalog folder for ids (default catalog/)")
     return parser
 
 
@@ -94,7 +102,12 @@ def main(argv: list[str] | None = None) -> int:
         args = _parser().parse_args(argv)
         if args.command == "catalog":
             return run_catalog(args)
-    except UsageError as error:
+        if args.command == "show":
+            if args.plans < 1:
+                raise UsageError(f"--plans {args.plans}: must be at least 1")
+            print(show(args.chain, args.catalog, args.latex, args.reference, args.parameter, args.plans), end="")
+            return 0
+    except (UsageError, ValueError) as error:
         print(f"baranov: error: {error}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:

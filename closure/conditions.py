@@ -22,6 +22,7 @@ from functools import cached_property
 import sympy
 
 from baranov.planner import DistanceKind, Plan
+from baranov.topology import natural_sort_key
 
 Triangle = tuple[str, str, str]
 Monomial = tuple[Triangle, ...]  # Z factors, latest step first
@@ -152,13 +153,17 @@ def closure_system(plan: Plan) -> ClosureSystem:
             terms[monomial] = terms.get(monomial, 0) - coefficient
         return MatrixExpression(_sorted_polynomial(terms))
 
-    conditions = tuple(DistanceCondition((u, v), difference(u, v), plan.reference) for u, v in plan.closure_pairs)
+    def condition(pair) -> DistanceCondition:
+        u, v = sorted(pair, key=natural_sort_key)  # s2,5 rather than s5,2, as the thesis writes
+        return DistanceCondition((u, v), difference(u, v), plan.reference)
+
+    conditions = tuple(condition(pair) for pair in plan.closure_pairs)
     computed = []
     seen = set()
     for step in plan.steps:
         if step.base_distance is DistanceKind.COMPUTED and frozenset(step.base) not in seen:
             seen.add(frozenset(step.base))
-            computed.append(DistanceCondition(step.base, difference(*step.base), plan.reference))
+            computed.append(condition(step.base))
     return ClosureSystem(plan, expressions, conditions, tuple(computed))
 
 

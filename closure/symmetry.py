@@ -156,7 +156,7 @@ def symmetric_formulation(chain: KinematicChain, count: int = 10**6) -> Symmetri
     >>> from baranov.enumerate.literature import thesis_truss
     >>> found = symmetric_formulation(thesis_truss("9/B28").chain())
     >>> [c.pair for c in found.conditions]
-    [('P4', 'P3'), ('P8', 'P3')]
+    [('P3', 'P4'), ('P3', 'P8')]
     """
     from baranov.planner import bilateration_plans  # deferred: planner imports are heavy
 

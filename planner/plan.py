@@ -127,6 +127,21 @@ class Plan:
             tuple(step.triangle for step in self.steps),
         )
 
+    def to_dict(self) -> dict:
+        """JSON-ready form (used by the catalog)."""
+        return {
+            "reference": list(self.reference),
+            "parameters": [list(p) for p in self.parameters],
+            "steps": [
+                {"joint": s.joint, "base": list(s.base), "kind": s.kind.value, "link": s.link,
+                 "base_distance": s.base_distance.value}
+                for s in self.steps
+            ],
+            "free_sign_triangles": [list(t) for t in self.free_sign_triangles],
+            "closure_pairs": [list(p) for p in self.closure_pairs],
+            "orientation_checks": [list(t) for t in self.orientation_checks],
+        }
+
     def describe(self) -> str:
         """Multi-line text in the thesis's notation.
 

@@ -24,6 +24,11 @@ def test_catalog_files_and_fields(tmp_path):
     assert [n for n in names if n != "crosscheck.json"] == expected
     pentad = json.loads((tmp_path / "trusses-5.json").read_text())
     mapping = pentad[0].pop("thesis_joint_names")  # validity: tests/test_literature.py
+    assert pentad[0].pop("coupling_degree") == 1
+    plan, conditions = pentad[0].pop("plan"), pentad[0].pop("closure_conditions")
+    assert len(plan["parameters"]) == len(plan["closure_pairs"]) == len(conditions) == 1
+    assert len(plan["steps"]) == 4 and len(plan["free_sign_triangles"]) == 2
+    assert conditions[0].startswith("s") and " = det(" in conditions[0]
     assert sorted(mapping) == sorted(mapping.values()) == ["P1", "P2", "P3", "P4", "P5", "P6"]
     assert pentad == [{
         "id": "5/N1", "name": "5/B1",
@@ -117,3 +122,45 @@ def test_no_command_is_an_error():
     result = run()
     assert result.returncode == 2
     assert result.stderr.count("\n") == 1
+
+
+def test_show_thesis_truss_in_thesis_numbering():
+    result = run("show", "5/B1", "--reference", "P1,P6")
+    assert result.returncode == 0, result.stderr
+    assert "automorphism group order 12" in result.stdout
+    assert "coupling degree 1" in result.stdout
+    assert "s2,5 = det(I - Z1,3,2 Z1,6,3 - Z6,4,5 Z6,1,4) s1,6" in result.stdout
+
+
+def test_show_latex_catalog_id_graph6_and_file(tmp_path):
+    latex = run("show", "5/B1", "--reference", "P1,P6", "--latex")
+    assert r"s_{2,5} = \det\left(I - Z_{1,3,2} Z_{1,6,3} - Z_{6,4,5} Z_{6,1,4}\right) s_{1,6}" in latex.stdout
+    by_id = run("show", "7/N2", "--catalog", str(REPO / "catalog"))
+    assert by_id.returncode == 0 and by_id.stdout.startswith("7/N2 (7/B1)")
+    assert run("show", "DFw").stdout.startswith("DFw\nlinks 5, joints 6")
+    edges = tmp_path / "pentad.txt"
+    edges.write_text("# the pentad\n0 2\n0 3\n0 4\n1 2\n1 3\n1 4\n")
+    assert "coupling degree 1" in run("show", str(edges)).stdout
+    links = tmp_path / "triad.json"
+    links.write_text('{"links": [["P1", "P2"], ["P2", "P3"], ["P3", "P1"]]}')
+    assert "coupling degree 0" in run("show", str(links)).stdout
+    assert "plan 3 of 3" in run("show", "7/B3", "--plans", "3").stdout
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["9/B5"], "9/B5: no such truss in the catalog"),
+        (["zzz"], "graph6 'zzz': not a valid graph6 string"),
+        (["5/B1", "--reference", "P1,P9"], "joint P9: no such joint in this chain"),
+        (["5/B1", "--reference", "P1"], "--reference P1: expected two joint names"),
+        (["5/B1", "--parameter", "P1,P2"], "no bilateration plan meets"),
+        (["5/B1", "--plans", "0"], "--plans 0: must be at least 1"),
+        (["Cl"], "mobility F = 3(L-1) - 2J = 1"),  # graph6 of a four-bar linkage
+    ],
+)
+def test_show_bad_input(args, message):
+    result = run("show", *args)
+    assert result.returncode == 2
+    assert result.stderr.startswith("baranov: error: ") and message in result.stderr
+    assert result.stderr.count("\n") == 1 and result.stdout == ""

@@ -17,7 +17,7 @@ from .automorphisms import (
     canonical_link_graph6,
     certificate,
 )
-from .chain import Joint, JointKind, KinematicChain, chain_from_link_graph, chain_from_links
+from .chain import Joint, JointKind, KinematicChain, chain_from_link_graph, chain_from_links, natural_sort_key
 from .errors import TopologyError
 from .graphs import degree_sequence, is_planar, joint_graph, joints_of_links, link_graph
 from .rigidity import (
@@ -55,6 +55,7 @@ __all__ = [
     "joints_of_links",
     "link_graph",
     "mobility",
+    "natural_sort_key",
     "require_baranov_truss",
     "require_rigid_chain",
     "smallest_overconstrained_subchain",

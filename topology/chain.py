@@ -237,13 +237,17 @@ def chain_from_links(links: Sequence[Iterable[str]], link_labels: Sequence[Hasha
             listed = ", ".join(f"L{labels[i]}" for i in on)
             raise TopologyError(f"joint {name}: lies on {len(on)} link{'s' if len(on) != 1 else ''} ({listed}); "
                                 "a joint joins exactly two links")
-    names = sorted(carriers, key=_natural_key)
+    names = sorted(carriers, key=natural_sort_key)
     joints = tuple(Joint(name, (carriers[name][0], carriers[name][1])) for name in names)
     return KinematicChain(len(links), joints, labels)
 
 
-def _natural_key(name: str) -> tuple:
-    """Sort key comparing digit runs as numbers: P2 < P10."""
+def natural_sort_key(name: str) -> tuple:
+    """Sort key comparing digit runs as numbers: P2 < P10.
+
+    >>> sorted(["P10", "P2", "P1"], key=natural_sort_key)
+    ['P1', 'P2', 'P10']
+    """
     return tuple(int(part) if part.isdigit() else part for part in re.split(r"(\d+)", name))
 
 

@@ -1,0 +1,127 @@
+"""``baranov show``: topology, symmetry, plan and closure conditions of one chain."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+from baranov.closure import closure_system
+from baranov.enumerate import baranov_trusses
+from baranov.enumerate.literature import THESIS_TRUSSES, thesis_truss
+from baranov.planner import bilateration_plans
+from baranov.topology import (
+    KinematicChain,
+    TopologyError,
+    automorphism_group,
+    chain_from_link_graph,
+    chain_from_links,
+    is_baranov_truss,
+    is_planar,
+)
+
+CATALOG_NAME = re.compile(r"^(\d+)/([BN])(\d+)$")
+
+
+class ShowError(ValueError):
+    """The chain to show could not be found or read."""
+
+
+def resolve_chain(argument: str, catalog: Path) -> tuple[str, KinematicChain]:
+    """A title and the chain for a thesis name (9/B28), a catalog id (11/N123), a file
+    (graph6, an edge list "u v" per line, or JSON: a list of link pairs, or
+    {"links": [[joint names], ...]}), or a graph6 string."""
+    match = CATALOG_NAME.match(argument)
+    if match:
+        if argument in {t.name for t in THESIS_TRUSSES}:
+            published = thesis_truss(argument)
+            return f"{argument} — {published.source}", published.chain()
+        links = int(match.group(1))
+        for entry in _catalog_entries(links, catalog):
+            if argument in (entry["id"], entry["name"]):
+                return f"{entry['id']} ({entry['name']})", chain_from_link_graph(entry["link_graph6"])
+        if match.group(2) == "N" and links <= 13 and links % 2:
+            trusses = baranov_trusses(links)
+            index = int(match.group(3))
+            if 1 <= index <= len(trusses):
+                return argument, trusses[index - 1]
+        raise ShowError(f"{argument}: no such truss in the catalog (names are identified for 3/B1, 5/B1, "
+                        "7/B1-B3 and 9/B28; ids run 7/N1..7/N3, 9/N1..9/N28, 11/N1..11/N562)")
+    path = Path(argument)
+    if path.is_file():
+        return str(path), _chain_from_text(path.read_text(encoding="utf-8"), str(path))
+    return argument, _chain_from_text(argument, "argument")
+
+
+def _catalog_entries(links: int, catalog: Path) -> list[dict]:
+    try:
+        return json.loads((catalog / f"trusses-{links}.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+
+
+def _chain_from_text(text: str, source: str) -> KinematicChain:
+    text = text.strip()
+    if text.startswith(("[", "{")):
+        try:
+            data = json.loads(text)
+        except ValueError as error:
+            raise ShowError(f"{source}: not valid JSON ({error.msg}, line {error.lineno})") from None
+        if isinstance(data, dict) and "links" in data:
+            return chain_from_links(data["links"])
+        return chain_from_link_graph([tuple(edge) for edge in data])
+    lines = [line.split("#")[0].strip() for line in text.splitlines()]
+    lines = [line for line in lines if line]
+    if len(lines) == 1 and len(lines[0].split()) == 1:
+        return chain_from_link_graph(lines[0])
+    edges = []
+    for number, line in enumerate(lines, 1):
+        parts = line.replace(",", " ").split()
+        if len(parts) != 2:
+            raise ShowError(f"{source}: line {number}: expected two link labels, got {line!r}")
+        edges.append(tuple(int(p) if p.isdigit() else p for p in parts))
+    return chain_from_link_graph(edges)
+
+
+def _pair(text: str, option: str) -> tuple[str, str]:
+    parts = [p.strip() for p in text.split(",")]
+    if len(parts) != 2 or not all(parts):
+        raise ShowError(f"{option} {text}: expected two joint names such as P1,P6")
+    return parts[0], parts[1]
+
+
+def show(argument: str, catalog: Path, latex: bool = False, reference: str | None = None,
+         parameters: list[str] | None = None, plans: int = 1) -> str:
+    """The text that ``baranov show`` prints."""
+    title, chain = resolve_chain(argument, catalog)
+    group = automorphism_group(chain)
+    ranked = bilateration_plans(
+        chain,
+        count=plans,
+        reference=_pair(reference, "--reference") if reference else None,
+        parameters=[_pair(p, "--parameter") for p in parameters] if parameters else None,
+    )
+    degrees = ",".join(str(d) for d in chain.link_degrees)
+    lines = [
+        title,
+        f"links {chain.number_of_links}, joints {chain.number_of_joints}, link degrees {degrees}, "
+        f"planar: {'yes' if is_planar(chain) else 'no'}, Baranov truss: {'yes' if is_baranov_truss(chain) else 'no'}",
+        "links: " + "  ".join(
+            f"L{link}:" + ",".join(j.name for j in chain.joints if link in j.links)
+            for link in range(chain.number_of_links)
+        ),
+        f"automorphism group order {group.order}; link orbits "
+        + " ".join("{" + ",".join(f"L{x}" for x in orbit) + "}" for orbit in group.link_orbits),
+        f"coupling degree {ranked[0].number_of_parameters}"
+        + (" (with the given constraints)" if reference or parameters else ""),
+    ]
+    for number, plan in enumerate(ranked, 1):
+        system = closure_system(plan)
+        lines.append("")
+        lines.append(f"plan {number}" + (f" of {len(ranked)}" if len(ranked) > 1 else "")
+                     + f": {len(plan.free_sign_triangles)} free signs, radical depth {plan.radical_depth}")
+        lines += ["  " + line for line in plan.describe().splitlines()]
+        lines.append("closure conditions:")
+        body = system.latex().split("\\\\\n") if latex else system.text().splitlines()
+        lines += ["  " + line for line in body]
+    return "\n".join(lines) + "\n"
