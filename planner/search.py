@@ -373,8 +373,12 @@ def _branch_and_bound(
             limit = (worst[2], worst[3][0] if worst[3] else 0)
         if not state.eager(limit):
             return
-        if len(best) == count and state.bound(degree) > best[-1][0][:4]:
-            return
+        if len(best) == count:
+            bound, worst = state.bound(degree), best[-1][0]
+            # References are visited in the ranking key's order, so once the k-th best has
+            # a smaller reference, merely equal quality already ranks this plan lower.
+            if bound > worst[:4] or (bound == worst[:4] and worst[4] < names_of(reference)):
+                return
         if state.complete:
             if len(state.parameters) == degree:
                 plan = state.finish(reference)
@@ -394,12 +398,10 @@ def _branch_and_bound(
             if child.parameter_step(k):
                 visit(child, reference)
 
-    def promise(pair: tuple[int, int]) -> tuple:
-        a, b = pair
-        cost = 0 if tables.common[a][b] is not None else 1
-        return (-_eager_set(tables, (1 << a) | (1 << b), cache).bit_count(), cost, pair)
+    def names_of(pair: tuple[int, int]) -> tuple[str, str]:
+        return tables.names[pair[0]], tables.names[pair[1]]
 
-    for a, b in sorted(_reference_pairs(tables, constraints), key=promise):
+    for a, b in sorted(_reference_pairs(tables, constraints), key=names_of):
         if feasible((1 << a) | (1 << b), 0 if tables.common[a][b] is not None else 1):
             visit(_PartialPlan(tables, constraints, (a, b)), (a, b))
     return [plan for _, plan in best]

@@ -247,3 +247,11 @@ def test_parser_round_trip_and_errors():
     for bad in ["Z1,2", "(I - Z1,2,3", "I + ", "Ω7", "I ) I"]:
         with pytest.raises(ValueError):
             parse_matrix_expression(bad)
+
+
+def test_every_eleven_link_truss_once():
+    """The property of test_conditions_vanish_at_the_generating_configuration for each of
+    the 562 trusses with 11 links (one random generic configuration each)."""
+    rng = np.random.default_rng(562)
+    for truss in ELEVEN:
+        check_system_at(closure_system(best_plan(truss)), truss, random_configuration(truss, rng))

@@ -129,3 +129,13 @@ def test_bad_constraints():
         bilateration_plans(pentad, parameters=[("P1", "P2")])  # a link dimension, never a parameter
     with pytest.raises(ValueError, match="count=0"):
         bilateration_plans(pentad, count=0)
+
+
+@pytest.mark.slow
+def test_coupling_degrees_of_thirteen_links():
+    from concurrent.futures import ProcessPoolExecutor
+
+    trusses = baranov_trusses(13, workers=2)
+    with ProcessPoolExecutor(2) as pool:
+        found = collections.Counter(pool.map(coupling_degree, trusses, chunksize=200))
+    assert dict(found) == {1: 10419, 2: 9973, 3: 45}
