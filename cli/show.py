@@ -12,7 +12,6 @@ from baranov.enumerate.literature import THESIS_TRUSSES, thesis_truss
 from baranov.planner import bilateration_plans
 from baranov.topology import (
     KinematicChain,
-    TopologyError,
     automorphism_group,
     chain_from_link_graph,
     chain_from_links,

@@ -19,11 +19,14 @@ two of the link's own joints with the fixed sign: mirror images of links cannot 
 a sequence of *parameter steps*, each introducing one unknown distance to locate one more
 joint when eager location stops. The minimum number of parameters is found by a
 breadth-first search over located sets (each state is a bit mask; eager location is
-cached per mask). All plans with that minimum are then enumerated exhaustively — every
-reference pair and every sequence of parameter joints — and ranked by
-:meth:`~baranov.planner.plan.Plan.ranking_key`. Inside a plan, each step's base pair is
-chosen to minimise the nesting of radicals, which is exact for that criterion because
-nesting only grows along a plan.
+cached per mask). Then every reference pair and every sequence of parameter joints with
+that minimum is explored by branch and bound on
+:meth:`~baranov.planner.plan.Plan.ranking_key`: free-sign counts and the sorted profile
+of radical depths only grow along a plan, so a partial plan already worse than the k-th
+best is cut, and references are visited in the key's own order, so a later reference of
+merely equal quality is cut too. The result is the same as ranking every plan. Inside a
+plan, each step's base pair is chosen to minimise the nesting of radicals, which is exact
+for that criterion because nesting only grows along a plan.
 
 Complexity: O(J² · B^d) eager locations of O(J + L) each, for J joints, d the coupling
 degree and B ≤ J the branching of a parameter step; in practice milliseconds per truss
@@ -334,37 +337,10 @@ class _PartialPlan:
         )
 
 
-def _still_needed(tables: _Tables, located: int, limit: int, cache: dict[int, int], memo: dict[int, int]) -> int:
-    """Fewest further parameter steps that locate every joint from an eagerly closed set
-    (``limit + 1`` when more than ``limit`` are needed). Memoised per set."""
-    if located == tables.full:
-        return 0
-    if limit <= 0:
-        return 1
-    known = memo.get(located)
-    if known is not None and (known <= limit or known == limit + 1):
-        return known
-    need = limit + 1
-    for k in _parameter_candidates(tables, located):
-        need = min(need, 1 + _still_needed(tables, _eager_set(tables, located | (1 << k), cache), need - 2, cache, memo))
-        if need == 1:
-            break
-    memo[located] = need
-    return need
-
-
-def _branch_and_bound(
-    tables: _Tables, constraints: _Constraints, degree: int, count: int, cache: dict[int, int]
-) -> list[Plan]:
+def _branch_and_bound(tables: _Tables, constraints: _Constraints, degree: int, count: int) -> list[Plan]:
     """The ``count`` best plans with ``degree`` parameters, by exhaustive search over
-    reference pairs and parameter steps. Branches that cannot locate every joint within
-    ``degree`` parameters are cut at the level of located sets; the others are pruned by
-    :meth:`_PartialPlan.bound`."""
+    reference pairs and parameter steps, pruned by :meth:`_PartialPlan.bound`."""
     best: list[tuple[tuple, Plan]] = []
-    memo: dict[int, int] = {}
-
-    def feasible(located: int, used: int) -> bool:
-        return used + _still_needed(tables, _eager_set(tables, located, cache), degree - used, cache, memo) <= degree
 
     def visit(state: _PartialPlan, reference: tuple[int, int]) -> None:
         limit = None
@@ -392,8 +368,6 @@ def _branch_and_bound(
             return
         located = sum(1 << k for k in state.order)
         for k in _parameter_candidates(tables, located):
-            if not feasible(located | (1 << k), len(state.parameters) + 1):
-                continue
             child = state.copy()
             if child.parameter_step(k):
                 visit(child, reference)
@@ -402,8 +376,7 @@ def _branch_and_bound(
         return tables.names[pair[0]], tables.names[pair[1]]
 
     for a, b in sorted(_reference_pairs(tables, constraints), key=names_of):
-        if feasible((1 << a) | (1 << b), 0 if tables.common[a][b] is not None else 1):
-            visit(_PartialPlan(tables, constraints, (a, b)), (a, b))
+        visit(_PartialPlan(tables, constraints, (a, b)), (a, b))
     return [plan for _, plan in best]
 
 
@@ -484,7 +457,7 @@ def bilateration_plans(
     degree = _minimum_parameters(tables, constraints, cache)
     if degree is None:
         raise TopologyError("no bilateration plan meets the given reference/parameter constraints")
-    ranked = _branch_and_bound(tables, constraints, degree, count, cache)
+    ranked = _branch_and_bound(tables, constraints, degree, count)
     if not ranked:
         raise TopologyError("no bilateration plan meets the given reference/parameter constraints")
     return ranked

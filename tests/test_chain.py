@@ -94,3 +94,19 @@ def test_bad_graph6_is_a_topology_error():
 def test_joint_names_must_match_the_joint_count():
     with pytest.raises(TopologyError, match="2 joint names given for 3 joints"):
         chain_from_link_graph([(0, 1), (1, 2), (2, 0)], joint_names=["P1", "P2"])
+
+
+def test_fuse_links_and_its_errors(pentad):
+    from baranov.topology import fuse_links
+
+    fused = fuse_links(pentad, [[0, 2]])  # a ternary link and a bar jointed at P1
+    assert fused.number_of_links == 4 and [j.name for j in fused.joints] == ["P2", "P3", "P4", "P5", "P6"]
+    assert fused.link_labels[0] == "0+2"
+    with pytest.raises(TopologyError, match="not jointed together"):
+        fuse_links(pentad, [[0, 1]])
+    with pytest.raises(TopologyError, match="in more than one group"):
+        fuse_links(pentad, [[0, 2], [2, 1]])
+    with pytest.raises(TopologyError, match="no such link"):
+        fuse_links(pentad, [[0, 9]])
+    with pytest.raises(TopologyError, match="fuse those links too"):
+        fuse_links(pentad, [[0, 2, 1]])  # links 3 and 4 would each get two joints to it

@@ -139,3 +139,37 @@ def test_coupling_degrees_of_thirteen_links():
     with ProcessPoolExecutor(2) as pool:
         found = collections.Counter(pool.map(coupling_degree, trusses, chunksize=200))
     assert dict(found) == {1: 10419, 2: 9973, 3: 45}
+
+
+def test_grubler_chains_with_fixed_inputs():
+    from baranov.topology import fuse_links, mobility
+
+    four_bar = chain_from_link_graph([(0, 1), (1, 2), (2, 3), (3, 0)])
+    assert mobility(four_bar) == 1
+    assert coupling_degree(fuse_links(four_bar, [[0, 1]])) == 0  # a triad: ruler and compass
+    watt = chain_from_link_graph([(0, 1), (0, 2), (2, 3), (3, 1), (0, 4), (4, 5), (5, 1)])
+    assert mobility(watt) == 1
+    driven = fuse_links(watt, [[0, 2]])  # the binary crank 2 driven from the ground 0
+    plan = best_plan(driven)
+    assert mobility(driven) == 0 and len(plan.closure_pairs) == len(plan.parameters)
+    # A 1-DOF chain from a 9-link truss: remove a binary link, fix the angle at one joint.
+    truss = baranov_trusses(9)[5]
+    binary = truss.link_degrees.index(2)
+    edges = [j.links for j in truss.joints if binary not in j.links]
+    chain = chain_from_link_graph(edges)
+    assert mobility(chain) == 1
+    u, v = chain.joints[0].links
+    fixed = fuse_links(chain, [[u, v]])
+    plan = best_plan(fixed)
+    assert len(plan.closure_pairs) == len(plan.parameters)
+    import numpy as np
+
+    from baranov.closure import closure_system, compile_from_coordinates
+    from baranov.closure.evaluate import true_parameters_and_signs
+
+    rng = np.random.default_rng(9)
+    coordinates = {j.name: rng.uniform(-10, 10, 2) for j in fixed.joints}
+    system = closure_system(plan)
+    values, signs = true_parameters_and_signs(system, coordinates)
+    residuals = compile_from_coordinates(system, fixed, coordinates).residuals(values, signs)
+    assert np.all(np.abs(residuals) < 1e-9)

@@ -19,6 +19,7 @@ from .automorphisms import (
 )
 from .chain import Joint, JointKind, KinematicChain, chain_from_link_graph, chain_from_links, natural_sort_key
 from .errors import TopologyError
+from .fusion import fuse_links
 from .graphs import degree_sequence, is_planar, joint_graph, joints_of_links, link_graph
 from .rigidity import (
     adjacency_masks,
@@ -48,6 +49,7 @@ __all__ = [
     "chain_from_link_graph",
     "chain_from_links",
     "degree_sequence",
+    "fuse_links",
     "is_baranov_link_graph",
     "is_baranov_truss",
     "is_planar",
