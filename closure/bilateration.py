@@ -40,7 +40,8 @@ def bilateration_matrix(s_ij, s_ik, s_jk, sign):
     """
     area = oriented_area(s_ij, s_ik, s_jk, sign)
     s_ij, s_ik, s_jk = (np.asarray(x, dtype=float) for x in (s_ij, s_ik, s_jk))
-    return (s_ij + s_ik - s_jk + 4j * area) / (2 * s_ij)
+    with np.errstate(invalid="ignore", divide="ignore"):  # s_ij = 0: no bilateration (NaN)
+        return (s_ij + s_ik - s_jk + 4j * area) / (2 * s_ij)
 
 
 def perpendicular_matrix(z) -> np.ndarray:

@@ -62,6 +62,17 @@ class CompiledSystem:
         ``parameter_values`` has shape (N, p) (p = number of parameters), ``signs`` shape
         (B, m) (m = free-sign triangles); results have shape (B, N).
         """
+        matrices, s_ref, _ = self._evaluate(parameter_values, signs)
+        return matrices, s_ref
+
+    def first_failures(self, parameter_values: np.ndarray, signs: np.ndarray) -> np.ndarray:
+        """For every branch and parameter value, the index of the first step whose triangle
+        cannot be built (negative radicand), or the number of steps where all can; shape
+        (B, N). Where neighbouring values fail at different steps, a feasible window may
+        lie between them even if no sample falls inside it."""
+        return self._evaluate(parameter_values, signs)[2]
+
+    def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray):
         values = np.asarray(parameter_values, dtype=float)
         if values.ndim == 1:
             values = values[:, None]
@@ -71,8 +82,9 @@ class CompiledSystem:
         a, b = self.plan.reference
         s_ref = self._distance(a, b, parameter, None, {})
         matrices: dict[str, np.ndarray] = {a: np.zeros(shape, complex), b: np.ones(shape, complex)}
+        failures = np.full(shape, len(self.plan.steps))
         free = 0
-        for step in self.plan.steps:
+        for index, step in enumerate(self.plan.steps):
             i, j = step.base
             k = step.joint
             s_ij = self._distance(i, j, parameter, s_ref, matrices)
@@ -85,7 +97,9 @@ class CompiledSystem:
                 sign = self.fixed_signs[step.triangle]
             z = bilateration_matrix(s_ij, s_ik, s_jk, sign)
             matrices[k] = matrices[i] + z * (matrices[j] - matrices[i])
-        return matrices, s_ref
+            failed = ~np.isfinite(matrices[k])
+            failures = np.where((failures == len(self.plan.steps)) & failed, index, failures)
+        return matrices, s_ref, failures
 
     def _distance(self, u: str, v: str, parameter, s_ref, matrices) -> np.ndarray:
         pair = frozenset((u, v))

@@ -1,0 +1,223 @@
+"""Numeric backend: every assembly mode of a scene over all free-sign branches.
+
+For coupling degree 0 every branch is evaluated directly. For coupling degree 1 the
+closure condition f(s) = 0 of the best plan is solved on each branch (thesis §3.2–3.3:
+"the roots can be quickly obtained for the combinations of signs ... using a standard
+numerical procedure"):
+
+1. sample f on a grid uniform in the distance √s over (0, D²], D the sum of all link
+   diameters (no two joints can be farther apart), all branches at once (numpy);
+2. roots with a sign change: Brent's method on each bracketing pair of samples;
+3. roots without a sign change (tangential, even multiplicity): every local minimum of
+   |f| between samples is refined by bounded minimisation and kept when |f| vanishes;
+4. roots at the ends of the feasible domain (a triangle of zero area, where f stops being
+   real): each boundary between defined and undefined samples is found by bisection and
+   kept when f vanishes there.
+
+Every candidate becomes a configuration placed from the ground link; it is kept only if
+every link dimension holds (relative residual below ``1e-8``) and no rigid link is
+mirrored. Modes found on several branches are reported once.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from baranov.closure import CompiledSystem, closure_system, sign_branches
+from baranov.planner import Plan, best_plan
+
+from .modes import AssemblyMode, Solution
+from .scene import Scene
+
+RESIDUAL_TOLERANCE = 1e-8
+
+
+class SolverError(ValueError):
+    """The scene is valid but this method cannot solve it (the message says why)."""
+
+
+def _subscript(name: str) -> str:
+    return name[1:] if name[:1] == "P" and name[1:].isdigit() else name
+
+
+def parameter_name(pair: tuple[str, str]) -> str:
+    return "s" + ",".join(_subscript(n) for n in pair)
+
+
+def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000) -> Solution:
+    """All assembly modes of ``scene`` (coupling degree 0 or 1) by the numeric method."""
+    plan = plan or best_plan(scene.chain)
+    compiled = CompiledSystem(
+        closure_system(plan),
+        {pair: float(value) for pair, value in scene.known.items()},
+        {s.triangle: scene.orientation(s.triangle) for s in plan.steps if not s.free_sign},
+    )
+    branches = sign_branches(len(plan.free_sign_triangles))
+    degree = plan.number_of_parameters
+    if degree == 0:
+        candidates = [(np.zeros(0), branch) for branch in branches]
+    elif degree == 1:
+        candidates = _one_parameter_roots(compiled, branches, _distance_bound(scene) ** 2, samples)
+    else:
+        raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degree 0 and 1 so far")
+    modes: list[AssemblyMode] = []
+    for values, branch in candidates:
+        mode = _configuration(scene, compiled, values, branch)
+        if mode.max_residual < RESIDUAL_TOLERANCE and not any(_same_mode(mode, other, scene) for other in modes):
+            modes.append(mode)
+    modes.sort(key=lambda m: (tuple(m.parameters.values()), m.signs))
+    return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
+                    plan.free_sign_triangles, tuple(modes))
+
+
+def _distance_bound(scene: Scene) -> float:
+    return sum(math.sqrt(max(float(v) for v in link.squared_distances.values())) for link in scene.links)
+
+
+#: A local minimum of |f| between samples is re-sampled this finely: two close simple
+#: roots inside one cell show no sign change on the coarse grid (a saved regression:
+#: tests/regressions/9-close-roots.json, roots 3636 and 3637.34 in a cell 26 wide).
+REFINEMENT = 400
+
+
+#: Feasible windows narrower than the grid are searched where neighbouring samples fail
+#: at different steps, WINDOW_SAMPLES at a time, WINDOW_DEPTH levels deep (a saved
+#: regression: tests/regressions/9-missed-2.json, a window 0.6 wide in a cell 7 wide).
+WINDOW_SAMPLES = 64
+WINDOW_DEPTH = 6
+
+
+def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: float, samples: int):
+    grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
+    table = compiled.residuals(grid[:, None], branches)[:, :, 0]
+    failures = compiled.first_failures(grid[:, None], branches)
+    candidates = []
+    for b, branch in enumerate(branches):
+        def f(s: float, branch=branch) -> float:
+            return float(compiled.residuals(np.array([[s]]), branch[None, :])[0, 0, 0])
+
+        def sampled(points: np.ndarray, branch=branch) -> np.ndarray:
+            return compiled.residuals(points[:, None], branch[None, :])[0, :, 0]
+
+        def failing(points: np.ndarray, branch=branch) -> np.ndarray:
+            return compiled.first_failures(points[:, None], branch[None, :])[0]
+
+        points, values = _with_windows(grid, table[b], failures[b], sampled, failing)
+        roots = _scan(f, points, values, edges=True)
+        for low, high in _suspicious_minima(points, values):
+            fine = np.linspace(low, high, REFINEMENT)
+            roots += _scan(f, fine, sampled(fine), edges=False)
+        for root in roots:
+            candidates.append((np.array([root]), branch))
+    return candidates
+
+
+def _with_windows(grid, values, failures, sampled, failing):
+    """The grid plus dense samples wherever neighbouring samples fail at different steps."""
+    extra = []
+    pending = [(grid[i], grid[i + 1], 0) for i in np.flatnonzero(failures[:-1] != failures[1:])]
+    while pending:
+        low, high, depth = pending.pop()
+        points = np.linspace(low, high, WINDOW_SAMPLES)
+        codes = failing(points)
+        extra.append(points)
+        if depth + 1 < WINDOW_DEPTH:
+            pending += [(points[i], points[i + 1], depth + 1) for i in np.flatnonzero(codes[:-1] != codes[1:])]
+    if not extra:
+        return grid, values
+    added = np.unique(np.concatenate(extra))
+    points = np.concatenate([grid, added])
+    order = np.argsort(points, kind="stable")
+    merged_points = points[order]
+    merged_values = np.concatenate([values, sampled(added)])[order]
+    keep = np.concatenate([[True], np.diff(merged_points) > 0])
+    return merged_points[keep], merged_values[keep]
+
+
+def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float, float]]:
+    """Cells around interior local minima of |f| with no sign change."""
+    finite = np.isfinite(values)
+    magnitude = np.abs(values)
+    minima = (finite[:-2] & finite[1:-1] & finite[2:] & (magnitude[1:-1] <= magnitude[:-2])
+              & (magnitude[1:-1] <= magnitude[2:]) & (values[:-2] * values[2:] > 0))
+    return [(float(grid[i - 1]), float(grid[i + 1])) for i in np.flatnonzero(minima) + 1]
+
+
+def _scan(f, grid: np.ndarray, values: np.ndarray, edges: bool) -> list[float]:
+    """Roots of f on sampled ``grid``: exact zeros, sign changes (Brent), tangential roots
+    at local minima of |f| (bounded minimisation), and, with ``edges``, roots at the ends
+    of the feasible domain (bisection of the defined/undefined boundary)."""
+    finite = np.isfinite(values)
+    both = finite[:-1] & finite[1:]
+    roots: list[float] = [float(grid[i]) for i in np.flatnonzero(finite & (values == 0))]
+    for i in np.flatnonzero(both & (values[:-1] * values[1:] < 0)):
+        roots.append(brentq(f, grid[i], grid[i + 1], xtol=1e-14 * grid[i + 1], rtol=1e-15, maxiter=200))
+    if edges:
+        for i in np.flatnonzero(finite[:-1] != finite[1:]):
+            edge = _domain_edge(f, grid[i], grid[i + 1], inside_low=bool(finite[i]))
+            if edge is not None and abs(f(edge)) < 1e-7:
+                roots.append(edge)
+    for low, high in _suspicious_minima(grid, values):
+        found = minimize_scalar(lambda s: abs(f(s)), bounds=(low, high), method="bounded",
+                                options={"xatol": 1e-14 * high})
+        if found.success and abs(f(found.x)) < 1e-7:
+            roots.append(float(found.x))
+    return roots
+
+
+def _domain_edge(f, lo: float, hi: float, inside_low: bool) -> float | None:
+    """The boundary of the feasible domain between ``lo`` and ``hi`` (bisection, 80 steps),
+    returned on the defined side."""
+    inside, outside = (lo, hi) if inside_low else (hi, lo)
+    for _ in range(80):
+        middle = (inside + outside) / 2
+        if math.isfinite(f(middle)):
+            inside = middle
+        else:
+            outside = middle
+    return inside if math.isfinite(f(inside)) else None
+
+
+def _configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, branch: np.ndarray) -> AssemblyMode:
+    matrices, s_ref = compiled.matrices(values.reshape(1, -1), branch[None, :])
+    m = {joint: complex(value[0, 0]) for joint, value in matrices.items()}
+    ground = scene.link_of(scene.ground)
+    g1, g2 = ground.joints[0], ground.joints[1]
+    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
+    denominator = m[g2] - m[g1]
+    if not all(map(math.isfinite, (denominator.real, denominator.imag))) or abs(denominator) == 0:
+        return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)
+    reference = (world[g2] - world[g1]) / denominator
+    origin = world[g1] - m[g1] * reference
+    points = {j: origin + value * reference for j, value in m.items()}
+    if not all(math.isfinite(p.real) and math.isfinite(p.imag) for p in points.values()):
+        return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)  # a radicand was negative
+    residual = 0.0
+    for link in scene.links:
+        for pair, target in link.squared_distances.items():
+            u, v = tuple(pair)
+            residual = max(residual, abs(abs(points[u] - points[v]) ** 2 - float(target)) / float(target))
+        if len(link.joints) >= 3:
+            i, j, k = (points[n] for n in link.joints[:3])
+            cross = ((j - i).conjugate() * (k - i)).imag
+            if (1 if cross > 0 else -1) != scene.orientation(link.joints[:3]):
+                residual = max(residual, 1.0)  # mirrored rigid link
+    for joint, target in world.items():
+        residual = max(residual, abs(points[joint] - target) / max(abs(target), 1.0))
+    names = [parameter_name(p) for p in compiled.parameters]
+    return AssemblyMode(
+        {name: float(v) for name, v in zip(names, values, strict=True)},
+        tuple(int(s) for s in branch),
+        {j: (p.real, p.imag) for j, p in sorted(points.items())},
+        residual,
+    )
+
+
+def _same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:
+    scale = max(1.0, _distance_bound(scene))
+    return all(
+        math.dist(first.joints[j], second.joints[j]) < 1e-6 * scale for j in first.joints
+    )

@@ -1,0 +1,271 @@
+"""Scenes: concrete linkages with link dimensions, read from JSON or Python data.
+
+A scene lists links; each link gives either
+
+* ``"joints": {"P3": [x, y], ...}`` — joint coordinates in a frame of the link's own
+  (the ground link's coordinates are world coordinates);
+* ``"joints": ["P1", "P2"], "squared_length": s`` — a binary link;
+* ``"joints": [...], "squared_distances": {"P3,P1": s, ...}, "orientation": "ccw"|"cw"``
+  — a k-ary link by all its pairwise squared distances and the orientation of its first
+  three listed joints. A ground link given this way is placed with its first joint at
+  the origin and its second on the +x axis.
+
+Numbers may be integers, floats, or exact strings such as ``"9/5"``. Integers and
+rationals stay exact (:class:`fractions.Fraction`); a float marks the scene inexact.
+Every invalid input raises :class:`SceneError` (a ``ValueError``) naming the link.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import cached_property
+from itertools import combinations
+from pathlib import Path
+
+from baranov.topology import KinematicChain, TopologyError, chain_from_links, require_rigid_chain
+
+Number = Fraction | float
+
+
+class SceneError(ValueError):
+    """A scene is malformed; the message names the offending link or joint."""
+
+
+@dataclass(frozen=True)
+class SceneLink:
+    """One link of a scene.
+
+    Attributes:
+        name: the link's name.
+        joints: its joints, in the order given.
+        squared_distances: squared distance of every pair of its joints.
+        local: coordinates of its joints in a frame of the link's own.
+    """
+
+    name: str
+    joints: tuple[str, ...]
+    squared_distances: Mapping[frozenset[str], Number]
+    local: Mapping[str, tuple[float, float]]
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A linkage: links with dimensions, and the name of the ground link."""
+
+    links: tuple[SceneLink, ...]
+    ground: str
+    exact: bool
+    world: Mapping[str, tuple[Number, Number]] = field(default_factory=dict)
+
+    @cached_property
+    def chain(self) -> KinematicChain:
+        """The topology (links in scene order, labelled by their names)."""
+        return chain_from_links([link.joints for link in self.links], [link.name for link in self.links])
+
+    @cached_property
+    def known(self) -> dict[frozenset[str], Number]:
+        """Squared distance of every pair of joints on a common link."""
+        known: dict[frozenset[str], Number] = {}
+        for link in self.links:
+            known.update(link.squared_distances)
+        return known
+
+    def link_of(self, name: str) -> SceneLink:
+        for link in self.links:
+            if link.name == name:
+                return link
+        raise SceneError(f"link {name}: no such link")
+
+    def orientation(self, triangle: tuple[str, str, str]) -> int:
+        """Sign of the oriented area of three joints of one rigid link, in its own shape."""
+        for link in self.links:
+            if set(triangle) <= set(link.joints):
+                (xi, yi), (xj, yj), (xk, yk) = (link.local[n] for n in triangle)
+                cross = (xj - xi) * (yk - yi) - (yj - yi) * (xk - xi)
+                return 1 if cross > 0 else -1
+        raise SceneError(f"joints {', '.join(triangle)}: not on one link")
+
+
+def _number(value, where: str) -> Number:
+    if isinstance(value, bool):
+        raise SceneError(f"{where}: {value!r} is not a number")
+    if isinstance(value, int):
+        return Fraction(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise SceneError(f"{where}: {value!r} is not a finite number")
+        return value
+    if isinstance(value, str):
+        try:
+            return Fraction(value.strip())
+        except (ValueError, ZeroDivisionError):
+            raise SceneError(f"{where}: {value!r} is not a number such as 3, 2.5 or \"9/5\"") from None
+    if isinstance(value, Fraction):
+        return value
+    raise SceneError(f"{where}: {value!r} is not a number")
+
+
+def _pair_key(text: str, link: str, joints: tuple[str, ...]) -> frozenset[str]:
+    parts = [p.strip() for p in text.split(",")]
+    if len(parts) != 2 or parts[0] == parts[1]:
+        raise SceneError(f"link {link}: squared distance key {text!r} should name two joints, e.g. \"P1,P2\"")
+    for part in parts:
+        if part not in joints:
+            raise SceneError(f"link {link}: squared distance {text!r} names joint {part}, not on this link")
+    return frozenset(parts)
+
+
+def _triangle_area16(a: float, b: float, c: float) -> float:
+    """16 A² of a triangle with squared sides a, b, c (Cayley–Menger, thesis eq. 2.7)."""
+    return (a + b + c) ** 2 - 2 * (a * a + b * b + c * c)
+
+
+def _embed(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], Number], orientation: int):
+    """Local coordinates from pairwise squared distances (first joint at the origin, second
+    on +x, third on the side ``orientation`` says); checks the distances are planar."""
+    s = {key: float(value) for key, value in squared.items()}
+    first, second = joints[0], joints[1]
+    d = math.sqrt(s[frozenset((first, second))])
+    local = {first: (0.0, 0.0), second: (d, 0.0)}
+
+    def place(joint: str, sign: int) -> tuple[float, float]:
+        a, b = s[frozenset((first, joint))], s[frozenset((second, joint))]
+        x = (a - b + d * d) / (2 * d)
+        area16 = _triangle_area16(d * d, a, b)
+        if area16 < -1e-9 * max(d * d, a, b) ** 2:
+            raise SceneError(f"link {name}: squared distances of {first}, {second}, {joint} violate the "
+                             "triangle inequality")
+        return x, sign * math.sqrt(max(area16, 0.0)) / (2 * d)
+
+    if len(joints) >= 3:
+        local[joints[2]] = place(joints[2], orientation)
+    for joint in joints[3:]:
+        candidates = [place(joint, +1), place(joint, -1)]
+        third = local[joints[2]]
+
+        def error(point, reference=third, joint=joint):
+            return abs((point[0] - reference[0]) ** 2 + (point[1] - reference[1]) ** 2
+                       - s[frozenset((joints[2], joint))])
+
+        best = min(candidates, key=error)
+        scale = max(s.values())
+        for other in joints[2:]:
+            if other == joint or other not in local:
+                continue
+            p, q = best, local[other]
+            if abs((p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2 - s[frozenset((joint, other))]) > 1e-9 * scale:
+                raise SceneError(f"link {name}: squared distances are not those of a planar body "
+                                 f"(Cayley–Menger check fails at {joint}, {other})")
+        local[joint] = best
+    return local
+
+
+def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
+    if not isinstance(entry, Mapping):
+        raise SceneError(f"link #{index + 1}: expected an object with \"name\" and \"joints\"")
+    name = str(entry.get("name", f"#{index + 1}"))
+    raw = entry.get("joints")
+    exact = True
+    if isinstance(raw, Mapping):
+        joints = tuple(str(j) for j in raw)
+        coordinates = {}
+        for joint, point in raw.items():
+            if not isinstance(point, (list, tuple)) or len(point) != 2:
+                raise SceneError(f"link {name}: joint {joint} needs coordinates [x, y]")
+            x, y = (_number(v, f"link {name}, joint {joint}") for v in point)
+            exact &= isinstance(x, Fraction) and isinstance(y, Fraction)
+            coordinates[str(joint)] = (x, y)
+        squared = {frozenset((a, b)): (coordinates[a][0] - coordinates[b][0]) ** 2 + (coordinates[a][1] - coordinates[b][1]) ** 2
+                   for a, b in combinations(joints, 2)}
+        world = coordinates
+        local = {j: (float(x), float(y)) for j, (x, y) in coordinates.items()}
+    elif isinstance(raw, list):
+        joints = tuple(str(j) for j in raw)
+        world = None
+        if "squared_length" in entry:
+            if len(joints) != 2:
+                raise SceneError(f"link {name}: \"squared_length\" is for binary links; give \"squared_distances\"")
+            value = _number(entry["squared_length"], f"link {name}, squared_length")
+            squared = {frozenset(joints): value}
+        elif "squared_distances" in entry:
+            given = entry["squared_distances"]
+            if not isinstance(given, Mapping):
+                raise SceneError(f"link {name}: \"squared_distances\" should map \"P1,P2\" to numbers")
+            squared = {_pair_key(k, name, joints): _number(v, f"link {name}, squared distance {k}") for k, v in given.items()}
+            missing = [f"{a},{b}" for a, b in combinations(joints, 2) if frozenset((a, b)) not in squared]
+            if missing:
+                raise SceneError(f"link {name}: squared distance {missing[0]} missing")
+        else:
+            raise SceneError(f"link {name}: give \"squared_length\", \"squared_distances\" or joint coordinates")
+        exact = all(isinstance(v, Fraction) for v in squared.values())
+        orientation = 1
+        if len(joints) >= 3:
+            text = entry.get("orientation")
+            if text not in ("ccw", "cw"):
+                raise SceneError(f"link {name}: \"orientation\" must be \"ccw\" or \"cw\" (of {', '.join(joints[:3])})")
+            orientation = 1 if text == "ccw" else -1
+        for key, value in squared.items():
+            if value <= 0:
+                raise SceneError(f"link {name}: squared distance {','.join(sorted(key))} = {value} must be positive")
+        local = _embed(name, joints, squared, orientation) if len(joints) >= 2 else {}
+    else:
+        raise SceneError(f"link {name}: \"joints\" must be a list of names or a map of coordinates")
+    if len(joints) < 2 or len(set(joints)) != len(joints):
+        raise SceneError(f"link {name}: needs at least two different joints")
+    for key, value in squared.items():
+        if value <= 0:
+            raise SceneError(f"link {name}: joints {' and '.join(sorted(key))} coincide")
+    for a, b, c in combinations(joints, 3):
+        area16 = _triangle_area16(*(float(squared[frozenset(p)]) for p in ((a, b), (a, c), (b, c))))
+        if area16 <= 0:
+            raise SceneError(f"link {name}: joints {a}, {b}, {c} are collinear or violate the triangle inequality")
+    return SceneLink(name, joints, squared, local), world, exact
+
+
+def scene_from_dict(data) -> Scene:
+    """Build and validate a scene from its JSON structure (see the module docstring)."""
+    if not isinstance(data, Mapping) or not isinstance(data.get("links"), list):
+        raise SceneError("scene: expected an object with a \"links\" list and a \"ground\" name")
+    parsed = [_parse_link(entry, i) for i, entry in enumerate(data["links"])]
+    links = tuple(link for link, _, _ in parsed)
+    names = [link.name for link in links]
+    if len(set(names)) != len(names):
+        repeated = next(n for n in names if names.count(n) > 1)
+        raise SceneError(f"link {repeated}: name used twice")
+    ground = data.get("ground")
+    if ground not in names:
+        raise SceneError(f"ground {ground!r}: no link of that name")
+    counts: dict[str, list[str]] = {}
+    for link in links:
+        for joint in link.joints:
+            counts.setdefault(joint, []).append(link.name)
+    for joint, on in counts.items():
+        if len(on) == 1:
+            raise SceneError(f"joint {joint}: dangling, only on link {on[0]}")
+        if len(on) > 2:
+            raise SceneError(f"joint {joint}: on {len(on)} links ({', '.join(on)}); a joint joins exactly two")
+    ground_index = names.index(ground)
+    _, world, _ = parsed[ground_index]
+    if world is None:  # given by distances: first joint at the origin, second on +x
+        world = dict(links[ground_index].local)
+    scene = Scene(links, ground, all(exact for _, _, exact in parsed), world)
+    try:
+        require_rigid_chain(scene.chain)
+    except TopologyError as error:
+        raise SceneError(f"topology: {error}") from None
+    return scene
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read a scene from a JSON file."""
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except OSError as error:
+        raise SceneError(f"{path}: cannot read ({error.strerror})") from None
+    except ValueError as error:
+        raise SceneError(f"{path}: not valid JSON ({error})") from None
+    return scene_from_dict(data)

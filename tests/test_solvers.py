@@ -1,0 +1,170 @@
+"""Scenes and the numeric backend: thesis examples and random-configuration oracles."""
+
+import json
+import math
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from baranov.enumerate import baranov_trusses
+from baranov.planner import coupling_degree
+from baranov.solvers import SceneError, load_scene, scene_from_dict, solve
+from baranov.topology import joints_of_links
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def test_triad_of_section_3_1_1():
+    solution = solve(load_scene(EXAMPLES / "3-B1.json"))
+    found = sorted((round(m.joints["P3"][0], 12), round(m.joints["P3"][1], 12)) for m in solution.assembly_modes)
+    assert found == [(1.8, 7.4), (5.4, 3.8)]  # (9/5, 37/5) and (27/5, 19/5)
+
+
+PENTAD_ROOTS = [1.6525, 2.3684, 5.9939, 10.6876, 73.7712, 74.4945]  # thesis §3.2.3, s1,6
+
+
+def squared(mode, u, v):
+    (x1, y1), (x2, y2) = mode.joints[u], mode.joints[v]
+    return (x1 - x2) ** 2 + (y1 - y2) ** 2
+
+
+def test_pentad_of_section_3_2_3_has_the_six_published_roots():
+    solution = solve(load_scene(EXAMPLES / "5-B1.json"))
+    roots = sorted(squared(m, "P1", "P6") for m in solution.assembly_modes)
+    assert [round(r, 4) for r in roots] == PENTAD_ROOTS
+    assert all(m.max_residual < 1e-12 for m in solution.assembly_modes)
+
+
+def test_only_the_thesis_orientation_reproduces_the_pentad():
+    """The text has no figures. With the ground link t123 as given, of the two mirror
+    images of the other ternary link only the one read from the printed Z6,4,5 gives the
+    published roots; flipping both links mirrors the whole linkage, with the same roots."""
+    data = json.loads((EXAMPLES / "5-B1.json").read_text())
+
+    def roots(first: str, second: str) -> list[float]:
+        data["links"][0]["orientation"], data["links"][1]["orientation"] = first, second
+        return sorted(round(squared(m, "P1", "P6"), 4) for m in solve(scene_from_dict(data)).assembly_modes)
+
+    assert roots("ccw", "cw") == PENTAD_ROOTS
+    assert roots("ccw", "ccw") != PENTAD_ROOTS
+    assert roots("cw", "ccw") == PENTAD_ROOTS  # the mirror image of the whole linkage
+
+
+def scene_of(truss, coordinates, ground=0):
+    """A scene whose links carry the given joint coordinates (so it is exact)."""
+    links = []
+    for index, names in enumerate(joints_of_links(truss)):
+        links.append({"name": f"L{index}", "joints": {n: [str(coordinates[n][0]), str(coordinates[n][1])] for n in names}})
+    return scene_from_dict({"links": links, "ground": f"L{ground}"})
+
+
+def generic_integer_configuration(truss, rng):
+    names = [j.name for j in truss.joints]
+    while True:
+        points = {n: (Fraction(int(rng.integers(-30, 31))), Fraction(int(rng.integers(-30, 31)))) for n in names}
+        values = list(points.values())
+        ok = len(set(values)) == len(values)
+        for i in range(len(values)):
+            for j in range(i + 1, len(values)):
+                for k in range(j + 1, len(values)):
+                    (ax, ay), (bx, by), (cx, cy) = values[i], values[j], values[k]
+                    ok &= abs((bx - ax) * (cy - ay) - (by - ay) * (cx - ax)) >= 20
+        if ok:
+            return points
+
+
+SOLVABLE = [t for links in (3, 5, 7, 9) for t in baranov_trusses(links) if coupling_degree(t) <= 1]
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(SOLVABLE), st.integers(0, 2**32 - 1))
+def test_the_generating_configuration_is_found(truss, seed):
+    rng = np.random.default_rng(seed)
+    coordinates = generic_integer_configuration(truss, rng)
+    scene = scene_of(truss, coordinates)
+    assert scene.exact
+    solution = solve(scene)
+    scale = max(abs(float(c)) for point in coordinates.values() for c in point)
+    assert any(
+        all(math.dist(mode.joints[n], (float(x), float(y))) < 1e-6 * scale for n, (x, y) in coordinates.items())
+        for mode in solution.assembly_modes
+    ), f"generating configuration missed: {coordinates}"
+    assert all(mode.max_residual < 1e-8 for mode in solution.assembly_modes)
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        (lambda d: d["links"][2].update(squared_length=-4), "link b14: squared distance P1,P4 = -4 must be positive"),
+        (lambda d: d["links"][2].update(squared_length="x"), "link b14, squared_length: 'x' is not a number"),
+        (lambda d: d["links"][2].update(squared_length=float("nan")), "not a finite number"),
+        (lambda d: d["links"][0]["squared_distances"].update({"P1,P2": 1000}),
+         "link t123: squared distances of P1, P2, P3 violate the triangle inequality"),
+        (lambda d: d["links"][0].pop("orientation"), "link t123: \"orientation\" must be"),
+        (lambda d: d["links"][4].update(joints=["P3", "P7"]), "joint P6: dangling, only on link t456"),
+        (lambda d: d.update(ground="nowhere"), "ground 'nowhere': no link of that name"),
+        (lambda d: d["links"].pop(), "joint P3: dangling, only on link t123"),
+        (lambda d: d["links"][0]["squared_distances"].pop("P2,P3"), "link t123: squared distance P2,P3 missing"),
+    ],
+)
+def test_scene_errors_name_the_link(change, message):
+    data = json.loads((EXAMPLES / "5-B1.json").read_text())
+    change(data)
+    with pytest.raises(SceneError, match=message.replace("(", r"\(").replace(")", r"\)").replace("\"", "\"")):
+        scene_from_dict(data)
+
+
+def test_non_rigid_topology_is_a_scene_error():
+    four_bar = {"links": [
+        {"name": "ground", "joints": {"A": [0, 0], "D": [4, 0]}},
+        {"name": "crank", "joints": ["A", "B"], "squared_length": 1},
+        {"name": "coupler", "joints": ["B", "C"], "squared_length": 16},
+        {"name": "rocker", "joints": ["C", "D"], "squared_length": 4},
+    ], "ground": "ground"}
+    with pytest.raises(SceneError, match=r"topology: mobility F = 3\(L-1\) - 2J = 1"):
+        scene_from_dict(four_bar)
+
+
+def test_inconsistent_quaternary_distances():
+    data = {"links": [
+        {"name": "q", "joints": ["P1", "P2", "P3", "P4"], "orientation": "ccw",
+         "squared_distances": {"P1,P2": 25, "P1,P3": 25, "P2,P3": 50, "P1,P4": 25, "P2,P4": 50, "P3,P4": 7}},
+        {"name": "a", "joints": ["P1", "P5"], "squared_length": 1},
+    ], "ground": "q"}
+    with pytest.raises(SceneError, match="link q: squared distances are not those of a planar body"):
+        scene_from_dict(data)
+
+
+def test_exactness_is_tracked():
+    exact = load_scene(EXAMPLES / "5-B1.json")
+    assert exact.exact and exact.known[frozenset(("P1", "P2"))] == Fraction(50)
+    data = json.loads((EXAMPLES / "5-B1.json").read_text())
+    data["links"][2]["squared_length"] = 52.0
+    assert not scene_from_dict(data).exact
+    data["links"][2]["squared_length"] = "104/2"
+    assert scene_from_dict(data).known[frozenset(("P1", "P4"))] == Fraction(52)
+
+
+def test_unassemblable_linkage_has_zero_modes():
+    data = json.loads((EXAMPLES / "3-B1.json").read_text())
+    data["links"][1]["squared_length"] = 1  # P3 cannot reach both P1 and P2
+    assert solve(scene_from_dict(data)).assembly_modes == ()
+
+
+REGRESSIONS = sorted((Path(__file__).resolve().parent / "regressions").glob("*.json"))
+
+
+@pytest.mark.parametrize("path", REGRESSIONS, ids=lambda p: p.stem)
+def test_saved_misses_are_found(path):
+    """Every instance the numeric backend once missed: the configuration it was built from
+    (the coordinates in the file) must be among the modes."""
+    scene = load_scene(path)
+    generating = {}
+    for link in json.loads(path.read_text())["links"]:
+        generating.update({n: tuple(map(float, p)) for n, p in link["joints"].items()})
+    modes = solve(scene).assembly_modes
+    assert any(all(math.dist(m.joints[n], p) < 1e-6 * 30 for n, p in generating.items()) for m in modes)
