@@ -17,7 +17,7 @@ $(STAMP): pyproject.toml Makefile
 catalog: $(STAMP)  ## main job: regenerate catalog/ for 3-11 links and print its summary
 	$(BIN)/baranov catalog --links 3-11 --out catalog --force
 
-catalog-13: $(STAMP)  ## the 13-link class too, with plans (about 15 minutes on 2 cores; not committed)
+catalog-13: $(STAMP)  ## the 13-link class too, with plans (22 min measured on 2 busy cores; not committed)
 	$(BIN)/baranov catalog --links 3-13 --out catalog-13
 
 test: $(STAMP)  ## default test suite (a few minutes)

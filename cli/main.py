@@ -1,4 +1,4 @@
-"""Command-line interface: ``baranov catalog ...`` and ``baranov show ...``.
+"""Command-line interface: ``baranov catalog``, ``baranov show`` and ``baranov solve``.
 
 Bad input gives a one-line message on stderr and exit code 2, with nothing written.
 """
@@ -6,11 +6,15 @@ Bad input gives a one-line message on stderr and exit code 2, with nothing writt
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import sys
 from pathlib import Path
 
 from baranov.enumerate import check_link_count
+from baranov.solvers import load_scene
+from baranov.solvers import solve as solve_scene
+from baranov.topology import natural_sort_key
 
 from .catalog import build_catalog
 from .files import check_writable_folder
@@ -71,7 +75,36 @@ def _parser() -> argparse.ArgumentParser:
     show.add_argument("--parameter", action="append", help="allow this parameter pair (repeatable), e.g. P1,P6")
     show.add_argument("--plans", type=int, default=1, help="show the N best plans (default 1)")
     show.add_argument("--catalog", default="catalog", type=Path, help="catalog folder for ids (default catalog/)")
+    solve = commands.add_parser("solve", help="every assembly mode of a linkage given as a scene file")
+    solve.add_argument("scene", type=Path, help="scene JSON file (see examples/)")
+    solve.add_argument("--method", default="numeric", choices=["numeric"], help="solving backend")
+    solve.add_argument("--json", action="store_true", help="print the result as JSON")
     return parser
+
+
+def run_solve(args: argparse.Namespace) -> int:
+    solution = solve_scene(load_scene(args.scene), method=args.method)
+    if args.json:
+        print(json.dumps(solution.to_dict(), indent=1))
+        return 0
+    modes = solution.assembly_modes
+    print(f"{args.scene}: coupling degree {solution.coupling_degree}, "
+          f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} ({solution.method})")
+    if not modes:
+        print("the linkage cannot be assembled with these dimensions")
+        return 0
+    joints = sorted(modes[0].joints, key=natural_sort_key)
+    header = ["mode", *solution.parameters, "signs", *joints, "max residual"]
+    rows = []
+    for number, mode in enumerate(modes, 1):
+        rows.append([str(number), *(f"{v:.6g}" for v in mode.parameters.values()),
+                     "".join("+" if s > 0 else "-" for s in mode.signs),
+                     *(f"({mode.joints[j][0]:.4f}, {mode.joints[j][1]:.4f})" for j in joints),
+                     f"{mode.max_residual:.1e}"])
+    widths = [max(len(header[c]), *(len(r[c]) for r in rows)) for c in range(len(header))]
+    for row in [header, *rows]:
+        print("  ".join(cell.rjust(width) for cell, width in zip(row, widths)))
+    return 0
 
 
 def run_catalog(args: argparse.Namespace) -> int:
@@ -102,6 +135,8 @@ def main(argv: list[str] | None = None) -> int:
         args = _parser().parse_args(argv)
         if args.command == "catalog":
             return run_catalog(args)
+        if args.command == "solve":
+            return run_solve(args)
         if args.command == "show":
             if args.plans < 1:
                 raise UsageError(f"--plans {args.plans}: must be at least 1")

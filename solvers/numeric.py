@@ -200,10 +200,11 @@ def _configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, b
         for pair, target in link.squared_distances.items():
             u, v = tuple(pair)
             residual = max(residual, abs(abs(points[u] - points[v]) ** 2 - float(target)) / float(target))
-        if len(link.joints) >= 3:
-            i, j, k = (points[n] for n in link.joints[:3])
+        triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
+        if triangle is not None:
+            i, j, k = (points[n] for n in triangle)
             cross = ((j - i).conjugate() * (k - i)).imag
-            if (1 if cross > 0 else -1) != scene.orientation(link.joints[:3]):
+            if (1 if cross > 0 else -1) != scene.orientation(triangle):
                 residual = max(residual, 1.0)  # mirrored rigid link
     for joint, target in world.items():
         residual = max(residual, abs(points[joint] - target) / max(abs(target), 1.0))

@@ -80,6 +80,17 @@ class Scene:
                 return link
         raise SceneError(f"link {name}: no such link")
 
+    def widest_triangle(self, link: SceneLink) -> tuple[str, str, str] | None:
+        """The three joints of ``link`` spanning the largest area (None if all collinear):
+        the triangle whose orientation tells the link from its mirror image."""
+        best, area = None, 0.0
+        for triangle in combinations(link.joints, 3):
+            (xi, yi), (xj, yj), (xk, yk) = (link.local[n] for n in triangle)
+            cross = abs((xj - xi) * (yk - yi) - (yj - yi) * (xk - xi))
+            if cross > area:
+                best, area = triangle, cross
+        return best
+
     def orientation(self, triangle: tuple[str, str, str]) -> int:
         """Sign of the oriented area of three joints of one rigid link, in its own shape."""
         for link in self.links:
@@ -219,10 +230,10 @@ def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
     for key, value in squared.items():
         if value <= 0:
             raise SceneError(f"link {name}: joints {' and '.join(sorted(key))} coincide")
-    for a, b, c in combinations(joints, 3):
-        area16 = _triangle_area16(*(float(squared[frozenset(p)]) for p in ((a, b), (a, c), (b, c))))
-        if area16 <= 0:
-            raise SceneError(f"link {name}: joints {a}, {b}, {c} are collinear or violate the triangle inequality")
+    for a, b, c in combinations(joints, 3):  # collinear joints are fine (a straight bar)
+        sides = [float(squared[frozenset(p)]) for p in ((a, b), (a, c), (b, c))]
+        if _triangle_area16(*sides) < -1e-9 * max(sides) ** 2:
+            raise SceneError(f"link {name}: squared distances of {a}, {b}, {c} violate the triangle inequality")
     return SceneLink(name, joints, squared, local), world, exact
 
 

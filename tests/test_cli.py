@@ -164,3 +164,33 @@ def test_show_bad_input(args, message):
     assert result.returncode == 2
     assert result.stderr.startswith("baranov: error: ") and message in result.stderr
     assert result.stderr.count("\n") == 1 and result.stdout == ""
+
+
+def test_solve_table_and_json():
+    table = run("solve", str(REPO / "examples" / "5-B1.json"))
+    assert table.returncode == 0 and "coupling degree 1, 6 assembly modes (numeric)" in table.stdout
+    data = json.loads(run("solve", str(REPO / "examples" / "3-B1.json"), "--json").stdout)
+    assert data["method"] == "numeric" and data["coupling_degree"] == 0 and data["parameters"] == []
+    points = sorted(tuple(round(c, 9) for c in m["joints"]["P3"]) for m in data["assembly_modes"])
+    assert points == [(1.8, 7.4), (5.4, 3.8)]
+    assert all(m["max_residual"] < 1e-12 and len(m["signs"]) == 1 for m in data["assembly_modes"])
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        (None, "cannot read"),
+        ("{not json", "not valid JSON"),
+        ('{"links": []}', "ground None: no link of that name"),
+        ('{"links": [{"name": "a", "joints": ["P1", "P2"], "squared_length": 0}], "ground": "a"}',
+         "link a: squared distance P1,P2 = 0 must be positive"),
+    ],
+)
+def test_solve_bad_input(tmp_path, content, message):
+    path = tmp_path / "scene.json"
+    if content is not None:
+        path.write_text(content)
+    result = run("solve", str(path))
+    assert result.returncode == 2 and result.stdout == ""
+    assert result.stderr.startswith("baranov: error: ") and message in result.stderr
+    assert result.stderr.count("\n") == 1

@@ -54,6 +54,41 @@ def test_only_the_thesis_orientation_reproduces_the_pentad():
     assert roots("cw", "ccw") == PENTAD_ROOTS  # the mirror image of the whole linkage
 
 
+#: Published real roots (thesis §3.3.x.3) and the distance they are given in.
+SEVEN_LINK_EXAMPLES = {
+    "7-B1": (("P2", "P3"), [39.8353, 41.6616, 42.6537, 78.9181, 81.8425, 106.0, 121.9444, 122.6125]),
+    "7-B2": (("P4", "P8"), [1.1161, 1.2002, 7.3517, 10.418, 17.0, 27.5995, 52.9281, 53.7863, 56.0905, 61.5796]),
+    "7-B3": (("P1", "P4"), [5.2357, 6.732, 9.8004, 16.9536, 39.1049, 45.3566, 48.4498, 61.0]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(SEVEN_LINK_EXAMPLES))
+def test_seven_link_examples_reproduce_the_published_roots(name):
+    (u, v), published = SEVEN_LINK_EXAMPLES[name]
+    solution = solve(load_scene(EXAMPLES / f"{name}.json"))
+    assert sorted(round(squared(m, u, v), 4) for m in solution.assembly_modes) == published
+    assert all(m.max_residual < 1e-10 for m in solution.assembly_modes)
+
+
+@pytest.mark.parametrize("name", sorted(SEVEN_LINK_EXAMPLES))
+def test_seven_link_examples_other_orientations_do_not(name):
+    """The figures are missing: of all mirror-image choices of the non-ground rigid links,
+    exactly the one in the example file reproduces the published roots."""
+    import itertools
+
+    (u, v), published = SEVEN_LINK_EXAMPLES[name]
+    data = json.loads((EXAMPLES / f"{name}.json").read_text())
+    rigid = [link for link in data["links"] if "orientation" in link]
+    matches = []
+    for combination in itertools.product(("ccw", "cw"), repeat=len(rigid)):
+        for link, orientation in zip(rigid, combination):
+            link["orientation"] = orientation
+        modes = solve(scene_from_dict(data)).assembly_modes
+        if sorted(round(squared(m, u, v), 4) for m in modes) == published:
+            matches.append(combination)
+    assert matches == [("cw",) * len(rigid)]
+
+
 def scene_of(truss, coordinates, ground=0):
     """A scene whose links carry the given joint coordinates (so it is exact)."""
     links = []
