@@ -17,7 +17,7 @@ from baranov.solvers import solve as solve_scene
 from baranov.topology import natural_sort_key
 
 from .catalog import build_catalog
-from .files import check_writable_folder
+from .files import check_writable_folder, write_atomically
 from .show import show
 
 #: The catalog command accepts link counts up to this one (13 links: about 10 s).
@@ -79,11 +79,19 @@ def _parser() -> argparse.ArgumentParser:
     solve.add_argument("scene", type=Path, help="scene JSON file (see examples/)")
     solve.add_argument("--method", default="numeric", choices=["numeric"], help="solving backend")
     solve.add_argument("--json", action="store_true", help="print the result as JSON")
+    solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
     return parser
 
 
 def run_solve(args: argparse.Namespace) -> int:
-    solution = solve_scene(load_scene(args.scene), method=args.method)
+    if args.plot is not None and not args.plot.parent.is_dir():
+        raise UsageError(f"--plot {args.plot}: folder {args.plot.parent} does not exist")
+    scene = load_scene(args.scene)
+    solution = solve_scene(scene, method=args.method)
+    if args.plot is not None:
+        from baranov.solvers.drawing import render_modes  # matplotlib only when drawing
+
+        write_atomically(args.plot, render_modes(scene, solution))
     if args.json:
         print(json.dumps(solution.to_dict(), indent=1))
         return 0

@@ -194,3 +194,13 @@ def test_solve_bad_input(tmp_path, content, message):
     assert result.returncode == 2 and result.stdout == ""
     assert result.stderr.startswith("baranov: error: ") and message in result.stderr
     assert result.stderr.count("\n") == 1
+
+
+def test_solve_plot_writes_a_png(tmp_path):
+    target = tmp_path / "modes.png"
+    result = run("solve", str(REPO / "examples" / "5-B1.json"), "--plot", str(target))
+    assert result.returncode == 0
+    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert not list(tmp_path.glob(".*.tmp"))
+    missing = run("solve", str(REPO / "examples" / "5-B1.json"), "--plot", str(tmp_path / "no" / "x.png"))
+    assert missing.returncode == 2 and "does not exist" in missing.stderr

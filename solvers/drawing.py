@@ -1,0 +1,85 @@
+"""Drawings of assembly modes in the style of the thesis figures: one panel per mode,
+the ground link hatched, ternary and larger links filled, binary links as bars, joints
+labelled, the parameter values in each title."""
+
+from __future__ import annotations
+
+import io
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only; no display needed
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.patches import Polygon  # noqa: E402
+
+from .modes import Solution  # noqa: E402
+from .scene import Scene  # noqa: E402
+
+
+def _hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    """Convex hull (monotone chain), counter-clockwise."""
+    points = sorted(set(points))
+    if len(points) <= 2:
+        return points
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    lower, upper = [], []
+    for p in points:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(points):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return lower[:-1] + upper[:-1]
+
+
+def render_modes(scene: Scene, solution: Solution, columns: int = 4) -> bytes:
+    """A PNG image (bytes) with one drawing per assembly mode."""
+    modes = solution.assembly_modes
+    count = max(len(modes), 1)
+    columns = min(columns, count)
+    rows = math.ceil(count / columns)
+    figure, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.6 * rows), squeeze=False)
+    everything = [p for m in modes for p in m.joints.values()] or [(0.0, 0.0)]
+    xs, ys = [p[0] for p in everything], [p[1] for p in everything]
+    margin = 0.08 * max(max(xs) - min(xs), max(ys) - min(ys), 1.0)
+    for index, axis in enumerate(axes.flat):
+        axis.set_aspect("equal")
+        axis.set_xticks([])
+        axis.set_yticks([])
+        axis.set_xlim(min(xs) - margin, max(xs) + margin)
+        axis.set_ylim(min(ys) - margin, max(ys) + margin)
+        if index >= len(modes):
+            axis.axis("off")
+            if not modes:
+                axis.text(0.5, 0.5, "no assembly mode", ha="center", va="center", transform=axis.transAxes)
+            continue
+        mode = modes[index]
+        for link in scene.links:
+            points = [mode.joints[j] for j in link.joints]
+            ground = link.name == scene.ground
+            if len(points) == 2:
+                (x1, y1), (x2, y2) = points
+                axis.plot([x1, x2], [y1, y2], color="0.15", linewidth=3 if not ground else 5,
+                          solid_capstyle="round", zorder=2)
+            else:
+                axis.add_patch(Polygon(_hull(points), closed=True, facecolor="0.82" if not ground else "0.95",
+                                       edgecolor="0.15", linewidth=1.5, hatch="////" if ground else None, zorder=1))
+        for joint, (x, y) in mode.joints.items():
+            axis.plot(x, y, "o", markersize=6, markerfacecolor="white", markeredgecolor="0.1", zorder=3)
+            axis.annotate(joint, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=8, zorder=4)
+        values = ", ".join(f"{name} = {value:.4f}" for name, value in mode.parameters.items())
+        axis.set_title(f"mode {index + 1}" + (f": {values}" if values else ""), fontsize=9)
+    figure.suptitle(f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} (ground hatched)", fontsize=11)
+    figure.tight_layout()
+    buffer = io.BytesIO()
+    try:
+        figure.savefig(buffer, format="png", dpi=110)
+    finally:
+        plt.close(figure)
+    return buffer.getvalue()
