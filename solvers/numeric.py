@@ -105,27 +105,40 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
         def failing(points: np.ndarray, branch=branch) -> np.ndarray:
             return compiled.first_failures(points[:, None], branch[None, :])[0]
 
-        points, values = _with_windows(grid, table[b], failures[b], sampled, failing)
-        roots = _scan(f, points, values, edges=True)
+        points, values = _with_windows(grid, table[b], failures[b], sampled, failing, len(compiled.plan.steps))
+        points, values, edges = _with_edges(points, values, sampled)
+        roots = [edge for edge, value in edges if abs(value) < 1e-7]
+        roots += _scan(f, points, values, sampled)
         for low, high in _suspicious_minima(points, values):
             fine = np.linspace(low, high, REFINEMENT)
-            roots += _scan(f, fine, sampled(fine), edges=False)
+            roots += _scan(f, fine, sampled(fine), sampled)
         for root in roots:
             candidates.append((np.array([root]), branch))
     return candidates
 
 
-def _with_windows(grid, values, failures, sampled, failing):
-    """The grid plus dense samples wherever neighbouring samples fail at different steps."""
+def _window_cells(codes: np.ndarray, feasible: int) -> np.ndarray:
+    """Indices i where samples i and i+1 both fail, at different steps: a feasible window
+    may hide between them. (A defined/undefined boundary is left to the edge search.)"""
+    return np.flatnonzero((codes[:-1] != codes[1:]) & (codes[:-1] < feasible) & (codes[1:] < feasible))
+
+
+def _with_windows(grid, values, failures, sampled, failing, feasible):
+    """The grid plus dense samples wherever neighbouring samples fail at different steps,
+    refined level by level (all cells of a level in one vectorised evaluation)."""
     extra = []
-    pending = [(grid[i], grid[i + 1], 0) for i in np.flatnonzero(failures[:-1] != failures[1:])]
-    while pending:
-        low, high, depth = pending.pop()
-        points = np.linspace(low, high, WINDOW_SAMPLES)
+    cells = [(grid[i], grid[i + 1]) for i in _window_cells(failures, feasible)]
+    for _ in range(WINDOW_DEPTH):
+        if not cells:
+            break
+        points = np.concatenate([np.linspace(low, high, WINDOW_SAMPLES) for low, high in cells])
         codes = failing(points)
         extra.append(points)
-        if depth + 1 < WINDOW_DEPTH:
-            pending += [(points[i], points[i + 1], depth + 1) for i in np.flatnonzero(codes[:-1] != codes[1:])]
+        following = []
+        for c in range(len(cells)):
+            part = slice(c * WINDOW_SAMPLES, (c + 1) * WINDOW_SAMPLES)
+            following += [(points[part][i], points[part][i + 1]) for i in _window_cells(codes[part], feasible)]
+        cells = following
     if not extra:
         return grid, values
     added = np.unique(np.concatenate(extra))
@@ -146,20 +159,43 @@ def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float
     return [(float(grid[i - 1]), float(grid[i + 1])) for i in np.flatnonzero(minima) + 1]
 
 
-def _scan(f, grid: np.ndarray, values: np.ndarray, edges: bool) -> list[float]:
-    """Roots of f on sampled ``grid``: exact zeros, sign changes (Brent), tangential roots
-    at local minima of |f| (bounded minimisation), and, with ``edges``, roots at the ends
-    of the feasible domain (bisection of the defined/undefined boundary)."""
+def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
+    """Add the ends of the feasible domain (one per defined/undefined neighbour pair) to the
+    samples, so a root between the last defined sample and the edge shows as a sign change
+    or a minimum; also return the edges with their values (a root may sit on an edge)."""
+    finite = np.isfinite(values)
+    edges = []
+    for i in np.flatnonzero(finite[:-1] != finite[1:]):
+        edge = _domain_edge(sampled, points[i], points[i + 1], inside_low=bool(finite[i]))
+        if edge is not None:
+            edges.append((edge, float(sampled(np.array([edge]))[0])))
+    if not edges:
+        return points, values, edges
+    merged = np.concatenate([points, [e for e, _ in edges]])
+    order = np.argsort(merged, kind="stable")
+    merged_values = np.concatenate([values, [v for _, v in edges]])[order]
+    merged = merged[order]
+    keep = np.concatenate([[True], np.diff(merged) > 0])
+    return merged[keep], merged_values[keep], edges
+
+
+def _scan(f, grid: np.ndarray, values: np.ndarray, sampled=None) -> list[float]:
+    """Roots of f on sampled ``grid``: exact zeros, sign changes (Brent), and tangential
+    roots at local minima of |f| (bounded minimisation). A sign change across an
+    undefined gap narrower than the cell (Brent meets NaN) is re-sampled finely, with its
+    domain edges, once (``sampled`` given)."""
     finite = np.isfinite(values)
     both = finite[:-1] & finite[1:]
     roots: list[float] = [float(grid[i]) for i in np.flatnonzero(finite & (values == 0))]
     for i in np.flatnonzero(both & (values[:-1] * values[1:] < 0)):
-        roots.append(brentq(f, grid[i], grid[i + 1], xtol=1e-14 * grid[i + 1], rtol=1e-15, maxiter=200))
-    if edges:
-        for i in np.flatnonzero(finite[:-1] != finite[1:]):
-            edge = _domain_edge(f, grid[i], grid[i + 1], inside_low=bool(finite[i]))
-            if edge is not None and abs(f(edge)) < 1e-7:
-                roots.append(edge)
+        try:
+            roots.append(brentq(f, grid[i], grid[i + 1], xtol=1e-14 * grid[i + 1], rtol=1e-15, maxiter=200))
+        except ValueError:  # f is undefined somewhere inside the bracket
+            if sampled is not None:
+                fine = np.linspace(grid[i], grid[i + 1], REFINEMENT)
+                points, fine_values, edges = _with_edges(fine, sampled(fine), sampled)
+                roots += [edge for edge, value in edges if abs(value) < 1e-7]
+                roots += _scan(f, points, fine_values)
     for low, high in _suspicious_minima(grid, values):
         found = minimize_scalar(lambda s: abs(f(s)), bounds=(low, high), method="bounded",
                                 options={"xatol": 1e-14 * high})
@@ -168,17 +204,17 @@ def _scan(f, grid: np.ndarray, values: np.ndarray, edges: bool) -> list[float]:
     return roots
 
 
-def _domain_edge(f, lo: float, hi: float, inside_low: bool) -> float | None:
-    """The boundary of the feasible domain between ``lo`` and ``hi`` (bisection, 80 steps),
-    returned on the defined side."""
+def _domain_edge(sampled, lo: float, hi: float, inside_low: bool) -> float | None:
+    """The boundary of the feasible domain between ``lo`` and ``hi``, returned on the
+    defined side: 7 rounds of 64 vectorised samples (resolution 64^-7 of the cell)."""
     inside, outside = (lo, hi) if inside_low else (hi, lo)
-    for _ in range(80):
-        middle = (inside + outside) / 2
-        if math.isfinite(f(middle)):
-            inside = middle
-        else:
-            outside = middle
-    return inside if math.isfinite(f(inside)) else None
+    for _ in range(7):
+        points = np.linspace(inside, outside, 64)
+        undefined = np.flatnonzero(~np.isfinite(sampled(points)))
+        if undefined.size == 0 or undefined[0] == 0:
+            break
+        inside, outside = points[undefined[0] - 1], points[undefined[0]]
+    return inside if np.isfinite(sampled(np.array([inside]))[0]) else None
 
 
 def _configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, branch: np.ndarray) -> AssemblyMode:

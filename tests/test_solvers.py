@@ -203,3 +203,8 @@ def test_saved_misses_are_found(path):
         generating.update({n: tuple(map(float, p)) for n, p in link["joints"].items()})
     modes = solve(scene).assembly_modes
     assert any(all(math.dist(m.joints[n], p) < 1e-6 * 30 for n, p in generating.items()) for m in modes)
+    verified = json.loads(path.read_text()).get("verified_modes")
+    if verified:  # no mode ever verified on this instance may be lost again
+        found = [m.parameters[verified["parameter"]] for m in modes]
+        for value in verified["values"]:
+            assert any(abs(v - value) < 1e-5 * value for v in found), value
