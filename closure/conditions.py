@@ -22,23 +22,19 @@ from functools import cached_property
 import sympy
 
 from baranov.planner import DistanceKind, Plan
-from baranov.topology import natural_sort_key
+from baranov.topology import natural_sort_key, thesis_subscript
 
 Triangle = tuple[str, str, str]
 Monomial = tuple[Triangle, ...]  # Z factors, latest step first
 Polynomial = tuple[tuple[Monomial, int], ...]  # sorted (monomial, coefficient) pairs
 
 
-def _subscript(name: str) -> str:
-    return name[1:] if name[:1] == "P" and name[1:].isdigit() else name
-
-
 def _z_text(triangle: Triangle) -> str:
-    return "Z" + ",".join(_subscript(n) for n in triangle)
+    return "Z" + ",".join(thesis_subscript(n) for n in triangle)
 
 
 def _s_text(u: str, v: str) -> str:
-    return f"s{_subscript(u)},{_subscript(v)}"
+    return f"s{thesis_subscript(u)},{thesis_subscript(v)}"
 
 
 def _sorted_polynomial(terms: dict[Monomial, int]) -> Polynomial:
@@ -66,7 +62,7 @@ class MatrixExpression:
         parts = []
         for monomial, coefficient in self.terms:
             body = " ".join(
-                "Z_{" + ",".join(_subscript(n) for n in t) + "}" for t in monomial
+                "Z_{" + ",".join(thesis_subscript(n) for n in t) + "}" for t in monomial
             ) or "I"
             magnitude = abs(coefficient)
             body = body if magnitude == 1 else f"{magnitude} {body}"
@@ -91,8 +87,8 @@ class DistanceCondition:
         return f"{_s_text(*self.pair)} = det({self.omega.text()}) {_s_text(*self.reference)}"
 
     def latex(self) -> str:
-        u, v = (_subscript(n) for n in self.pair)
-        a, b = (_subscript(n) for n in self.reference)
+        u, v = (thesis_subscript(n) for n in self.pair)
+        a, b = (thesis_subscript(n) for n in self.reference)
         return f"s_{{{u},{v}}} = \\det\\left({self.omega.latex()}\\right) s_{{{a},{b}}}"
 
 
@@ -169,11 +165,11 @@ def closure_system(plan: Plan) -> ClosureSystem:
 
 def _s_symbol(u: str, v: str) -> sympy.Symbol:
     u, v = sorted((u, v), key=lambda n: (len(n), n))
-    return sympy.Symbol(f"s_{_subscript(u)}_{_subscript(v)}", positive=True)
+    return sympy.Symbol(f"s_{thesis_subscript(u)}_{thesis_subscript(v)}", positive=True)
 
 
 def _a_symbol(triangle: Triangle) -> sympy.Symbol:
-    return sympy.Symbol("A_" + "_".join(_subscript(n) for n in triangle), real=True)
+    return sympy.Symbol("A_" + "_".join(thesis_subscript(n) for n in triangle), real=True)
 
 
 def sympy_condition(condition: DistanceCondition) -> sympy.Eq:

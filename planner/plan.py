@@ -26,6 +26,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
+from baranov.topology import thesis_subscript
+
 
 class StepKind(str, Enum):
     """How a step locates its joint (see the module docstring)."""
@@ -148,21 +150,16 @@ class Plan:
         Example line: ``P2 = Z1,3,2 (link L0)``.
         """
         a, b = self.reference
-        lines = [f"reference p{_n(a)},{_n(b)}"]
+        lines = [f"reference p{thesis_subscript(a)},{thesis_subscript(b)}"]
         if self.parameters:
-            lines.append("parameters " + ", ".join(f"s{_n(u)},{_n(v)}" for u, v in self.parameters))
+            lines.append("parameters " + ", ".join(f"s{thesis_subscript(u)},{thesis_subscript(v)}" for u, v in self.parameters))
         for step in self.steps:
             i, j, k = step.triangle
             how = {StepKind.LINK: f"link L{step.link}, fixed sign", StepKind.CROSS: "free sign",
                    StepKind.PARAMETER: "free sign, parameter"}[step.kind]
-            lines.append(f"{k}: Z{_n(i)},{_n(j)},{_n(k)} ({how})")
+            lines.append(f"{k}: Z{thesis_subscript(i)},{thesis_subscript(j)},{thesis_subscript(k)} ({how})")
         for u, v in self.closure_pairs:
-            lines.append(f"closure s{_n(u)},{_n(v)}")
+            lines.append(f"closure s{thesis_subscript(u)},{thesis_subscript(v)}")
         for u, v, x in self.orientation_checks:
-            lines.append(f"orientation check A{_n(u)},{_n(v)},{_n(x)}")
+            lines.append(f"orientation check A{thesis_subscript(u)},{thesis_subscript(v)},{thesis_subscript(x)}")
         return "\n".join(lines)
-
-
-def _n(name: str) -> str:
-    """Thesis subscripts drop the P: P12 -> 12; other names stay whole."""
-    return name[1:] if name[:1] == "P" and name[1:].isdigit() else name

@@ -7,12 +7,16 @@ numerical procedure"):
 
 1. sample f on a grid uniform in the distance √s over (0, D²], D the sum of all link
    diameters (no two joints can be farther apart), all branches at once (numpy);
-2. roots with a sign change: Brent's method on each bracketing pair of samples;
-3. roots without a sign change (tangential, even multiplicity): every local minimum of
-   |f| between samples is refined by bounded minimisation and kept when |f| vanishes;
-4. roots at the ends of the feasible domain (a triangle of zero area, where f stops being
-   real): each boundary between defined and undefined samples is found by bisection and
-   kept when f vanishes there.
+2. where neighbouring samples both fail, at different steps, a feasible window narrower
+   than the grid may lie between them: re-sample there, level by level;
+3. find the ends of the feasible domain (a triangle of zero area, where f stops being
+   real) and add them to the samples; an end where f vanishes is a root;
+4. roots with a sign change: Brent's method on each bracketing pair of samples (a bracket
+   that hides an undefined gap is re-sampled finely instead);
+5. roots without a sign change (tangential, or two roots in one cell): every local minimum
+   of |f| is refined by bounded minimisation, and its cell re-sampled finely.
+
+docs/numeric.md explains each rule with the miss that required it.
 
 Every candidate becomes a configuration placed from the ground link; it is kept only if
 every link dimension holds (relative residual below ``1e-8``) and no rigid link is
@@ -28,6 +32,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from baranov.closure import CompiledSystem, closure_system, sign_branches
 from baranov.planner import Plan, best_plan
+from baranov.topology import thesis_subscript
 
 from .modes import AssemblyMode, Solution
 from .scene import Scene
@@ -39,12 +44,8 @@ class SolverError(ValueError):
     """The scene is valid but this method cannot solve it (the message says why)."""
 
 
-def _subscript(name: str) -> str:
-    return name[1:] if name[:1] == "P" and name[1:].isdigit() else name
-
-
 def parameter_name(pair: tuple[str, str]) -> str:
-    return "s" + ",".join(_subscript(n) for n in pair)
+    return "s" + ",".join(thesis_subscript(n) for n in pair)
 
 
 def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000) -> Solution:

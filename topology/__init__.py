@@ -17,7 +17,7 @@ from .automorphisms import (
     canonical_link_graph6,
     certificate,
 )
-from .chain import Joint, JointKind, KinematicChain, chain_from_link_graph, chain_from_links, natural_sort_key
+from .chain import Joint, JointKind, KinematicChain, chain_from_link_graph, chain_from_links, natural_sort_key, thesis_subscript
 from .errors import TopologyError
 from .fusion import fuse_links
 from .graphs import degree_sequence, is_planar, joint_graph, joints_of_links, link_graph
@@ -62,4 +62,5 @@ __all__ = [
     "require_rigid_chain",
     "smallest_overconstrained_subchain",
     "smallest_rigid_subchain",
+    "thesis_subscript",
 ]

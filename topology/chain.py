@@ -242,6 +242,16 @@ def chain_from_links(links: Sequence[Iterable[str]], link_labels: Sequence[Hasha
     return KinematicChain(len(links), joints, labels)
 
 
+def thesis_subscript(name: str) -> str:
+    """A joint's subscript in the thesis's notation: ``P12`` → ``12`` (so ``s1,12``,
+    ``Z1,3,12``); other names are kept whole.
+
+    >>> thesis_subscript("P12"), thesis_subscript("hub")
+    ('12', 'hub')
+    """
+    return name[1:] if name[:1] == "P" and name[1:].isdigit() else name
+
+
 def natural_sort_key(name: str) -> tuple:
     """Sort key comparing digit runs as numbers: P2 < P10.
 
