@@ -1,11 +1,11 @@
 """Completeness and speed sweep of the numeric backend on random instances.
 
-Each instance: a random truss (7 and 9 links, coupling degree ≤ 1), random integer joint
+Each instance: a random truss (``--links``, coupling degree ≤ 1), random integer joint
 coordinates with no three joints nearly collinear, the scene of those dimensions; the
 generating configuration must be among the modes. Prints every miss (with its
 coordinates, to be saved under tests/regressions/) and the median time per solve.
 
-    python bench/sweep_numeric.py --seed 1 --instances 300
+    python bench/sweep_numeric.py --seed 1 --instances 300 [--links 7,9]
 """
 
 from __future__ import annotations
@@ -20,8 +20,10 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from test_solvers import SOLVABLE, generic_integer_configuration, scene_of  # noqa: E402
+from test_solvers import generic_integer_configuration, scene_of  # noqa: E402
 
+from baranov.enumerate import baranov_trusses  # noqa: E402
+from baranov.planner import coupling_degree  # noqa: E402
 from baranov.solvers import solve  # noqa: E402
 
 
@@ -29,9 +31,10 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--instances", type=int, default=300)
+    parser.add_argument("--links", default="7,9", help="link counts of the trusses to draw from")
     args = parser.parse_args()
     rng = np.random.default_rng(args.seed)
-    pool = [t for t in SOLVABLE if t.number_of_links >= 7]
+    pool = [t for links in map(int, args.links.split(",")) for t in baranov_trusses(links) if coupling_degree(t) <= 1]
     misses, times = 0, []
     for number in range(args.instances):
         truss = pool[int(rng.integers(len(pool)))]
