@@ -115,6 +115,15 @@ def generic_integer_configuration(truss, rng):
 SOLVABLE = [t for links in (3, 5, 7, 9) for t in baranov_trusses(links) if coupling_degree(t) <= 1]
 
 
+ELEVEN_SOLVABLE = [t for t in baranov_trusses(11) if coupling_degree(t) == 1]
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(ELEVEN_SOLVABLE), st.integers(0, 2**32 - 1))
+def test_the_generating_configuration_is_found_for_eleven_links(truss, seed):
+    test_the_generating_configuration_is_found.hypothesis.inner_test(truss, seed)
+
+
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.sampled_from(SOLVABLE), st.integers(0, 2**32 - 1))
 def test_the_generating_configuration_is_found(truss, seed):
