@@ -62,7 +62,7 @@ class CompiledSystem:
         ``parameter_values`` has shape (N, p) (p = number of parameters), ``signs`` shape
         (B, m) (m = free-sign triangles); results have shape (B, N).
         """
-        matrices, s_ref, _ = self._evaluate(parameter_values, signs)
+        matrices, s_ref, *_ = self._evaluate(parameter_values, signs)
         return matrices, s_ref
 
     def first_failures(self, parameter_values: np.ndarray, signs: np.ndarray) -> np.ndarray:
@@ -72,7 +72,14 @@ class CompiledSystem:
         lie between them even if no sample falls inside it."""
         return self._evaluate(parameter_values, signs)[2]
 
-    def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray):
+    def failure_profile(self, parameter_values: np.ndarray, signs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`first_failures` and, where a step fails, its radicand relative to the
+        squared largest side (negative; NaN where all steps succeed). A window between two
+        values failing at the same step shows as a local maximum of that radicand."""
+        _, _, failures, radicands = self._evaluate(parameter_values, signs, profile=True)
+        return failures, radicands
+
+    def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool = False):
         values = np.asarray(parameter_values, dtype=float)
         if values.ndim == 1:
             values = values[:, None]
@@ -83,6 +90,7 @@ class CompiledSystem:
         s_ref = self._distance(a, b, parameter, None, {})
         matrices: dict[str, np.ndarray] = {a: np.zeros(shape, complex), b: np.ones(shape, complex)}
         failures = np.full(shape, len(self.plan.steps))
+        radicands = np.full(shape, np.nan)
         free = 0
         for index, step in enumerate(self.plan.steps):
             i, j = step.base
@@ -98,8 +106,14 @@ class CompiledSystem:
             z = bilateration_matrix(s_ij, s_ik, s_jk, sign)
             matrices[k] = matrices[i] + z * (matrices[j] - matrices[i])
             failed = ~np.isfinite(matrices[k])
-            failures = np.where((failures == len(self.plan.steps)) & failed, index, failures)
-        return matrices, s_ref, failures
+            newly = (failures == len(self.plan.steps)) & failed
+            failures = np.where(newly, index, failures)
+            if profile:
+                with np.errstate(invalid="ignore"):
+                    scale = np.maximum(np.maximum(s_ij, s_ik), s_jk) ** 2
+                    radicand = ((s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)) / scale
+                radicands = np.where(newly, radicand, radicands)
+        return matrices, s_ref, failures, radicands
 
     def _distance(self, u: str, v: str, parameter, s_ref, matrices) -> np.ndarray:
         pair = frozenset((u, v))

@@ -94,7 +94,7 @@ WINDOW_DEPTH = 6
 def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: float, samples: int):
     grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
     table = compiled.residuals(grid[:, None], branches)[:, :, 0]
-    failures = compiled.first_failures(grid[:, None], branches)
+    failures, radicands = compiled.failure_profile(grid[:, None], branches)
     candidates = []
     for b, branch in enumerate(branches):
         def f(s: float, branch=branch) -> float:
@@ -106,7 +106,8 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
         def failing(points: np.ndarray, branch=branch) -> np.ndarray:
             return compiled.first_failures(points[:, None], branch[None, :])[0]
 
-        points, values = _with_windows(grid, table[b], failures[b], sampled, failing, len(compiled.plan.steps))
+        points, values = _with_windows(grid, table[b], failures[b], radicands[b], sampled, failing,
+                                       len(compiled.plan.steps))
         points, values, edges = _with_edges(points, values, sampled)
         roots = [edge for edge, value in edges if abs(value) < 1e-7]
         roots += _scan(f, points, values, sampled)
@@ -124,11 +125,24 @@ def _window_cells(codes: np.ndarray, feasible: int) -> np.ndarray:
     return np.flatnonzero((codes[:-1] != codes[1:]) & (codes[:-1] < feasible) & (codes[1:] < feasible))
 
 
-def _with_windows(grid, values, failures, sampled, failing, feasible):
-    """The grid plus dense samples wherever neighbouring samples fail at different steps,
+def _radicand_bumps(codes: np.ndarray, radicands: np.ndarray, feasible: int) -> np.ndarray:
+    """Indices i of failing samples whose radicand (of the step they fail at) is a local
+    maximum among the neighbours failing at that same step: the radicand may turn
+    positive between samples, a window whose two sides fail at one step
+    (tests/regressions/11-missed-property.json)."""
+    inner = codes[1:-1]
+    left_ok = (codes[:-2] != inner) | (radicands[1:-1] >= radicands[:-2])
+    right_ok = (codes[2:] != inner) | (radicands[1:-1] >= radicands[2:])
+    return np.flatnonzero((inner < feasible) & left_ok & right_ok) + 1
+
+
+def _with_windows(grid, values, failures, radicands, sampled, failing, feasible):
+    """The grid plus dense samples wherever a feasible window may hide between samples:
+    neighbours failing at different steps, or a local maximum of a failing radicand;
     refined level by level (all cells of a level in one vectorised evaluation)."""
     extra = []
     cells = [(grid[i], grid[i + 1]) for i in _window_cells(failures, feasible)]
+    cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_bumps(failures, radicands, feasible)]
     for _ in range(WINDOW_DEPTH):
         if not cells:
             break
