@@ -157,12 +157,16 @@ def _with_windows(grid, values, failures, radicands, sampled, failing, feasible)
     if not extra:
         return grid, values
     added = np.unique(np.concatenate(extra))
-    points = np.concatenate([grid, added])
-    order = np.argsort(points, kind="stable")
-    merged_points = points[order]
-    merged_values = np.concatenate([values, sampled(added)])[order]
-    keep = np.concatenate([[True], np.diff(merged_points) > 0])
-    return merged_points[keep], merged_values[keep]
+    return _merge(grid, values, added, sampled(added))
+
+
+def _merge(points: np.ndarray, values: np.ndarray, more_points: np.ndarray, more_values: np.ndarray):
+    """Samples and further samples as one sorted set, without repeated points."""
+    merged = np.concatenate([points, more_points])
+    order = np.argsort(merged, kind="stable")
+    merged, merged_values = merged[order], np.concatenate([values, more_values])[order]
+    keep = np.concatenate([[True], np.diff(merged) > 0])
+    return merged[keep], merged_values[keep]
 
 
 def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float, float]]:
@@ -190,12 +194,7 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
             edges.append((edge, float(sampled(np.array([edge]))[0])))
     if not extra_points:
         return points, values, edges
-    merged = np.concatenate([points, *extra_points])
-    order = np.argsort(merged, kind="stable")
-    merged_values = np.concatenate([values, *extra_values])[order]
-    merged = merged[order]
-    keep = np.concatenate([[True], np.diff(merged) > 0])
-    return merged[keep], merged_values[keep], edges
+    return (*_merge(points, values, np.concatenate(extra_points), np.concatenate(extra_values)), edges)
 
 
 def _scan(f, grid: np.ndarray, values: np.ndarray, sampled=None) -> list[float]:
