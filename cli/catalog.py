@@ -26,12 +26,11 @@ from baranov.enumerate import baranov_link_graphs
 from baranov.enumerate.crosscheck import baranov_link_graphs_by_filter, find_geng
 from baranov.enumerate.literature import thesis_joint_names, thesis_name
 from baranov.enumerate.sliders import count_slider_chains
-from baranov.enumerate.trusses import chains_from_masks
+from baranov.enumerate.trusses import canonical_trusses
 from baranov.planner import best_plan
 from baranov.topology import (
     adjacency_masks,
     automorphism_group,
-    canonical_link_graph6,
     chain_from_link_graph,
     is_planar,
 )
@@ -120,8 +119,8 @@ def load_entries(path: Path) -> list[dict] | None:
 
 def catalog_links(links: int, workers: int, show_progress: bool) -> list[dict]:
     """Enumerate the trusses with ``links`` links and compute every catalog entry."""
-    chains = chains_from_masks(baranov_link_graphs(links, workers))
-    items = [(f"{links}/N{i + 1}", canonical_link_graph6(chain)) for i, chain in enumerate(chains)]
+    trusses = canonical_trusses(baranov_link_graphs(links, workers))
+    items = [(f"{links}/N{i + 1}", graph6) for i, (graph6, _) in enumerate(trusses)]
     bar = tqdm(total=len(items), desc=f"{links} links", unit="truss", disable=not show_progress, file=sys.stderr)
     entries = []
     if workers > 1 and len(items) > 64:

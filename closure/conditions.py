@@ -49,21 +49,15 @@ class MatrixExpression:
 
     def text(self) -> str:
         """Thesis notation, e.g. ``I - Z1,3,2 Z1,6,3 - Z6,4,5 Z6,1,4``."""
-        parts = []
-        for monomial, coefficient in self.terms:
-            body = " ".join(_z_text(t) for t in monomial) or "I"
-            magnitude = abs(coefficient)
-            body = body if magnitude == 1 else f"{magnitude} {body}"
-            parts.append(("- " if coefficient < 0 else "+ ") + body)
-        text = " ".join(parts) or "0"
-        return text[2:] if text.startswith("+ ") else "-" + text[2:] if text.startswith("- ") else text
+        return self._render(_z_text)
 
     def latex(self) -> str:
+        return self._render(lambda t: "Z_{" + ",".join(thesis_subscript(n) for n in t) + "}")
+
+    def _render(self, factor) -> str:
         parts = []
         for monomial, coefficient in self.terms:
-            body = " ".join(
-                "Z_{" + ",".join(thesis_subscript(n) for n in t) + "}" for t in monomial
-            ) or "I"
+            body = " ".join(factor(t) for t in monomial) or "I"
             magnitude = abs(coefficient)
             body = body if magnitude == 1 else f"{magnitude} {body}"
             parts.append(("- " if coefficient < 0 else "+ ") + body)

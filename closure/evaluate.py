@@ -14,7 +14,6 @@ from itertools import product
 
 import numpy as np
 
-from baranov.planner import DistanceKind, StepKind
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
@@ -212,6 +211,4 @@ __all__ = [
     "orientation_sign",
     "sign_branches",
     "true_parameters_and_signs",
-    "DistanceKind",
-    "StepKind",
 ]

@@ -158,14 +158,22 @@ def truss_sort_key(chain: KinematicChain) -> tuple:
     return (tuple(-d for d in degree_sequence(chain)), canonical_link_graph6(chain))
 
 
-def chains_from_masks(graphs: Iterable[Masks]) -> list[KinematicChain]:
-    """Chains in canonical labelling and catalog order from adjacency bit masks."""
-    chains = []
+def canonical_trusses(graphs: Iterable[Masks]) -> list[tuple[str, KinematicChain]]:
+    """(canonical graph6, chain in canonical labelling) from adjacency bit masks, in catalog
+    order (:func:`truss_sort_key`); one canonical labelling per graph."""
+    found = []
     for masks in graphs:
         edges = [(i, j) for i, mask in enumerate(masks) for j in range(i + 1, len(masks)) if mask >> j & 1]
-        chain = chain_from_link_graph(edges)
-        chains.append(chain_from_link_graph(canonical_link_graph6(chain)))
-    return sorted(chains, key=truss_sort_key)
+        graph6 = canonical_link_graph6(chain_from_link_graph(edges))
+        chain = chain_from_link_graph(graph6)
+        found.append(((tuple(-d for d in degree_sequence(chain)), graph6), graph6, chain))
+    found.sort(key=lambda item: item[0])
+    return [(graph6, chain) for _, graph6, chain in found]
+
+
+def chains_from_masks(graphs: Iterable[Masks]) -> list[KinematicChain]:
+    """Chains in canonical labelling and catalog order from adjacency bit masks."""
+    return [chain for _, chain in canonical_trusses(graphs)]
 
 
 def baranov_trusses(links: int, workers: int = 1) -> list[KinematicChain]:

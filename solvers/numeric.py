@@ -97,11 +97,11 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
     failures, radicands = compiled.failure_profile(grid[:, None], branches)
     candidates = []
     for b, branch in enumerate(branches):
-        def f(s: float, branch=branch) -> float:
-            return float(compiled.residuals(np.array([[s]]), branch[None, :])[0, 0, 0])
-
         def sampled(points: np.ndarray, branch=branch) -> np.ndarray:
             return compiled.residuals(points[:, None], branch[None, :])[0, :, 0]
+
+        def f(s: float, sampled=sampled) -> float:
+            return float(sampled(np.array([s]))[0])
 
         def failing(points: np.ndarray, branch=branch) -> np.ndarray:
             return compiled.first_failures(points[:, None], branch[None, :])[0]

@@ -175,6 +175,12 @@ def _embed(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], 
     return local
 
 
+def _require_positive(name: str, squared: Mapping[frozenset[str], Number]) -> None:
+    for key, value in squared.items():
+        if value <= 0:
+            raise SceneError(f"link {name}: squared distance {','.join(sorted(key))} = {value} must be positive")
+
+
 def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
     if not isinstance(entry, Mapping):
         raise SceneError(f"link #{index + 1}: expected an object with \"name\" and \"joints\"")
@@ -219,17 +225,13 @@ def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
             if text not in ("ccw", "cw"):
                 raise SceneError(f"link {name}: \"orientation\" must be \"ccw\" or \"cw\" (of {', '.join(joints[:3])})")
             orientation = 1 if text == "ccw" else -1
-        for key, value in squared.items():
-            if value <= 0:
-                raise SceneError(f"link {name}: squared distance {','.join(sorted(key))} = {value} must be positive")
+        _require_positive(name, squared)
         local = _embed(name, joints, squared, orientation) if len(joints) >= 2 else {}
     else:
         raise SceneError(f"link {name}: \"joints\" must be a list of names or a map of coordinates")
     if len(joints) < 2 or len(set(joints)) != len(joints):
         raise SceneError(f"link {name}: needs at least two different joints")
-    for key, value in squared.items():
-        if value <= 0:
-            raise SceneError(f"link {name}: joints {' and '.join(sorted(key))} coincide")
+    _require_positive(name, squared)  # coordinates: coincident joints
     for a, b, c in combinations(joints, 3):  # collinear joints are fine (a straight bar)
         sides = [float(squared[frozenset(p)]) for p in ((a, b), (a, c), (b, c))]
         if _triangle_area16(*sides) < -1e-9 * max(sides) ** 2:

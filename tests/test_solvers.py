@@ -217,3 +217,10 @@ def test_saved_misses_are_found(path):
         found = [m.parameters[verified["parameter"]] for m in modes]
         for value in verified["values"]:
             assert any(abs(v - value) < 1e-5 * value for v in found), value
+
+
+def test_coincident_joints_in_coordinates():
+    data = json.loads((EXAMPLES / "3-B1.json").read_text())
+    data["links"][0]["joints"]["P2"] = [1, 3]  # on top of P1
+    with pytest.raises(SceneError, match=r"link ground: squared distance P1,P2 = 0 must be positive"):
+        scene_from_dict(data)

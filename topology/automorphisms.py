@@ -161,19 +161,19 @@ def are_isomorphic(first: KinematicChain, second: KinematicChain) -> bool:
 
 def link_graph_certificate(masks: Sequence[int]) -> bytes:
     """nauty certificate of a link graph given as adjacency bit masks (enumeration hot path)."""
+    return pynauty.certificate(_nauty_link_graph(masks))
+
+
+def _nauty_link_graph(masks: Sequence[int]) -> pynauty.Graph:
     n = len(masks)
-    adjacency = {i: [j for j in range(i + 1, n) if masks[i] >> j & 1] for i in range(n)}
-    return pynauty.certificate(pynauty.Graph(n, adjacency_dict=adjacency))
+    return pynauty.Graph(n, adjacency_dict={i: [j for j in range(i + 1, n) if masks[i] >> j & 1] for i in range(n)})
 
 
 def canonical_labelling(chain: KinematicChain) -> tuple[int, ...]:
     """nauty's canonical order of the links of the link graph (joint kinds ignored):
     position i of the canonical form holds link ``result[i]``.
     """
-    masks = adjacency_masks(chain)
-    n = chain.number_of_links
-    adjacency = {i: [j for j in range(n) if masks[i] >> j & 1] for i in range(n)}
-    return tuple(pynauty.canon_label(pynauty.Graph(n, adjacency_dict=adjacency)))
+    return tuple(pynauty.canon_label(_nauty_link_graph(adjacency_masks(chain))))
 
 
 def canonical_link_graph6(chain: KinematicChain) -> str:
