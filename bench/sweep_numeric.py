@@ -1,11 +1,11 @@
 """Completeness and speed sweep of the numeric backend on random instances.
 
-Each instance: a random truss (``--links``, coupling degree ≤ 1), random integer joint
+Each instance: a random truss (``--links``, coupling degree in ``--coupling``), random integer joint
 coordinates with no three joints nearly collinear, the scene of those dimensions; the
 generating configuration must be among the modes. Prints every miss (with its
 coordinates, to be saved under tests/regressions/) and the median time per solve.
 
-    python bench/sweep_numeric.py --seed 1 --instances 300 [--links 7,9]
+    python bench/sweep_numeric.py --seed 1 --instances 300 [--links 7,9] [--coupling 0,1]
 """
 
 from __future__ import annotations
@@ -32,9 +32,11 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--instances", type=int, default=300)
     parser.add_argument("--links", default="7,9", help="link counts of the trusses to draw from")
+    parser.add_argument("--coupling", default="0,1", help="coupling degrees of the trusses to draw from")
     args = parser.parse_args()
+    degrees = set(map(int, args.coupling.split(",")))
     rng = np.random.default_rng(args.seed)
-    pool = [t for links in map(int, args.links.split(",")) for t in baranov_trusses(links) if coupling_degree(t) <= 1]
+    pool = [t for links in map(int, args.links.split(",")) for t in baranov_trusses(links) if coupling_degree(t) in degrees]
     misses, times = 0, []
     for number in range(args.instances):
         truss = pool[int(rng.integers(len(pool)))]

@@ -78,12 +78,25 @@ class CompiledSystem:
         _, _, failures, radicands = self._evaluate(parameter_values, signs, profile=True)
         return failures, radicands
 
-    def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool = False):
+    def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
+        """:meth:`matrices` of point n on branch ``signs[n]``; results have shape (N,)."""
+        matrices, s_ref, *_ = self._evaluate(parameter_values, signs, paired=True)
+        return {joint: value[0] for joint, value in matrices.items()}, np.broadcast_to(s_ref, matrices[self.plan.reference[0]].shape)[0]
+
+    def paired_residuals(self, parameter_values: np.ndarray, signs: np.ndarray) -> np.ndarray:
+        """Relative closure residuals of point n on branch ``signs[n]``: shape (N, c) for
+        ``parameter_values`` of shape (N, p) and ``signs`` of shape (N, m) (candidates of
+        different branches refined together)."""
+        matrices, s_ref, *_ = self._evaluate(parameter_values, signs, paired=True)
+        return self._closure_residuals(matrices, s_ref)[0]
+
+    def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool = False,
+                  paired: bool = False):
         values = np.asarray(parameter_values, dtype=float)
         if values.ndim == 1:
             values = values[:, None]
         signs = np.asarray(signs, dtype=float)
-        shape = (signs.shape[0], values.shape[0])
+        shape = (1, values.shape[0]) if paired else (signs.shape[0], values.shape[0])
         parameter = [np.broadcast_to(values[None, :, n], shape) for n in range(values.shape[1])]
         a, b = self.plan.reference
         s_ref = self._distance(a, b, parameter, None, {})
@@ -98,7 +111,7 @@ class CompiledSystem:
             s_ik = self._distance(i, k, parameter, s_ref, matrices)
             s_jk = self._distance(j, k, parameter, s_ref, matrices)
             if step.free_sign:
-                sign = signs[:, free][:, None]
+                sign = signs[:, free][None, :] if paired else signs[:, free][:, None]
                 free += 1
             else:
                 sign = self.fixed_signs[step.triangle]
@@ -129,12 +142,16 @@ class CompiledSystem:
         if signs is None:
             signs = sign_branches(len(self.free_triangles))
         matrices, s_ref = self.matrices(parameter_values, signs)
+        return self._closure_residuals(matrices, s_ref)
+
+    def _closure_residuals(self, matrices: dict[str, np.ndarray], s_ref: np.ndarray) -> np.ndarray:
+        shape = np.shape(next(iter(matrices.values())))
         columns = []
         for u, v in self.plan.closure_pairs:
             target = self.known[frozenset((u, v))]
             columns.append((np.abs(matrices[v] - matrices[u]) ** 2 * s_ref - target) / target)
         if not columns:
-            return np.zeros((np.shape(signs)[0], np.shape(parameter_values)[0], 0))
+            return np.zeros((*shape, 0))
         return np.stack(columns, axis=-1)
 
 

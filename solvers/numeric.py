@@ -35,7 +35,9 @@ from baranov.planner import Plan, best_plan
 from baranov.topology import thesis_subscript
 
 from .modes import AssemblyMode, Solution
+from .polish import polish_configurations
 from .scene import Scene
+from .two_parameter import two_parameter_roots
 
 RESIDUAL_TOLERANCE = 1e-8
 
@@ -62,8 +64,12 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000) -
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
         candidates = _one_parameter_roots(compiled, branches, _distance_bound(scene) ** 2, samples)
+    elif degree == 2:
+        upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
+        candidates, (stalled, stalled_branches) = two_parameter_roots(compiled, branches, upper)
+        candidates += _polished(scene, compiled, stalled, branches[stalled_branches])
     else:
-        raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degree 0 and 1 so far")
+        raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
     modes: list[AssemblyMode] = []
     for values, branch in candidates:
         mode = _configuration(scene, compiled, values, branch)
@@ -72,6 +78,35 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000) -
     modes.sort(key=lambda m: (tuple(m.parameters.values()), m.signs))
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
                     plan.free_sign_triangles, tuple(modes))
+
+
+def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs: np.ndarray):
+    """Candidates ``(parameters, branch)`` from approximate roots, polished on the link
+    constraints (:func:`polish_configurations`), read back from the configurations."""
+    if len(values) == 0:
+        return []
+    matrices, _ = compiled.paired_matrices(values, signs)
+    ground = scene.link_of(scene.ground)
+    g1, g2 = ground.joints[0], ground.joints[1]
+    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
+    with np.errstate(invalid="ignore", divide="ignore"):
+        reference = (world[g2] - world[g1]) / (matrices[g2] - matrices[g1])
+        origin = world[g1] - matrices[g1] * reference
+        joints = sorted(matrices)
+        complex_points = np.stack([origin + matrices[j] * reference for j in joints], axis=1)
+    usable = np.isfinite(complex_points).all(axis=1)
+    points = np.stack([complex_points.real, complex_points.imag], axis=-1)[usable]
+    points, residual = polish_configurations(scene, joints, points)
+    points = points[residual < RESIDUAL_TOLERANCE]
+    at = {j: points[:, n, 0] + 1j * points[:, n, 1] for n, j in enumerate(joints)}
+    parameters = np.stack([np.abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters], axis=1)
+    branch = np.stack([np.where(((at[j] - at[i]).conjugate() * (at[k] - at[i])).imag > 0, 1, -1)
+                       for i, j, k in compiled.free_triangles], axis=1)
+    unique = {}
+    for values_row, branch_row in zip(parameters, branch, strict=True):
+        if np.isfinite(values_row).all():
+            unique.setdefault((tuple(branch_row), *np.round(np.log(values_row), 8)), (values_row, branch_row))
+    return list(unique.values())
 
 
 def _distance_bound(scene: Scene) -> float:

@@ -26,6 +26,8 @@ from functools import cached_property
 from itertools import combinations
 from pathlib import Path
 
+import networkx as nx
+
 from baranov.topology import KinematicChain, TopologyError, chain_from_links, require_rigid_chain
 
 Number = Fraction | float
@@ -90,6 +92,27 @@ class Scene:
             if cross > area:
                 best, area = triangle, cross
         return best
+
+    def largest_distance(self, u: str, v: str) -> float:
+        """An upper bound on the distance between joints ``u`` and ``v`` in any assembly:
+        the shortest path from ``u`` to ``v`` whose steps join two joints of one link,
+        each step as long as that link dimension (triangle inequality). O(E log V).
+
+        >>> scene = scene_from_dict({"ground": "g", "links": [
+        ...     {"name": "g", "joints": {"P1": [0, 0], "P2": [3, 0]}},
+        ...     {"name": "b13", "joints": ["P1", "P3"], "squared_length": 16},
+        ...     {"name": "b23", "joints": ["P2", "P3"], "squared_length": 4}]})
+        >>> scene.largest_distance("P1", "P3"), scene.largest_distance("P2", "P3")
+        (4.0, 2.0)
+        """
+        return float(nx.shortest_path_length(self._distance_graph, u, v, weight="length"))
+
+    @cached_property
+    def _distance_graph(self) -> nx.Graph:
+        graph = nx.Graph()
+        for pair, value in self.known.items():
+            graph.add_edge(*pair, length=math.sqrt(float(value)))
+        return graph
 
     def orientation(self, triangle: tuple[str, str, str]) -> int:
         """Sign of the oriented area of three joints of one rigid link, in its own shape."""

@@ -3,7 +3,7 @@
 import json
 import math
 from fractions import Fraction
-from itertools import combinations
+from itertools import combinations, product
 from pathlib import Path
 
 import numpy as np
@@ -63,31 +63,60 @@ SEVEN_LINK_EXAMPLES = {
 }
 
 
-@pytest.mark.parametrize("name", sorted(SEVEN_LINK_EXAMPLES))
-def test_seven_link_examples_reproduce_the_published_roots(name):
-    (u, v), published = SEVEN_LINK_EXAMPLES[name]
+WATT_BARANOV = {  # thesis §3.6.2.1 and §3.6.2.2, roots s1,3
+    "11-watt-baranov": (("P1", "P3"), [30.6486, 39.0249, 47.1860, 48.6406, 69.9863, 77.3161, 90.1506, 130.0, 132.2178,
+                        134.2206, 134.9836, 140.6611, 142.9286, 143.7773, 148.1286, 151.6614]),
+    "13-watt-baranov": (("P1", "P3"), [14.1226, 14.1508, 14.1846, 14.2289, 14.4123, 14.4852, 14.7185, 15.0578, 15.1158,
+                        15.6861, 15.8268, 15.8328, 16.0193, 17.0205, 17.8216, 18.2916, 19.0286, 19.1581,
+                        20.2651, 22.1260, 22.5020, 24.4759, 25.1965, 28.7237, 31.0109, 31.5115, 34.0693,
+                        37.7304, 38.0758, 44.4875, 48.4166, 51.7518, 55.1186, 55.5625, 59.3880, 59.6226,
+                        66.0245, 68.2321, 70.9035, 71.8207, 73.0411, 73.2584, 76.8581, 85.1396, 89.9046,
+                        92.3656, 93.7643, 93.9066, 100.1256, 101.6541, 110.7250, 119.8610, 121.8404,
+                        122.2387, 129.0033, 130.0000, 130.1666, 134.9545, 135.4180, 137.5075, 137.9792,
+                        139.1001, 141.3430, 141.3607, 142.7141, 144.1643, 144.3299, 144.3842, 144.7027,
+                        145.9600, 146.3519, 148.9932, 149.3873, 149.8649, 149.8708, 149.8813]),
+}
+
+
+PUBLISHED_EXAMPLES = {**SEVEN_LINK_EXAMPLES, **WATT_BARANOV}
+
+
+@pytest.mark.parametrize("name", sorted(PUBLISHED_EXAMPLES))
+def test_examples_reproduce_the_published_roots(name):
+    """Every published real root, to the 4 decimals printed (the 13-link list has roots
+    0.006 apart)."""
+    (u, v), published = PUBLISHED_EXAMPLES[name]
     solution = solve(load_scene(EXAMPLES / f"{name}.json"))
+    assert solution.coupling_degree == 1
     assert sorted(round(squared(m, u, v), 4) for m in solution.assembly_modes) == published
-    assert all(m.max_residual < 1e-10 for m in solution.assembly_modes)
+    assert all(m.max_residual < 1e-9 for m in solution.assembly_modes)
 
 
-@pytest.mark.parametrize("name", sorted(SEVEN_LINK_EXAMPLES))
-def test_seven_link_examples_other_orientations_do_not(name):
+@pytest.mark.parametrize("name", [*sorted(SEVEN_LINK_EXAMPLES),
+                                  pytest.param("11-watt-baranov", marks=pytest.mark.slow)])
+def test_examples_other_orientations_do_not(name):
     """The figures are missing: of all mirror-image choices of the non-ground rigid links,
     exactly the one in the example file reproduces the published roots."""
-    import itertools
-
-    (u, v), published = SEVEN_LINK_EXAMPLES[name]
+    (u, v), published = PUBLISHED_EXAMPLES[name]
     data = json.loads((EXAMPLES / f"{name}.json").read_text())
     rigid = [link for link in data["links"] if "orientation" in link]
     matches = []
-    for combination in itertools.product(("ccw", "cw"), repeat=len(rigid)):
+    for combination in product(("ccw", "cw"), repeat=len(rigid)):
         for link, orientation in zip(rigid, combination):
             link["orientation"] = orientation
         modes = solve(scene_from_dict(data)).assembly_modes
         if sorted(round(squared(m, u, v), 4) for m in modes) == published:
             matches.append(combination)
     assert matches == [("cw",) * len(rigid)]
+
+
+def test_nine_link_b28_example_has_fourteen_real_modes():
+    """Thesis §3.4.1.4: 14 real roots, coupling degree 2 (one of the 8 choices of mirror
+    images that give 14; the figure that would single one out is missing)."""
+    solution = solve(load_scene(EXAMPLES / "9-B28.json"))
+    assert solution.coupling_degree == 2
+    assert len(solution.assembly_modes) == 14
+    assert max(m.max_residual for m in solution.assembly_modes) < 1e-9
 
 
 def scene_of(truss, coordinates, ground=0):
@@ -121,6 +150,15 @@ ELEVEN_SOLVABLE = [t for t in baranov_trusses(11) if coupling_degree(t) == 1]
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.sampled_from(ELEVEN_SOLVABLE), st.integers(0, 2**32 - 1))
 def test_the_generating_configuration_is_found_for_eleven_links(truss, seed):
+    test_the_generating_configuration_is_found.hypothesis.inner_test(truss, seed)
+
+
+COUPLING_TWO = [t for t in baranov_trusses(9) if coupling_degree(t) == 2]
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(COUPLING_TWO), st.integers(0, 2**32 - 1))
+def test_the_generating_configuration_is_found_for_coupling_two(truss, seed):
     test_the_generating_configuration_is_found.hypothesis.inner_test(truss, seed)
 
 
@@ -209,9 +247,11 @@ def test_saved_misses_are_found(path):
     scene = load_scene(path)
     generating = {}
     for link in json.loads(path.read_text())["links"]:
-        generating.update({n: tuple(map(float, p)) for n, p in link["joints"].items()})
+        if isinstance(link["joints"], dict):
+            generating.update({n: tuple(map(float, p)) for n, p in link["joints"].items()})
     modes = solve(scene).assembly_modes
-    assert any(all(math.dist(m.joints[n], p) < 1e-6 * 60 for n, p in generating.items()) for m in modes)
+    if len(generating) == len(scene.chain.joints):  # the scene was built from a configuration
+        assert any(all(math.dist(m.joints[n], p) < 1e-6 * 60 for n, p in generating.items()) for m in modes)
     verified = json.loads(path.read_text()).get("verified_modes")
     if verified:  # no mode ever verified on this instance may be lost again
         found = [m.parameters[verified["parameter"]] for m in modes]

@@ -1,0 +1,80 @@
+"""Polishing approximate configurations on the link constraints themselves.
+
+Next to the boundary of the feasible domain a closure condition behaves like a square
+root of the distance to it (a triangle of the plan turns flat), so Newton's method on the
+plan's parameters stalls on roots that lie very close to that boundary — an assembly mode
+with a nearly flat free-sign triangle (found on the 9/B28 example of thesis §3.4.1.4,
+sin = 5e-4). The link constraints |p_u - p_v|² = s_{u,v} in Cartesian coordinates are
+polynomial and have no such singularity, so Gauss–Newton on them converges there; the
+polished configuration gives back the parameters and the branch.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .scene import Scene
+
+#: Gauss–Newton iterations.
+POLISH_STEPS = 30
+
+
+def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Newton on the relative link residuals (|p_u - p_v|² - s_{u,v}) / s_{u,v},
+    ground joints held at their world coordinates, for K configurations at once.
+
+    Args:
+        scene: the linkage.
+        joints: joint names, in the order of the second axis of ``points``.
+        points: shape (K, J, 2), approximate configurations.
+
+    Returns:
+        The polished configurations, shape (K, J, 2), and the largest relative link
+        residual of each. Cost O(K · E · (2J)²) per step for E link dimensions; a
+        configuration leaves the iteration once its residual stops decreasing.
+    """
+    index = {name: n for n, name in enumerate(joints)}
+    fixed = np.zeros(len(joints), bool)
+    points = np.array(points, dtype=float)
+    for name, (x, y) in scene.world.items():
+        fixed[index[name]] = True
+        points[:, index[name]] = (float(x), float(y))
+    pairs = [(index[u], index[v], float(target)) for pair, target in scene.known.items()
+             for u, v in [tuple(pair)] if not (fixed[index[u]] and fixed[index[v]])]
+    first = np.array([u for u, _, _ in pairs])
+    second = np.array([v for _, v, _ in pairs])
+    target = np.array([t for _, _, t in pairs])
+    free = np.flatnonzero(~fixed)
+    column = -np.ones(len(joints), int)
+    column[free] = np.arange(len(free))
+    rows = np.arange(len(pairs))
+
+    def residuals(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        difference = p[:, first] - p[:, second]  # (K, E, 2)
+        return difference, (np.sum(difference**2, axis=-1) - target) / target
+
+    difference, residual = residuals(points)
+    size = np.abs(residual).max(axis=1)
+    active = np.flatnonzero(np.isfinite(size))
+    for _ in range(POLISH_STEPS):
+        if active.size == 0:
+            break
+        jacobian = np.zeros((active.size, len(pairs), len(free), 2))
+        for end, sign in ((first, 2.0), (second, -2.0)):
+            movable = column[end] >= 0
+            jacobian[:, rows[movable], column[end][movable], :] = (sign * difference[active][:, movable]
+                                                                  / target[movable, None])
+        jacobian = jacobian.reshape(active.size, len(pairs), 2 * len(free))
+        normal = np.einsum("kei,kej->kij", jacobian, jacobian) + 1e-14 * np.eye(2 * len(free))
+        gradient = np.einsum("kei,ke->ki", jacobian, residual[active])
+        step = np.linalg.solve(normal, -gradient[:, :, None])[:, :, 0]
+        trial = points[active].copy()
+        trial[:, free] += step.reshape(active.size, len(free), 2)
+        trial_difference, trial_residual = residuals(trial)
+        trial_size = np.abs(trial_residual).max(axis=1)
+        better = np.isfinite(trial_size) & (trial_size < size[active])
+        moved = active[better]
+        points[moved], difference[moved], residual[moved], size[moved] = (
+            trial[better], trial_difference[better], trial_residual[better], trial_size[better])
+        active = moved[size[moved] > 1e-15]
+    return points, size

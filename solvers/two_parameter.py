@@ -1,0 +1,251 @@
+"""Roots of two closure conditions in two parameters (coupling degree 2).
+
+A plan with two parameters u = s_{a,b}, v = s_{c,d} (e.g. 9/B25–B28, thesis §3.4.1)
+closes with two scalar radical equations f_1(u, v) = f_2(u, v) = 0 on every free-sign
+branch. The thesis clears their radicals and eliminates one parameter by a resultant
+(§3.4.1.3); numerically, this module branches and prunes over the parameter box, in the
+plane of the distances (√u, √v):
+
+1. sample both conditions on a grid, all branches at once (numpy);
+2. find, by bisection, where each grid edge leaves the feasible domain (a triangle of the
+   plan turns flat): the conditions behave like square roots there, so their values at
+   the boundary join each cell's corner values (a root next to the boundary is otherwise
+   invisible from the corners);
+3. a cell where both zero sets may pass — each f_k changes sign on the cell's values, or
+   its smallest value is within the spread of f_k over the neighbouring cells (a
+   Lipschitz estimate) — is split into SPLIT × SPLIT sub-cells, level by level, all cells
+   of a level in one vectorised evaluation;
+4. damped Newton (finite-difference Jacobian, steps that leave the domain are halved)
+   from every cell where both conditions change sign, and from every cell still suspect
+   at the last level (tangential intersections): from its centre and from its best sample.
+
+The caller verifies every candidate as a configuration, so a spurious candidate costs
+time, never a wrong mode. Sampling cannot prove completeness; the exact backend can.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import maximum_filter, minimum_filter
+
+from baranov.closure import CompiledSystem
+
+#: Samples per axis of the first grid (uniform in the distances √u, √v).
+GRID = 160
+#: Each suspect cell is split into SPLIT × SPLIT sub-cells, DEPTH levels deep.
+SPLIT = 4
+DEPTH = 4
+#: Suspect cells on the domain boundary are split this many levels, then polished.
+BOUNDARY_DEPTH = 2
+#: Bisection steps locating the domain boundary on a grid edge.
+BOUNDARY_STEPS = 30
+#: Newton iterations, and the largest residual a candidate may keep.
+NEWTON_STEPS = 50
+CANDIDATE_TOLERANCE = 1e-9
+#: Newton ends that stall above CANDIDATE_TOLERANCE but below this are returned for
+#: polishing on the link constraints (a root next to the domain boundary).
+STALLED_TOLERANCE = 0.2
+
+
+@dataclass
+class Cells:
+    """A batch of rectangular cells of the (√u, √v) plane, each on one branch."""
+
+    branch: np.ndarray  # (C,) index into the branch table
+    low: np.ndarray  # (C, 2) lower corner
+    high: np.ndarray  # (C, 2) upper corner
+
+    def __len__(self) -> int:
+        return len(self.branch)
+
+    @staticmethod
+    def concatenate(batches: list[Cells]) -> Cells:
+        return Cells(*(np.concatenate([getattr(b, name) for b in batches]) for name in ("branch", "low", "high")))
+
+
+def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: tuple[float, float]):
+    """Candidate roots ``(array([u, v]), branch)`` of the two closure conditions of
+    ``compiled`` on every branch, for (u, v) in (0, upper[0]] × (0, upper[1]]; and the
+    points to polish on the link constraints (:mod:`baranov.solvers.polish`) as
+    ``(points (K, 2), branch indices (K,))``: where Newton stalled close to a root, and
+    the best sample of every suspect cell on the domain boundary after BOUNDARY_DEPTH
+    levels (a condition behaves like a square root there, so splitting further only
+    multiplies the cells along the boundary).
+
+    Cost: GRID² · B evaluations of the plan for B branches, BOUNDARY_STEPS evaluations per
+    grid edge crossing the domain boundary, and SPLIT² per suspect cell and level.
+    """
+    low = np.array([math.sqrt(bound) * 1e-6 for bound in upper])
+    high = np.array([math.sqrt(bound) for bound in upper])
+    whole = Cells(np.arange(len(branches)), np.tile(low, (len(branches), 1)), np.tile(high, (len(branches), 1)))
+    interior, boundary, starts = _examine(compiled, branches, whole, GRID - 1, last=False)
+    all_starts, to_polish = [starts], []
+    for depth in range(DEPTH):
+        if depth >= BOUNDARY_DEPTH:
+            to_polish.append(boundary)
+        else:
+            interior = Cells.concatenate([interior, boundary[2]])
+        if len(interior) == 0:
+            break
+        interior, boundary, starts = _examine(compiled, branches, interior, SPLIT, last=depth == DEPTH - 1)
+        all_starts.append(starts)
+    to_polish.append(boundary)
+    roots, stalled = _newton(compiled, branches, *(np.concatenate(parts) for parts in zip(*all_starts, strict=True)))
+    polish_points = np.concatenate([stalled[0]] + [points for points, _, _ in to_polish])
+    polish_branches = np.concatenate([stalled[1]] + [cells.branch for _, _, cells in to_polish])
+    return roots, (polish_points, polish_branches)
+
+
+def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: bool):
+    """Split every cell into split × split sub-cells and sample them. Returns the suspect
+    sub-cells inside the domain; the suspect sub-cells on its boundary as ``(best sample
+    (u, v), value there, cells)``; and the Newton starts ``(points, branch indices)``: the
+    centre and the best sample of each interior sub-cell where both conditions change
+    sign (of every interior suspect at the ``last`` level)."""
+    count, side = len(cells), split + 1
+    fractions = np.linspace(0.0, 1.0, side)
+    axis = [cells.low[:, a, None] + (cells.high - cells.low)[:, a, None] * fractions for a in range(2)]
+    t1 = np.broadcast_to(axis[0][:, :, None], (count, side, side))
+    t2 = np.broadcast_to(axis[1][:, None, :], (count, side, side))
+    grid = np.stack([t1, t2], axis=-1)  # (C, side, side, 2) in the √ plane
+    signs = branches[cells.branch]
+    values = _paired(compiled, grid.reshape(-1, 2), np.repeat(signs, side * side, axis=0)).reshape(count, side, side, 2)
+    along_first = _boundary(compiled, signs, grid[:, :-1, :, :], grid[:, 1:, :, :], values[:, :-1], values[:, 1:])
+    along_second = _boundary(compiled, signs, grid[:, :, :-1, :], grid[:, :, 1:, :], values[:, :, :-1], values[:, :, 1:])
+    # the values seen by cell (i, j): four corners and the boundary points on its four edges
+    points = np.stack([grid[:, :-1, :-1], grid[:, 1:, :-1], grid[:, :-1, 1:], grid[:, 1:, 1:],
+                       along_first[0][:, :, :-1], along_first[0][:, :, 1:],
+                       along_second[0][:, :-1, :], along_second[0][:, 1:, :]], axis=3)
+    seen = np.stack([values[:, :-1, :-1], values[:, 1:, :-1], values[:, :-1, 1:], values[:, 1:, 1:],
+                     along_first[1][:, :, :-1], along_first[1][:, :, 1:],
+                     along_second[1][:, :-1, :], along_second[1][:, 1:, :]], axis=3)
+    changes, suspect = _classify(seen)
+    inside = np.isfinite(seen[:, :, :, :4]).all(axis=(3, 4))
+    size = np.where(np.isfinite(seen).all(axis=-1), np.abs(seen).max(axis=-1), np.inf)
+    best = np.take_along_axis(points, np.argmin(size, axis=3)[:, :, :, None, None], axis=3)[:, :, :, 0]
+
+    def cells_of(mask: np.ndarray) -> tuple[Cells, np.ndarray]:
+        c, i, j = np.nonzero(mask)
+        return Cells(cells.branch[c], grid[c, i, j], grid[c, i + 1, j + 1]), best[c, i, j]
+
+    interior, _ = cells_of(suspect & inside)
+    edge_cells, edge_best = cells_of(suspect & ~inside)
+    started, started_best = cells_of((suspect if last else changes) & inside)
+    centre = (started.low + started.high) / 2
+    starts = (np.concatenate([centre, started_best]) ** 2, np.concatenate([started.branch] * 2))
+    return interior, (edge_best**2, None, edge_cells), starts
+
+
+def _paired(compiled: CompiledSystem, roots_of_parameters: np.ndarray, signs: np.ndarray) -> np.ndarray:
+    """Residuals at points of the √ plane (each on its own branch)."""
+    return compiled.paired_residuals(roots_of_parameters**2, signs)
+
+
+def _boundary(compiled, signs, first, second, first_values, second_values):
+    """Where each grid edge (first → second) leaves the feasible domain: the defined end
+    of a bisection (BOUNDARY_STEPS steps), with its values; NaN for edges whose two ends
+    are both defined or both undefined."""
+    defined_first = np.isfinite(first_values).all(axis=-1)
+    defined_second = np.isfinite(second_values).all(axis=-1)
+    crossing = defined_first != defined_second
+    points = np.full(first.shape, np.nan)
+    values = np.full(first_values.shape, np.nan)
+    index = np.nonzero(crossing)
+    if len(index[0]) == 0:
+        return points, values
+    inside = np.where(defined_first[index][:, None], first[index], second[index])
+    outside = np.where(defined_first[index][:, None], second[index], first[index])
+    edge_signs = signs[index[0]]
+    for _ in range(BOUNDARY_STEPS):
+        middle = (inside + outside) / 2
+        ok = np.isfinite(_paired(compiled, middle, edge_signs)).all(axis=-1)
+        inside = np.where(ok[:, None], middle, inside)
+        outside = np.where(ok[:, None], outside, middle)
+    points[index] = inside
+    values[index] = _paired(compiled, inside, edge_signs)
+    return points, values
+
+
+def _classify(seen: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For the values seen by each cell, shape (C, n, n, k, 2) with NaN where undefined:
+    cells where both conditions change sign, and cells where both zero sets may pass
+    (a sign change, or the smallest |f_k| within the spread of f_k over the 3 × 3
+    neighbouring cells)."""
+    defined = np.isfinite(seen)
+    low = np.where(defined, seen, np.inf).min(axis=3)
+    high = np.where(defined, seen, -np.inf).max(axis=3)
+    smallest = np.where(defined, np.abs(seen), np.inf).min(axis=3)
+    changes = (low <= 0) & (high >= 0)
+    size = (1, 3, 3, 1)
+    spread = maximum_filter(high, size=size, mode="nearest") - minimum_filter(low, size=size, mode="nearest")
+    spread = np.where(np.isfinite(spread), spread, 0.0)
+    near = changes | (smallest <= spread)
+    return changes.all(axis=-1), near.all(axis=-1)
+
+
+def _newton(compiled: CompiledSystem, branches: np.ndarray, start: np.ndarray, branch: np.ndarray):
+    """Damped Newton in (u, v) from every start, all at once; the distinct converged points,
+    and the stalled ones."""
+    if len(branch) == 0:
+        return [], (np.zeros((0, 2)), np.zeros(0, int))
+    signs = branches[branch]
+    x = start.copy()
+    f = compiled.paired_residuals(x, signs)
+    for _ in range(NEWTON_STEPS):
+        norm = np.max(np.abs(f), axis=1)
+        active = np.isfinite(norm) & (norm > 1e-14)
+        if not active.any():
+            break
+        xa, fa, sa = x[active], f[active], signs[active]
+        delta, usable = _newton_step(compiled, xa, fa, sa)
+        scale = np.ones(len(xa))
+        pending = usable.copy()
+        old = np.max(np.abs(fa), axis=1)
+        for _ in range(12):
+            if not pending.any():
+                break
+            index = np.flatnonzero(pending)
+            trial = xa[index] + scale[index, None] * delta[index]
+            trial_values = compiled.paired_residuals(trial, sa[index])
+            new = np.max(np.abs(trial_values), axis=1)
+            better = np.isfinite(new) & (new < old[index]) & (trial > 0).all(axis=1)
+            xa[index[better]], fa[index[better]] = trial[better], trial_values[better]
+            pending[index[better]] = False
+            scale[pending] /= 2
+        x[active], f[active] = xa, fa
+    norm = np.max(np.abs(f), axis=1)
+    seen: set[tuple] = set()
+    roots = []
+    for n in np.flatnonzero(np.isfinite(norm) & (norm < CANDIDATE_TOLERANCE)):
+        key = (int(branch[n]), *np.round(np.log(x[n]), 8))
+        if key not in seen:
+            seen.add(key)
+            roots.append((x[n].copy(), branches[branch[n]]))
+    stalled = np.flatnonzero(np.isfinite(norm) & (norm >= CANDIDATE_TOLERANCE) & (norm < STALLED_TOLERANCE))
+    return roots, (x[stalled], branch[stalled])
+
+
+def _newton_step(compiled: CompiledSystem, x: np.ndarray, f: np.ndarray, signs: np.ndarray):
+    """Newton steps -J⁻¹f with a finite-difference Jacobian (one-sided next to the domain
+    boundary), and which points have a usable Jacobian."""
+    step = 1e-7 * np.maximum(np.abs(x), 1.0)
+    jacobian = np.empty((len(x), 2, 2))
+    for axis in range(2):
+        shifted = x.copy()
+        shifted[:, axis] += step[:, axis]
+        forward = compiled.paired_residuals(shifted, signs)
+        shifted[:, axis] -= 2 * step[:, axis]
+        backward = compiled.paired_residuals(shifted, signs)
+        h = step[:, axis, None]
+        central = (forward - backward) / (2 * h)
+        one_sided = np.where(np.isfinite(forward), (forward - f) / h, (f - backward) / h)
+        jacobian[:, :, axis] = np.where(np.isfinite(central), central, one_sided)
+    usable = np.isfinite(jacobian).all(axis=(1, 2))
+    usable[usable] = np.abs(np.linalg.det(jacobian[usable])) > 0
+    delta = np.zeros_like(x)
+    if usable.any():
+        delta[usable] = np.linalg.solve(jacobian[usable], -f[usable][:, :, None])[:, :, 0]
+    return delta, usable
