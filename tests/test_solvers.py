@@ -55,11 +55,12 @@ def test_only_the_thesis_orientation_reproduces_the_pentad():
     assert roots("cw", "ccw") == PENTAD_ROOTS  # the mirror image of the whole linkage
 
 
-#: Published real roots (thesis §3.3.x.3) and the distance they are given in.
+#: Published real roots (thesis §3.3.x.3 and §4.2.1) and the distance they are given in.
 SEVEN_LINK_EXAMPLES = {
     "7-B1": (("P2", "P3"), [39.8353, 41.6616, 42.6537, 78.9181, 81.8425, 106.0, 121.9444, 122.6125]),
     "7-B2": (("P4", "P8"), [1.1161, 1.2002, 7.3517, 10.418, 17.0, 27.5995, 52.9281, 53.7863, 56.0905, 61.5796]),
     "7-B3": (("P1", "P4"), [5.2357, 6.732, 9.8004, 16.9536, 39.1049, 45.3566, 48.4498, 61.0]),
+    "7-B3-section-4.2.1": (("P1", "P6"), [88.57, 90.8322]),
 }
 
 
@@ -107,7 +108,9 @@ def test_examples_other_orientations_do_not(name):
         modes = solve(scene_from_dict(data)).assembly_modes
         if sorted(round(squared(m, u, v), 4) for m in modes) == published:
             matches.append(combination)
-    assert matches == [("cw",) * len(rigid)]
+    orientations = tuple(link["orientation"] for link in json.loads((EXAMPLES / f"{name}.json").read_text())["links"]
+                         if "orientation" in link)
+    assert matches == [orientations]
 
 
 def test_nine_link_b28_example_has_fourteen_real_modes():
