@@ -29,6 +29,7 @@ test-slow: $(STAMP)  ## long checks: 13-link enumeration by both methods
 bench: $(STAMP)  ## timing and memory medians
 	$(BIN)/python bench/bench_enumeration.py
 	$(BIN)/python bench/bench_planner.py
+	$(BIN)/python bench/bench_numeric.py
 
 clean:
 	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis

@@ -38,10 +38,13 @@ def _hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
     return lower[:-1] + upper[:-1]
 
 
-def render_modes(scene: Scene, solution: Solution, columns: int = 4) -> bytes:
-    """A PNG image (bytes) with one drawing per assembly mode."""
+def render_modes(scene: Scene, solution: Solution, columns: int | None = None) -> bytes:
+    """A PNG image (bytes) with one drawing per assembly mode, ``columns`` per row (by
+    default 4, or about √n for n > 16 modes so that the grid stays roughly square)."""
     modes = solution.assembly_modes
     count = max(len(modes), 1)
+    if columns is None:
+        columns = max(4, math.ceil(math.sqrt(count)))
     columns = min(columns, count)
     rows = math.ceil(count / columns)
     figure, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.6 * rows), squeeze=False)
@@ -76,7 +79,7 @@ def render_modes(scene: Scene, solution: Solution, columns: int = 4) -> bytes:
         values = ", ".join(f"{name} = {value:.4f}" for name, value in mode.parameters.items())
         axis.set_title(f"mode {index + 1}" + (f": {values}" if values else ""), fontsize=9)
     figure.suptitle(f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} (ground hatched)", fontsize=11)
-    figure.tight_layout()
+    figure.tight_layout(rect=(0, 0, 1, 1 - 0.6 / (3.6 * rows)))
     buffer = io.BytesIO()
     try:
         figure.savefig(buffer, format="png", dpi=110)
