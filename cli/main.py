@@ -77,7 +77,7 @@ def _parser() -> argparse.ArgumentParser:
     show.add_argument("--catalog", default="catalog", type=Path, help="catalog folder for ids (default catalog/)")
     solve = commands.add_parser("solve", help="every assembly mode of a linkage given as a scene file")
     solve.add_argument("scene", type=Path, help="scene JSON file (see examples/)")
-    solve.add_argument("--method", default="numeric", choices=["numeric"], help="solving backend")
+    solve.add_argument("--method", default="numeric", choices=["numeric", "exact"], help="solving backend")
     solve.add_argument("--json", action="store_true", help="print the result as JSON")
     solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
     return parser
@@ -98,6 +98,10 @@ def run_solve(args: argparse.Namespace) -> int:
     modes = solution.assembly_modes
     print(f"{args.scene}: coupling degree {solution.coupling_degree}, "
           f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} ({solution.method})")
+    if solution.characteristic_polynomial is not None:
+        polynomial = solution.characteristic_polynomial
+        print(f"characteristic polynomial in {polynomial.variable}: degree {polynomial.degree}, "
+              f"{len(polynomial.real_roots())} real roots (certified)")
     if not modes:
         print("the linkage cannot be assembled with these dimensions")
         return 0
@@ -156,6 +160,9 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("baranov: interrupted; complete catalog files are kept, rerun to resume", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # output piped into e.g. `head`: stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     return 0
 
 

@@ -1,16 +1,22 @@
 """Solving backends: every assembly mode of a concrete linkage (a scene)."""
 
+from .characteristic import CharacteristicPolynomial, ExactMethodError, characteristic_polynomial
+from .exact import solve_exact
 from .modes import AssemblyMode, Solution
 from .numeric import SolverError, solve_numeric
 from .scene import Scene, SceneError, load_scene, scene_from_dict
 
 
 def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
-    """All assembly modes of ``scene``; ``method`` is ``"numeric"`` (exact: a later release)."""
+    """All assembly modes of ``scene``; ``method`` is ``"numeric"`` or ``"exact"``."""
     if method == "numeric":
         return solve_numeric(scene, **options)
-    raise SolverError(f"method {method!r}: available methods are 'numeric'")
+    if method == "exact":
+        return solve_exact(scene, **options)
+    raise SolverError(f"method {method!r}: available methods are 'numeric' and 'exact'")
 
 
-__all__ = ["AssemblyMode", "Scene", "SceneError", "Solution", "SolverError", "load_scene", "scene_from_dict",
-           "solve", "solve_numeric"]
+__all__ = [
+    "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "Scene", "SceneError", "Solution", "SolverError",
+    "characteristic_polynomial", "load_scene", "scene_from_dict", "solve", "solve_exact", "solve_numeric",
+]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -32,10 +33,11 @@ class Solution:
     parameters: tuple[str, ...]
     free_sign_triangles: tuple[tuple[str, str, str], ...]
     assembly_modes: tuple[AssemblyMode, ...]
+    characteristic_polynomial: Any = None  # a CharacteristicPolynomial (exact method)
 
     def to_dict(self) -> dict:
         """The JSON form printed by ``baranov solve --json``."""
-        return {
+        result = {
             "method": self.method,
             "coupling_degree": self.coupling_degree,
             "parameters": list(self.parameters),
@@ -45,3 +47,6 @@ class Solution:
                 for m in self.assembly_modes
             ],
         }
+        if self.characteristic_polynomial is not None:
+            result["characteristic_polynomial"] = self.characteristic_polynomial.to_dict()
+        return result

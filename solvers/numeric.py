@@ -30,54 +30,37 @@ import math
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from baranov.closure import CompiledSystem, closure_system, sign_branches
+from baranov.closure import CompiledSystem, sign_branches
 from baranov.planner import Plan, best_plan
-from baranov.topology import thesis_subscript
 
-from .modes import AssemblyMode, Solution
+from .configuration import RESIDUAL_TOLERANCE, assembly_modes, compile_scene, distance_bound, parameter_name
+from .modes import Solution
 from .polish import polish_configurations
 from .scene import Scene
 from .two_parameter import two_parameter_roots
-
-RESIDUAL_TOLERANCE = 1e-8
-
 
 class SolverError(ValueError):
     """The scene is valid but this method cannot solve it (the message says why)."""
 
 
-def parameter_name(pair: tuple[str, str]) -> str:
-    return "s" + ",".join(thesis_subscript(n) for n in pair)
-
-
 def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000) -> Solution:
     """All assembly modes of ``scene`` (coupling degree 0 or 1) by the numeric method."""
     plan = plan or best_plan(scene.chain)
-    compiled = CompiledSystem(
-        closure_system(plan),
-        {pair: float(value) for pair, value in scene.known.items()},
-        {s.triangle: scene.orientation(s.triangle) for s in plan.steps if not s.free_sign},
-    )
+    compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
     if degree == 0:
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
-        candidates = _one_parameter_roots(compiled, branches, _distance_bound(scene) ** 2, samples)
+        candidates = _one_parameter_roots(compiled, branches, distance_bound(scene) ** 2, samples)
     elif degree == 2:
         upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
         candidates, (stalled, stalled_branches) = two_parameter_roots(compiled, branches, upper)
         candidates += _polished(scene, compiled, stalled, branches[stalled_branches])
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
-    modes: list[AssemblyMode] = []
-    for values, branch in candidates:
-        mode = _configuration(scene, compiled, values, branch)
-        if mode.max_residual < RESIDUAL_TOLERANCE and not any(_same_mode(mode, other, scene) for other in modes):
-            modes.append(mode)
-    modes.sort(key=lambda m: (tuple(m.parameters.values()), m.signs))
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, tuple(modes))
+                    plan.free_sign_triangles, assembly_modes(scene, compiled, candidates))
 
 
 def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs: np.ndarray):
@@ -107,10 +90,6 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
         if np.isfinite(values_row).all():
             unique.setdefault((tuple(branch_row), *np.round(np.log(values_row), 8)), (values_row, branch_row))
     return list(unique.values())
-
-
-def _distance_bound(scene: Scene) -> float:
-    return sum(math.sqrt(max(float(v) for v in link.squared_distances.values())) for link in scene.links)
 
 
 #: A local minimum of |f| between samples is re-sampled this finely: two close simple
@@ -278,46 +257,3 @@ def _domain_edge(sampled, lo: float, hi: float, inside_low: bool):
         inside, outside = points[undefined[0] - 1], points[undefined[0]]
     edge = inside if np.isfinite(sampled(np.array([inside]))[0]) else None
     return edge, np.concatenate(kept_points), np.concatenate(kept_values)
-
-
-def _configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, branch: np.ndarray) -> AssemblyMode:
-    matrices, s_ref = compiled.matrices(values.reshape(1, -1), branch[None, :])
-    m = {joint: complex(value[0, 0]) for joint, value in matrices.items()}
-    ground = scene.link_of(scene.ground)
-    g1, g2 = ground.joints[0], ground.joints[1]
-    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
-    denominator = m[g2] - m[g1]
-    if not all(map(math.isfinite, (denominator.real, denominator.imag))) or abs(denominator) == 0:
-        return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)
-    reference = (world[g2] - world[g1]) / denominator
-    origin = world[g1] - m[g1] * reference
-    points = {j: origin + value * reference for j, value in m.items()}
-    if not all(math.isfinite(p.real) and math.isfinite(p.imag) for p in points.values()):
-        return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)  # a radicand was negative
-    residual = 0.0
-    for link in scene.links:
-        for pair, target in link.squared_distances.items():
-            u, v = tuple(pair)
-            residual = max(residual, abs(abs(points[u] - points[v]) ** 2 - float(target)) / float(target))
-        triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
-        if triangle is not None:
-            i, j, k = (points[n] for n in triangle)
-            cross = ((j - i).conjugate() * (k - i)).imag
-            if (1 if cross > 0 else -1) != scene.orientation(triangle):
-                residual = max(residual, 1.0)  # mirrored rigid link
-    for joint, target in world.items():
-        residual = max(residual, abs(points[joint] - target) / max(abs(target), 1.0))
-    names = [parameter_name(p) for p in compiled.parameters]
-    return AssemblyMode(
-        {name: float(v) for name, v in zip(names, values, strict=True)},
-        tuple(int(s) for s in branch),
-        {j: (p.real, p.imag) for j, p in sorted(points.items())},
-        residual,
-    )
-
-
-def _same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:
-    scale = max(1.0, _distance_bound(scene))
-    return all(
-        math.dist(first.joints[j], second.joints[j]) < 1e-6 * scale for j in first.joints
-    )

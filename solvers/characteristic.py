@@ -1,0 +1,333 @@
+"""Characteristic polynomials in exact rational arithmetic (python-flint).
+
+A plan locates every joint by bilaterations (thesis §2.3). With the reference at
+M_a = 0, M_b = 1 (complex numbers, thesis §2.4), step k sets
+
+    M_k = M_i + Z_{i,j,k} (M_j - M_i),
+    Z_{i,j,k} = (s_{i,j} + s_{i,k} - s_{j,k} + i σ √Δ_k) / (2 s_{i,j}),
+    Δ_k = (s_{i,j} + s_{i,k} + s_{j,k})² - 2 (s_{i,j}² + s_{i,k}² + s_{j,k}²) = 16 A²_{i,j,k}
+
+(thesis eq. 2.7), where a distance is known, a parameter, or computed as
+|M_v - M_u|² s_{a,b}. Every quantity is therefore a rational function of the parameters and
+of one radical r_k = √(numerator of Δ_k) per free-sign step: a tower of quadratic
+extensions, nested because Δ_k may involve earlier radicals. A link step's triangle has
+three known sides, so its √Δ is a constant; for scenes built from rational coordinates it is
+rational, and the exact method requires that.
+
+Each closure condition s_{u,v}(computed) = s_{u,v}(known) becomes, after clearing
+denominators, a polynomial F in the parameters and the radicals. Its *norm* — the product of
+F over all 2^m sign choices of the radicals, the outermost first — is free of radicals and
+vanishes on the solutions of every branch at once; it is what the thesis obtains by
+"isolating one radical at a time and squaring" (§3.2.1, §3.3.2.2, §3.6.2). Here each norm
+step is a resultant: Res_{r}(F, r² - Δ) = F(√Δ) F(-√Δ).
+
+The norm carries extraneous factors: clearing denominators multiplies by powers of the
+parameter and of computed distances (thesis eqs. 3.6, 3.20, 3.34, 3.92). Every irreducible
+factor is tested at one of its (complex) roots, in high precision: it is kept when some sign
+branch satisfies the original radical equation there with every denominator non-zero. (The
+test needs one root only: the solution set is defined over Q, so an irreducible factor is
+either all solutions or none.) The product of the kept factors, with multiplicity, is the
+characteristic polynomial; its degree is the number of assembly modes over C for generic
+dimensions.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+from itertools import product
+
+import flint
+
+from baranov.planner import Plan, best_plan
+from .configuration import parameter_name
+from .scene import Scene
+
+#: Precisions (bits) of the genuineness test of a factor, tried in turn.
+TEST_BITS = (256, 1024, 4096)
+
+
+class ExactMethodError(ValueError):
+    """The exact method cannot treat this scene (the message says why)."""
+
+
+@dataclass(frozen=True)
+class RadicalTower:
+    """A plan's closure conditions as polynomials over a tower of quadratic extensions.
+
+    Attributes:
+        context: the flint polynomial ring Q[t_1, …, t_c, r_1, …, r_m] (lex order).
+        parameters: the plan's parameter pairs, one per t_n.
+        radicands: Δ-numerator of r_n, a polynomial in the t's and r_1, …, r_{n-1}.
+        conditions: numerator of s_{u,v}(computed) · den(known) - known · den, one per
+            closure pair.
+    """
+
+    context: flint.fmpq_mpoly_ctx
+    parameters: tuple[tuple[str, str], ...]
+    radicands: tuple[flint.fmpq_mpoly, ...]
+    conditions: tuple[flint.fmpq_mpoly, ...]
+
+    @property
+    def variables(self) -> tuple[str, ...]:
+        return self.context.names()
+
+
+@dataclass(frozen=True)
+class CharacteristicPolynomial:
+    """The characteristic polynomial of a scene in one parameter.
+
+    Attributes:
+        variable: the parameter, e.g. ``"s1,6"``.
+        polynomial: primitive integer polynomial, positive leading coefficient.
+        factors: its irreducible factors with multiplicities.
+        extraneous: the irreducible factors of the norm that were dropped.
+    """
+
+    variable: str
+    polynomial: flint.fmpz_poly
+    factors: tuple[tuple[flint.fmpz_poly, int], ...]
+    extraneous: tuple[tuple[flint.fmpz_poly, int], ...]
+
+    @property
+    def degree(self) -> int:
+        return self.polynomial.degree()
+
+    def real_roots(self) -> list[flint.arb]:
+        """Certified enclosures of the real roots, increasing, each repeated by its
+        multiplicity (flint's complex root isolation returns real roots as real balls)."""
+        roots = []
+        for factor, multiplicity in self.factors:
+            for root, _ in factor.complex_roots():
+                if root.imag == 0:
+                    roots += [root.real] * multiplicity
+        return sorted(roots, key=lambda r: float(r.mid()))
+
+    def to_dict(self) -> dict:
+        """JSON form: integer coefficients (highest degree first, as exact strings) and
+        the real-root enclosures as midpoint and radius strings."""
+        return {
+            "variable": self.variable,
+            "degree": self.degree,
+            "coefficients": [str(int(c)) for c in self.polynomial.coeffs()][::-1],
+            "real_root_enclosures": [{"midpoint": root.mid().str(20, radius=False),
+                                      "radius": root.rad().str(3, radius=False)} for root in self.real_roots()],
+        }
+
+    def monic_coefficients(self) -> list[Fraction]:
+        """Coefficients of the monic form, highest degree first."""
+        coefficients = [int(c) for c in self.polynomial.coeffs()][::-1]
+        return [Fraction(c, coefficients[0]) for c in coefficients]
+
+
+def _rational_square_root(value: Fraction) -> Fraction | None:
+    if value < 0:
+        return None
+    numerator, rest_n = flint.fmpz(value.numerator).sqrtrem()
+    denominator, rest_d = flint.fmpz(value.denominator).sqrtrem()
+    if rest_n != 0 or rest_d != 0:
+        return None
+    return Fraction(int(numerator), int(denominator))
+
+
+def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
+    """The closure conditions of ``plan`` for the dimensions of ``scene``, exactly.
+
+    Every point is kept as (X + iY) / d with X, Y, d polynomials, common factors cancelled
+    (flint gcd) after each step. Raises :class:`ExactMethodError` if a dimension is inexact
+    or a link triangle has an irrational area.
+    """
+    if not scene.exact:
+        raise ExactMethodError("scene: the exact method needs integer or rational dimensions (a float was given)")
+    free = [step for step in plan.steps if step.free_sign]
+    names = tuple(f"t{n + 1}" for n in range(plan.number_of_parameters)) + tuple(f"r{n + 1}" for n in range(len(free)))
+    context = flint.fmpq_mpoly_ctx.get(names, "lex")
+    generators = context.gens()
+    one = context.constant(1)
+    zero = context.constant(0)
+
+    def constant(value) -> flint.fmpq_mpoly:
+        value = Fraction(value)
+        return context.constant(flint.fmpq(value.numerator, value.denominator))
+
+    parameter_of = {frozenset(pair): generators[n] for n, pair in enumerate(plan.parameters)}
+    a, b = plan.reference
+    points = {a: (zero, zero, one), b: (one, zero, one)}
+
+    def distance(u: str, v: str, computed: bool = False):
+        pair = frozenset((u, v))
+        if pair in scene.known and not computed:
+            return constant(scene.known[pair]), one
+        if pair in parameter_of:
+            return parameter_of[pair], one
+        xu, yu, du = points[u]
+        xv, yv, dv = points[v]
+        x, y = xv * du - xu * dv, yv * du - yu * dv
+        numerator, denominator = (x * x + y * y) * reference[0], (du * dv) ** 2 * reference[1]
+        common = numerator.gcd(denominator)
+        return numerator / common, denominator / common
+
+    reference = (one, one)
+    reference = distance(a, b)
+    radicands = []
+    for step in plan.steps:
+        i, j = step.base
+        k = step.joint
+        (s_ij, d_ij), (s_ik, d_ik), (s_jk, d_jk) = distance(i, j), distance(i, k), distance(j, k)
+        first, second, third = s_ij * d_ik * d_jk, s_ik * d_ij * d_jk, s_jk * d_ij * d_ik
+        radicand = (first + second + third) ** 2 - 2 * (first**2 + second**2 + third**2)
+        if step.free_sign:
+            imaginary = generators[plan.number_of_parameters + len(radicands)]
+            radicands.append(radicand)
+        else:
+            root = _rational_square_root(Fraction(str(radicand.coefficient(0)))) if radicand.is_constant() else None
+            if root is None:
+                raise ExactMethodError(
+                    f"link with joints {', '.join(step.triangle)}: 16·area² = {radicand} is not the square of a "
+                    "rational; the exact method needs rational link areas (e.g. rational joint coordinates)")
+            imaginary = constant(root * scene.orientation(step.triangle))
+        real = first + second - third
+        xi, yi, di = points[i]
+        xj, yj, dj = points[j]
+        u, v = xj * di - xi * dj, yj * di - yi * dj
+        scale = 2 * s_ij * d_ik * d_jk  # Z = (real + i imaginary) / scale
+        x = xi * scale * dj + real * u - imaginary * v
+        y = yi * scale * dj + real * v + imaginary * u
+        d = scale * di * dj
+        common = x.gcd(y).gcd(d)
+        points[k] = (x / common, y / common, d / common)
+    conditions = []
+    for u, v in plan.closure_pairs:
+        numerator, denominator = distance(u, v, computed=True)
+        target = Fraction(scene.known[frozenset((u, v))])
+        conditions.append(numerator * target.denominator - denominator * target.numerator)
+    return RadicalTower(context, plan.parameters, tuple(radicands), tuple(conditions))
+
+
+def eliminate_radicals(polynomial: flint.fmpq_mpoly, tower: RadicalTower) -> tuple[flint.fmpq_mpoly, tuple[int, ...]]:
+    """The norm of ``polynomial`` over all sign choices of the radicals, outermost first:
+    Res_{r_n}(F, r_n² - Δ_n) = F(√Δ_n) F(-√Δ_n) for n = m, …, 1 (thesis §3.2.1, "twice
+    squaring"): a polynomial in the parameters only. Powers of the parameters are divided
+    out after each step (clearing denominators makes many: 212 on the 11-link
+    Watt–Baranov example, which are costly to carry); their total exponents are returned
+    too, so that the caller can test whether a parameter may vanish."""
+    generators = tower.context.gens()
+    parameters = len(tower.parameters)
+    removed = [0] * parameters
+    for n in range(len(tower.radicands) - 1, -1, -1):
+        radical = generators[parameters + n]
+        polynomial = polynomial.resultant(radical * radical - tower.radicands[n], tower.variables[parameters + n])
+        exponents = [int(e) for e in polynomial.term_content().monoms()[0][:parameters]]
+        monomial = tower.context.from_dict({tuple(exponents) + (0,) * len(tower.radicands): 1})
+        polynomial = polynomial / monomial
+        removed = [r + e for r, e in zip(removed, exponents, strict=True)]
+    return polynomial, tuple(removed)
+
+
+def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> CharacteristicPolynomial:
+    """The characteristic polynomial of ``scene`` in the parameter of ``plan`` (default:
+    the best plan), coupling degree 1.
+
+    >>> from baranov.solvers import load_scene
+    >>> from pathlib import Path
+    >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
+    >>> characteristic_polynomial(scene).degree   # thesis §3.3.1: 14 assembly modes
+    14
+    """
+    plan = plan or best_plan(scene.chain)
+    if plan.number_of_parameters != 1:
+        raise ExactMethodError(
+            f"coupling degree {plan.number_of_parameters}: the exact method derives one-parameter polynomials so far")
+    tower = radical_tower(scene, plan)
+    norm, (power,) = eliminate_radicals(tower.conditions[0], tower)
+    coefficients = [flint.fmpq(0)] * (norm.degrees()[0] + 1)
+    for exponents, coefficient in zip(norm.monoms(), norm.coeffs(), strict=True):
+        coefficients[exponents[0]] = coefficient
+    univariate = flint.fmpq_poly(coefficients)
+    kept, dropped = [], []
+    _, factors = univariate.numer().factor()
+    if power:
+        factors.append((flint.fmpz_poly([0, 1]), power))
+    for factor, multiplicity in factors:
+        (kept if _is_genuine(factor, scene, plan) else dropped).append((factor, multiplicity))
+    polynomial = flint.fmpz_poly([1])
+    for factor, multiplicity in kept:
+        polynomial *= factor**multiplicity
+    if polynomial.degree() > 0 and polynomial.coeffs()[-1] < 0:
+        polynomial = -polynomial
+    return CharacteristicPolynomial(parameter_name(plan.parameters[0]), polynomial, tuple(kept), tuple(dropped))
+
+
+def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool:
+    """Whether one root of the irreducible ``factor`` solves the closure condition on
+    some sign branch with every bilateration defined (base distances and the reference
+    distance non-zero). The plan is evaluated in complex ball arithmetic (flint acb), x and
+    y coordinates separately, since a complex parameter gives complex coordinates.
+
+    A branch confirms the factor when the closure residual's ball contains 0 and is
+    narrower than 2^(-bits/8) of the closure distance; it rules itself out when the ball
+    excludes 0. Balls widen where a radicand nearly vanishes (a square root of a ball
+    around 0) or a division nearly divides by 0, so an undecided branch is evaluated
+    again with four times the bits, up to TEST_BITS[-1]."""
+    if factor.degree() < 1:
+        return False
+    previous = flint.ctx.prec
+    undecided = list(product((1, -1), repeat=len(plan.free_sign_triangles)))
+    try:
+        for bits in TEST_BITS:
+            flint.ctx.prec = bits
+            root = factor.complex_roots()[0][0]
+            still = []
+            for signs in undecided:
+                residual, scale = _closure_residual(scene, plan, root, signs)
+                if residual is None or not residual.contains(0):
+                    continue
+                if max(residual.real.rad(), residual.imag.rad()) < scale * flint.arb(2) ** (-bits // 8):
+                    return True
+                still.append(signs)
+            if not still:
+                return False
+            undecided = still
+        return False
+    finally:
+        flint.ctx.prec = previous
+
+
+def _closure_residual(scene: Scene, plan: Plan, parameter: flint.acb, signs) -> tuple[flint.acb | None, flint.arb]:
+    """s_{u,v}(computed) - s_{u,v}(known) on one branch at a complex parameter value (thesis
+    eq. 2.6 with coordinates as complex numbers), None where a bilateration is undefined;
+    and s_{u,v}(known)."""
+    known = {pair: flint.acb(flint.fmpq(Fraction(v).numerator, Fraction(v).denominator))
+             for pair, v in scene.known.items()}
+    parameter_pair = frozenset(plan.parameters[0])
+    a, b = plan.reference
+    points = {a: (flint.acb(0), flint.acb(0)), b: (flint.acb(1), flint.acb(0))}
+
+    def distance(u: str, v: str, computed: bool = False) -> flint.acb:
+        pair = frozenset((u, v))
+        if pair in known and not computed:
+            return known[pair]
+        if pair == parameter_pair:
+            return parameter
+        (xu, yu), (xv, yv) = points[u], points[v]
+        return ((xv - xu) ** 2 + (yv - yu) ** 2) * reference
+
+    reference = flint.acb(1)
+    u, v = plan.closure_pairs[0]
+    target = known[frozenset((u, v))]
+    reference = distance(a, b)
+    if reference.contains(0):
+        return None, target.real
+    free = iter(signs)
+    for step in plan.steps:
+        i, j = step.base
+        s_ij, s_ik, s_jk = distance(i, j), distance(i, step.joint), distance(j, step.joint)
+        if s_ij.contains(0):
+            return None, target.real
+        area = ((s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)).sqrt()
+        sign = next(free) if step.free_sign else scene.orientation(step.triangle)
+        real, imaginary = (s_ij + s_ik - s_jk) / (2 * s_ij), sign * area / (2 * s_ij)
+        (xi, yi), (xj, yj) = points[i], points[j]
+        points[step.joint] = (xi + real * (xj - xi) - imaginary * (yj - yi),
+                              yi + real * (yj - yi) + imaginary * (xj - xi))
+    return distance(u, v, computed=True) - target, target.real

@@ -1,0 +1,117 @@
+"""The exact backend against the thesis's characteristic polynomials and the numeric
+backend."""
+
+import json
+import math
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from test_solvers import PUBLISHED_EXAMPLES, SOLVABLE, generic_integer_configuration, scene_of
+
+from baranov.planner import bilateration_plans
+from baranov.solvers import ExactMethodError, characteristic_polynomial, load_scene, scene_from_dict, solve
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def thesis_polynomial(name: str, parameter: tuple[str, str]):
+    scene = load_scene(EXAMPLES / f"{name}.json")
+    plan = bilateration_plans(scene.chain, parameters=[parameter])[0]
+    assert {frozenset(p) for p in plan.parameters} == {frozenset(parameter)}
+    return characteristic_polynomial(scene, plan)
+
+
+def test_pentad_sextic_is_the_published_one():
+    """Thesis §3.2.3, parameter s1,6: 266085 s⁶ − 44959860 s⁵ + … + 366616640000, exactly
+    up to a constant factor."""
+    published = [266085, -44959860, 2314950740, -35686383040, 210282384000, -482011052800, 366616640000]
+    polynomial = thesis_polynomial("5-B1", ("P1", "P6"))
+    assert polynomial.monic_coefficients() == [Fraction(c, published[0]) for c in published]
+
+
+#: Thesis §3.3.x.3: characteristic polynomials as printed (4 significant digits), highest
+#: degree first, in the parameter the thesis uses.
+SEVEN_LINK_POLYNOMIALS = {
+    "7-B1": (("P2", "P3"), [119.5503e12, -132.8081e15, 67.7507e18, -20.9729e21, 4.3875e24, -654.0472e24,
+                            71.4151e27, -5.7830e30, 347.7941e30, -15.4050e33, 492.8930e33, -11.0051e36,
+                            161.4709e36, -1.3884e39, 5.2641e39]),
+    "7-B2": (("P4", "P8"), [18.8825e24, -5.9735e27, 818.5722e27, -64.1837e30, 3.2137e33, -108.7285e33,
+                            2.5531e36, -41.5239e36, 452.6824e36, -3.1196e39, 12.6154e39, -28.2936e39,
+                            38.9353e39, -36.1341e39, 25.5007e39, -15.1151e39, 5.2854e39]),
+    "7-B3": (("P1", "P4"), [-702.0669e12, 440.9551e15, -126.5260e18, 21.9306e21, -2.5592e24, 212.2835e24,
+                            -12.8945e27, 583.5044e27, -19.9010e30, 517.8331e30, -10.4725e33, 168.7340e33,
+                            -2.1961e36, 22.5420e36, -171.4717e36, 898.7415e36, -3.0279e39, 5.9942e39,
+                            -5.5218e39]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(SEVEN_LINK_POLYNOMIALS))
+def test_seven_link_polynomials_are_the_published_ones(name):
+    """Degrees 14, 16, 18; every coefficient, scaled to the published leading one, agrees
+    with the printed value to 4 significant digits (the printed values have 5 to 7, and
+    the leading one, used for scaling, is itself rounded)."""
+    parameter, published = SEVEN_LINK_POLYNOMIALS[name]
+    polynomial = thesis_polynomial(name, parameter)
+    assert polynomial.degree == len(published) - 1
+    monic = polynomial.monic_coefficients()
+    assert [float(c * Fraction(published[0])) for c in monic] == pytest.approx(published, rel=1e-4)
+
+
+@pytest.mark.parametrize("name", ["7-B1", "7-B2", "7-B3", "7-B3-section-4.2.1"])
+def test_certified_real_roots_are_the_published_ones(name):
+    (u, v), roots = PUBLISHED_EXAMPLES[name]
+    polynomial = thesis_polynomial(name, (u, v))
+    assert [round(float(r.mid()), 4) for r in polynomial.real_roots()] == roots
+    assert all(float(r.rad()) < 1e-10 for r in polynomial.real_roots())
+
+
+def test_eleven_link_watt_baranov_has_degree_62_and_16_real_roots():
+    """Thesis §3.6.2.1: degree 2^(k+1) − 2 = 62 for k = 5 loops, 16 real roots."""
+    solution = solve(load_scene(EXAMPLES / "11-watt-baranov.json"), method="exact")
+    assert solution.characteristic_polynomial.degree == 62
+    assert len(solution.characteristic_polynomial.real_roots()) == 16
+    assert len(solution.assembly_modes) == 16
+
+
+@pytest.mark.parametrize("name", ["3-B1", "5-B1", "7-B1", "7-B2", "7-B3", "7-B3-section-4.2.1"])
+def test_exact_and_numeric_modes_agree_on_the_examples(name):
+    scene = load_scene(EXAMPLES / f"{name}.json")
+    exact, numeric = solve(scene, method="exact"), solve(scene)
+    assert len(exact.assembly_modes) == len(numeric.assembly_modes)
+    for a, b in zip(exact.assembly_modes, numeric.assembly_modes, strict=True):
+        assert a.signs == b.signs
+        assert all(math.dist(a.joints[j], b.joints[j]) < 1e-7 for j in a.joints)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(SOLVABLE), st.integers(0, 2**32 - 1))
+def test_numeric_finds_exactly_the_certified_modes(truss, seed):
+    """On random generic instances: the numeric backend's modes are exactly the modes built
+    from the certified real roots (and the generating configuration is among them)."""
+    scene = scene_of(truss, generic_integer_configuration(truss, np.random.default_rng(seed)))
+    exact, numeric = solve(scene, method="exact"), solve(scene)
+    assert [round(v, 6) for m in exact.assembly_modes for v in m.parameters.values()] == pytest.approx(
+        [round(v, 6) for m in numeric.assembly_modes for v in m.parameters.values()], rel=1e-7)
+    if exact.characteristic_polynomial is not None:  # generic: every real root is a mode
+        assert len(exact.characteristic_polynomial.real_roots()) == len(exact.assembly_modes)
+
+
+def test_float_dimensions_are_refused():
+    data = json.loads((EXAMPLES / "7-B1.json").read_text())
+    binary = next(link for link in data["links"] if "squared_length" in link)
+    binary["squared_length"] = 97.5
+    with pytest.raises(ExactMethodError, match="integer or rational dimensions"):
+        solve(scene_from_dict(data), method="exact")
+
+
+def test_irrational_link_area_is_refused():
+    data = json.loads((EXAMPLES / "5-B1.json").read_text())
+    ternary = next(link for link in data["links"] if "squared_distances" in link)
+    first = next(iter(ternary["squared_distances"]))
+    ternary["squared_distances"][first] += 1
+    with pytest.raises(ExactMethodError, match="not the square of a rational"):
+        solve(scene_from_dict(data), method="exact")
