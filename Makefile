@@ -30,6 +30,7 @@ bench: $(STAMP)  ## timing and memory medians
 	$(BIN)/python bench/bench_enumeration.py
 	$(BIN)/python bench/bench_planner.py
 	$(BIN)/python bench/bench_numeric.py
+	$(BIN)/python bench/bench_exact.py
 
 clean:
 	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis

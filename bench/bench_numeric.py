@@ -10,19 +10,16 @@ from __future__ import annotations
 
 import argparse
 import statistics
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
+from baranov.enumerate import baranov_trusses
+from baranov.planner import coupling_degree
+from baranov.solvers import load_scene, solve
+from baranov.solvers.instances import generic_integer_configuration, scene_of
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tests"))
-from test_solvers import generic_integer_configuration, scene_of  # noqa: E402
-
-from baranov.enumerate import baranov_trusses  # noqa: E402
-from baranov.planner import coupling_degree  # noqa: E402
-from baranov.solvers import load_scene, solve  # noqa: E402
 
 
 def median_time(scenes, repeats: int) -> float:

@@ -13,18 +13,13 @@ from __future__ import annotations
 import argparse
 import math
 import statistics
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-from test_solvers import generic_integer_configuration, scene_of  # noqa: E402
-
-from baranov.enumerate import baranov_trusses  # noqa: E402
-from baranov.planner import coupling_degree  # noqa: E402
-from baranov.solvers import solve  # noqa: E402
+from baranov.enumerate import baranov_trusses
+from baranov.planner import coupling_degree
+from baranov.solvers import solve
+from baranov.solvers.instances import generic_integer_configuration, scene_of
 
 
 def main() -> None:

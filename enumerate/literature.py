@@ -84,6 +84,15 @@ THESIS_TRUSSES: tuple[PublishedTruss, ...] = (
 )
 
 
+#: Assembly modes of the nine-link trusses, thesis Appendix A (Tables A.3-A.8).
+APPENDIX_A_ASSEMBLY_MODES = {
+    "9/B1": 54, "9/B2": 54, "9/B3": 48, "9/B4": 42, "9/B5": 48, "9/B6": 48, "9/B7": 48, "9/B8": 48,
+    "9/B9": 42, "9/B10": 30, "9/B11": 36, "9/B12": 40, "9/B13": 40, "9/B14": 42, "9/B15": 52, "9/B16": 44,
+    "9/B17": 44, "9/B18": 38, "9/B19": 46, "9/B20": 46, "9/B21": 40, "9/B22": 50, "9/B23": 46, "9/B24": 50,
+    "9/B25": 52, "9/B26": 56, "9/B27": 50, "9/B28": 58,
+}
+
+
 def thesis_truss(name: str) -> PublishedTruss:
     """The published truss called ``name`` (e.g. ``"7/B2"``); ValueError if unknown.
 

@@ -1,6 +1,10 @@
 """Solving backends: every assembly mode of a concrete linkage (a scene)."""
 
-from .characteristic import CharacteristicPolynomial, ExactMethodError, characteristic_polynomial
+from .characteristic import (
+    CharacteristicPolynomial,
+    ExactMethodError,
+    characteristic_polynomial,
+)
 from .exact import solve_exact
 from .modes import AssemblyMode, Solution
 from .numeric import SolverError, solve_numeric

@@ -38,8 +38,8 @@ from fractions import Fraction
 from itertools import product
 
 import flint
-
 from baranov.planner import Plan, best_plan
+
 from .configuration import parameter_name
 from .scene import Scene
 

@@ -14,11 +14,14 @@ Coupling degree 0 needs no polynomial: every branch is a candidate.
 from __future__ import annotations
 
 import numpy as np
-
 from baranov.closure import sign_branches
 from baranov.planner import Plan, best_plan
 
-from .characteristic import CharacteristicPolynomial, ExactMethodError, characteristic_polynomial
+from .characteristic import (
+    CharacteristicPolynomial,
+    ExactMethodError,
+    characteristic_polynomial,
+)
 from .configuration import assembly_modes, compile_scene, parameter_name
 from .modes import Solution
 from .scene import Scene

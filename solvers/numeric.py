@@ -28,16 +28,22 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
-
 from baranov.closure import CompiledSystem, sign_branches
 from baranov.planner import Plan, best_plan
+from scipy.optimize import brentq, minimize_scalar
 
-from .configuration import RESIDUAL_TOLERANCE, assembly_modes, compile_scene, distance_bound, parameter_name
+from .configuration import (
+    RESIDUAL_TOLERANCE,
+    assembly_modes,
+    compile_scene,
+    distance_bound,
+    parameter_name,
+)
 from .modes import Solution
 from .polish import polish_configurations
 from .scene import Scene
 from .two_parameter import two_parameter_roots
+
 
 class SolverError(ValueError):
     """The scene is valid but this method cannot solve it (the message says why)."""

@@ -27,8 +27,12 @@ from itertools import combinations
 from pathlib import Path
 
 import networkx as nx
-
-from baranov.topology import KinematicChain, TopologyError, chain_from_links, require_rigid_chain
+from baranov.topology import (
+    KinematicChain,
+    TopologyError,
+    chain_from_links,
+    require_rigid_chain,
+)
 
 Number = Fraction | float
 

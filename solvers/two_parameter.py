@@ -29,9 +29,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import maximum_filter, minimum_filter
-
 from baranov.closure import CompiledSystem
+from scipy.ndimage import maximum_filter, minimum_filter
 
 #: Samples per axis of the first grid (uniform in the distances √u, √v).
 GRID = 160

@@ -4,10 +4,6 @@ import random
 
 import networkx as nx
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-from networkx.algorithms.isomorphism import GraphMatcher
-
 from baranov.enumerate import baranov_trusses
 from baranov.topology import (
     are_isomorphic,
@@ -18,6 +14,9 @@ from baranov.topology import (
     link_graph,
     list_automorphisms,
 )
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from networkx.algorithms.isomorphism import GraphMatcher
 
 #: Thesis §2.7.1: the twelve automorphisms of the pentad as joint permutations
 #: (position k holds the image of P(k+1)).

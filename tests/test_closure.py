@@ -3,9 +3,6 @@
 import numpy as np
 import pytest
 import sympy
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
-
 from baranov.closure import (
     closure_system,
     compile_from_coordinates,
@@ -26,6 +23,8 @@ from baranov.enumerate import baranov_trusses
 from baranov.enumerate.literature import thesis_truss
 from baranov.planner import best_plan, bilateration_plans, coupling_degree
 from baranov.topology import automorphism_group, list_automorphisms
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 TRUSSES = [t for links in (3, 5, 7, 9) for t in baranov_trusses(links)]
 ELEVEN = baranov_trusses(11)

@@ -4,11 +4,10 @@ import doctest
 import importlib
 import pkgutil
 
-import pytest
-
 import baranov.cli
 import baranov.enumerate
 import baranov.topology
+import pytest
 
 MODULES = sorted(
     info.name

@@ -8,12 +8,22 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from baranov.enumerate import baranov_trusses
+from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES
+from baranov.planner import bilateration_plans, coupling_degree
+from baranov.solvers import (
+    ExactMethodError,
+    characteristic_polynomial,
+    load_scene,
+    scene_from_dict,
+    solve,
+)
+from baranov.solvers.instances import generic_integer_configuration, scene_of
+from baranov.solvers.mode_counts import characteristic_degree
+from baranov.topology.realizations import realization_count
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from test_solvers import PUBLISHED_EXAMPLES, SOLVABLE, generic_integer_configuration, scene_of
-
-from baranov.planner import bilateration_plans
-from baranov.solvers import ExactMethodError, characteristic_polynomial, load_scene, scene_from_dict, solve
+from test_solvers import PUBLISHED_EXAMPLES, SOLVABLE
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -115,3 +125,40 @@ def test_irrational_link_area_is_refused():
     ternary["squared_distances"][first] += 1
     with pytest.raises(ExactMethodError, match="not the square of a rational"):
         solve(scene_from_dict(data), method="exact")
+
+
+def test_realization_counts_of_nine_links_are_appendix_a():
+    """pyrigi's realization count (fan identity) gives exactly the multiset of the 28
+    assembly-mode counts of thesis Appendix A."""
+    counts = sorted(realization_count(t) for t in baranov_trusses(9))
+    assert counts == sorted(APPENDIX_A_ASSEMBLY_MODES.values())
+
+
+def test_catalog_assembly_modes_agree_with_realization_counts():
+    """In the committed catalog (which a CLI test regenerates byte for byte): wherever the
+    characteristic polynomial was derived, its degree equals the realization count; the
+    9-link degrees are the Appendix A values of 9/B1-9/B24."""
+    catalog = Path(__file__).resolve().parents[1] / "catalog"
+    for links in (3, 5, 7, 9, 11):
+        for entry in json.loads((catalog / f"trusses-{links}.json").read_text()):
+            if entry["assembly_modes"] is not None:
+                assert entry["assembly_modes"] == entry["realization_count"], entry["id"]
+    nine = [e["assembly_modes"] for e in json.loads((catalog / "trusses-9.json").read_text())
+            if e["coupling_degree"] == 1]
+    assert sorted(nine) == sorted(APPENDIX_A_ASSEMBLY_MODES[f"9/B{n}"] for n in range(1, 25))
+
+
+@pytest.mark.slow
+def test_characteristic_degrees_equal_realization_counts_up_to_nine_links():
+    """For every coupling-1 truss up to 9 links, the degree of the characteristic
+    polynomial equals the realization count; for 9 links they are the 24 Appendix A
+    values of 9/B1-9/B24 (the coupling-1 ones)."""
+    nine = []
+    for links in (5, 7, 9):
+        for truss in baranov_trusses(links):
+            if coupling_degree(truss) == 1:
+                degree, _ = characteristic_degree(truss)
+                assert degree == realization_count(truss)
+                if links == 9:
+                    nine.append(degree)
+    assert sorted(nine) == sorted(APPENDIX_A_ASSEMBLY_MODES[f"9/B{n}"] for n in range(1, 25))

@@ -1,10 +1,19 @@
 """Trusses read from the thesis: consistent, Baranov, and found in the catalog."""
 
 import pytest
-
 from baranov.enumerate import baranov_trusses
-from baranov.enumerate.literature import THESIS_TRUSSES, thesis_joint_names, thesis_name, thesis_truss
-from baranov.topology import TopologyError, chain_from_links, is_baranov_truss, joint_graph
+from baranov.enumerate.literature import (
+    THESIS_TRUSSES,
+    thesis_joint_names,
+    thesis_name,
+    thesis_truss,
+)
+from baranov.topology import (
+    TopologyError,
+    chain_from_links,
+    is_baranov_truss,
+    joint_graph,
+)
 
 
 @pytest.mark.parametrize("published", THESIS_TRUSSES, ids=lambda t: t.name)

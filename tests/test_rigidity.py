@@ -4,9 +4,6 @@ from itertools import combinations
 
 import networkx as nx
 import pytest
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
 from baranov.enumerate import baranov_trusses
 from baranov.topology import (
     TopologyError,
@@ -19,6 +16,8 @@ from baranov.topology import (
     smallest_rigid_subchain,
 )
 from baranov.topology.rigidity import _smallest_rigid_connected_set
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 
 def naive_smallest_rigid(graph: nx.Graph) -> tuple[int, ...] | None:

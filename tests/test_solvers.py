@@ -3,18 +3,17 @@
 import json
 import math
 from fractions import Fraction
-from itertools import combinations, product
+from itertools import product
 from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
-
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.solvers import SceneError, load_scene, scene_from_dict, solve
-from baranov.topology import joints_of_links
+from baranov.solvers.instances import generic_integer_configuration, scene_of
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -120,28 +119,6 @@ def test_nine_link_b28_example_has_fourteen_real_modes():
     assert solution.coupling_degree == 2
     assert len(solution.assembly_modes) == 14
     assert max(m.max_residual for m in solution.assembly_modes) < 1e-9
-
-
-def scene_of(truss, coordinates, ground=0):
-    """A scene whose links carry the given joint coordinates (so it is exact)."""
-    links = []
-    for index, names in enumerate(joints_of_links(truss)):
-        links.append({"name": f"L{index}", "joints": {n: [str(coordinates[n][0]), str(coordinates[n][1])] for n in names}})
-    return scene_from_dict({"links": links, "ground": f"L{ground}"})
-
-
-def generic_integer_configuration(truss, rng):
-    """Random integer joint coordinates, no two equal and no three within area 10 of
-    collinear (a generic configuration); the box grows with the number of joints."""
-    names = [j.name for j in truss.joints]
-    size = 30 if len(names) <= 12 else 60
-    i, j, k = (np.array(t) for t in zip(*combinations(range(len(names)), 3)))
-    while True:
-        points = rng.integers(-size, size + 1, size=(len(names), 2))
-        a, b, c = points[i], points[j], points[k]
-        cross = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
-        if len({tuple(p) for p in points}) == len(names) and np.all(np.abs(cross) >= 20):
-            return {n: (Fraction(int(x)), Fraction(int(y))) for n, (x, y) in zip(names, points)}
 
 
 SOLVABLE = [t for links in (3, 5, 7, 9) for t in baranov_trusses(links) if coupling_degree(t) <= 1]
