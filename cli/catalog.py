@@ -25,7 +25,12 @@ from pathlib import Path
 from baranov.closure import closure_system
 from baranov.enumerate import baranov_link_graphs
 from baranov.enumerate.crosscheck import baranov_link_graphs_by_filter, find_geng
-from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES, thesis_joint_names, thesis_name
+from baranov.enumerate.literature import (
+    APPENDIX_A_ASSEMBLY_MODES,
+    name_by_invariants,
+    thesis_joint_names,
+    thesis_name,
+)
 from baranov.enumerate.sliders import count_slider_chains
 from baranov.enumerate.trusses import canonical_trusses
 from baranov.planner import best_plan
@@ -98,10 +103,21 @@ def truss_entry(item: tuple[str, str]) -> dict:
         modes = None
         evidence = (f"not derived: coupling degree {plan.number_of_parameters}" if plan.number_of_parameters > 1
                     else f"not derived: more than {ASSEMBLY_MODES_MAX_LINKS} links")
+    count = realization_count(chain)
+    name, name_evidence = identifier, None
+    if published:
+        name, name_evidence = published.name, f"isomorphic to the truss of {published.source}"
+    elif chain.number_of_links == 9:
+        by_invariants = name_by_invariants(count, plan.number_of_parameters, is_planar(chain))
+        if by_invariants:
+            name = by_invariants
+            name_evidence = (f"the only nine-link thesis truss with {count} assembly modes (Appendix A), coupling "
+                             f"degree {plan.number_of_parameters} (§3.4.2) and a "
+                             f"{'planar' if is_planar(chain) else 'non-planar (§3.4.1)'} link graph")
     return {
         "id": identifier,
-        "name": published.name if published else identifier,
-        "name_evidence": f"isomorphic to the truss of {published.source}" if published else None,
+        "name": name,
+        "name_evidence": name_evidence,
         "thesis_joint_names": thesis_joint_names(chain, published) if published else None,
         "link_graph6": graph6,
         "links": chain.number_of_links,
@@ -118,7 +134,7 @@ def truss_entry(item: tuple[str, str]) -> dict:
         "slider_chains": sliders,
         "assembly_modes": modes,
         "assembly_modes_evidence": evidence,
-        "realization_count": realization_count(chain),
+        "realization_count": count,
     }
 
 
@@ -295,7 +311,10 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
         ours = sorted(e["realization_count"] for e in catalogs[9])
         published = sorted(APPENDIX_A_ASSEMBLY_MODES.values())
         lines += ["", "Thesis Appendix A lists the assembly modes of the 28 nine-link trusses 9/B1-9/B28; as a "
-                  "multiset they " + ("equal" if ours == published else "DIFFER from") + " the realization counts above."]
+                  "multiset they " + ("equal" if ours == published else "DIFFER from") + " the realization counts above.",
+                  "", "Nine-link thesis names identified so far (`name_evidence` in the catalog says how): "
+                  + ", ".join(sorted((e["name"] for e in catalogs[9] if e["name"].startswith("9/B")),
+                                     key=lambda n: int(n[3:]))) + "."]
     lines += ["", "## Where this differs from the literature", "", *DISCREPANCY_NOTE, ""]
     return "\n".join(lines)
 

@@ -93,6 +93,36 @@ APPENDIX_A_ASSEMBLY_MODES = {
 }
 
 
+#: Nine-link trusses with coupling degree 2 (thesis §3.4.2) and without a planar link
+#: graph (thesis §3.4.1: "9/B28 ... the other two are 9/B23 and 9/B24").
+NINE_LINK_COUPLING_TWO = ("9/B25", "9/B26", "9/B27", "9/B28")
+NINE_LINK_NON_PLANAR = ("9/B23", "9/B24", "9/B28")
+
+
+def nine_link_signature(name: str) -> tuple[int, int, bool]:
+    """(assembly modes, coupling degree, planar) of the thesis truss ``name`` (9/B1–9/B28).
+
+    >>> nine_link_signature("9/B28")
+    (58, 2, False)
+    """
+    return (APPENDIX_A_ASSEMBLY_MODES[name], 2 if name in NINE_LINK_COUPLING_TWO else 1,
+            name not in NINE_LINK_NON_PLANAR)
+
+
+def name_by_invariants(assembly_modes: int, coupling: int, planar: bool) -> str | None:
+    """The nine-link thesis name whose (assembly modes, coupling degree, planarity) is
+    ``(assembly_modes, coupling, planar)``, when exactly one of the 28 has it; else None
+    (11 of the 28 signatures are unique; the catalog's 28 signatures equal the thesis's as
+    a multiset, which a test checks, so a unique one names exactly one catalog truss).
+
+    >>> name_by_invariants(30, 1, True), name_by_invariants(54, 1, True)
+    ('9/B10', None)
+    """
+    matches = [name for name in APPENDIX_A_ASSEMBLY_MODES
+               if nine_link_signature(name) == (assembly_modes, coupling, planar)]
+    return matches[0] if len(matches) == 1 else None
+
+
 def thesis_truss(name: str) -> PublishedTruss:
     """The published truss called ``name`` (e.g. ``"7/B2"``); ValueError if unknown.
 

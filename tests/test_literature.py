@@ -1,5 +1,8 @@
 """Trusses read from the thesis: consistent, Baranov, and found in the catalog."""
 
+import json
+from pathlib import Path
+
 import pytest
 from baranov.enumerate import baranov_trusses
 from baranov.enumerate.literature import (
@@ -72,3 +75,21 @@ def test_unknown_name_and_non_isomorphic_chain():
 def test_chain_from_links_errors(links, message):
     with pytest.raises(TopologyError, match=message):
         chain_from_links(links)
+
+
+def test_nine_link_names_by_invariants():
+    """The catalog's (assembly modes, coupling degree, planarity) of the 28 nine-link
+    trusses equal the thesis's as a multiset, and every thesis name given is the one the
+    invariants single out."""
+    from collections import Counter
+
+    from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES, nine_link_signature
+
+    entries = json.loads((Path(__file__).resolve().parents[1] / "catalog" / "trusses-9.json").read_text())
+    ours = Counter((e["realization_count"], e["coupling_degree"], e["planar"]) for e in entries)
+    assert ours == Counter(nine_link_signature(name) for name in APPENDIX_A_ASSEMBLY_MODES)
+    named = {e["name"]: (e["realization_count"], e["coupling_degree"], e["planar"])
+             for e in entries if e["name"].startswith("9/B")}
+    assert all(nine_link_signature(name) == signature for name, signature in named.items())
+    assert sorted(named, key=lambda n: int(n[3:])) == [
+        "9/B10", "9/B11", "9/B15", "9/B18", "9/B22", "9/B23", "9/B24", "9/B25", "9/B26", "9/B27", "9/B28"]
