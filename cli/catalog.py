@@ -103,17 +103,17 @@ def truss_entry(item: tuple[str, str]) -> dict:
         modes = None
         evidence = (f"not derived: coupling degree {plan.number_of_parameters}" if plan.number_of_parameters > 1
                     else f"not derived: more than {ASSEMBLY_MODES_MAX_LINKS} links")
-    count = realization_count(chain)
+    count, planar = realization_count(chain), is_planar(chain)
     name, name_evidence = identifier, None
     if published:
         name, name_evidence = published.name, f"isomorphic to the truss of {published.source}"
     elif chain.number_of_links == 9:
-        by_invariants = name_by_invariants(count, plan.number_of_parameters, is_planar(chain))
+        by_invariants = name_by_invariants(count, plan.number_of_parameters, planar)
         if by_invariants:
             name = by_invariants
             name_evidence = (f"the only nine-link thesis truss with {count} assembly modes (Appendix A), coupling "
                              f"degree {plan.number_of_parameters} (§3.4.2) and a "
-                             f"{'planar' if is_planar(chain) else 'non-planar (§3.4.1)'} link graph")
+                             f"{'planar' if planar else 'non-planar (§3.4.1)'} link graph")
     return {
         "id": identifier,
         "name": name,
@@ -129,7 +129,7 @@ def truss_entry(item: tuple[str, str]) -> dict:
         "closure_conditions": closure_system(plan).text().splitlines(),
         "link_orbits": [list(orbit) for orbit in group.link_orbits],
         "joint_orbits": [list(orbit) for orbit in group.joint_orbits],
-        "planar": is_planar(chain),
+        "planar": planar,
         "assur_groups": len(group.link_orbits),
         "slider_chains": sliders,
         "assembly_modes": modes,

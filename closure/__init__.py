@@ -2,7 +2,13 @@
 variants from automorphisms, text/LaTeX/sympy forms, and compiled numeric evaluators."""
 
 from .bilateration import bilateration_matrix, oriented_area, perpendicular_matrix
-from .conditions import ClosureSystem, DistanceCondition, MatrixExpression, closure_system, sympy_condition
+from .conditions import (
+    ClosureSystem,
+    DistanceCondition,
+    MatrixExpression,
+    closure_system,
+    sympy_condition,
+)
 from .evaluate import CompiledSystem, compile_from_coordinates, sign_branches
 from .notation import parse_matrix_expression
 from .symmetry import (

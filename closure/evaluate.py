@@ -13,7 +13,6 @@ from collections.abc import Mapping, Sequence
 from itertools import product
 
 import numpy as np
-
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
@@ -78,10 +77,10 @@ class CompiledSystem:
         _, _, failures, radicands = self._evaluate(parameter_values, signs, profile=True)
         return failures, radicands
 
-    def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
-        """:meth:`matrices` of point n on branch ``signs[n]``; results have shape (N,)."""
-        matrices, s_ref, *_ = self._evaluate(parameter_values, signs, paired=True)
-        return {joint: value[0] for joint, value in matrices.items()}, np.broadcast_to(s_ref, matrices[self.plan.reference[0]].shape)[0]
+    def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> dict[str, np.ndarray]:
+        """M_k for every joint, point n on branch ``signs[n]``; shape (N,)."""
+        matrices, *_ = self._evaluate(parameter_values, signs, paired=True)
+        return {joint: value[0] for joint, value in matrices.items()}
 
     def paired_residuals(self, parameter_values: np.ndarray, signs: np.ndarray) -> np.ndarray:
         """Relative closure residuals of point n on branch ``signs[n]``: shape (N, c) for

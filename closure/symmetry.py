@@ -17,7 +17,13 @@ from dataclasses import dataclass
 from baranov.planner import Plan, Step
 from baranov.topology import Automorphism, KinematicChain, list_automorphisms
 
-from .conditions import ClosureSystem, DistanceCondition, MatrixExpression, _sorted_polynomial, closure_system
+from .conditions import (
+    ClosureSystem,
+    DistanceCondition,
+    MatrixExpression,
+    _sorted_polynomial,
+    closure_system,
+)
 
 
 def joint_mapping(chain: KinematicChain, automorphism: Automorphism) -> dict[str, str]:
@@ -158,7 +164,9 @@ def symmetric_formulation(chain: KinematicChain, count: int = 10**6) -> Symmetri
     >>> [c.pair for c in found.conditions]
     [('P3', 'P4'), ('P3', 'P8')]
     """
-    from baranov.planner import bilateration_plans  # deferred: planner imports are heavy
+    from baranov.planner import (
+        bilateration_plans,  # deferred: planner imports are heavy
+    )
 
     for plan in bilateration_plans(chain, count=count):
         if not plan.closure_pairs:

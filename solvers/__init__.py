@@ -6,8 +6,8 @@ from .characteristic import (
     characteristic_polynomial,
 )
 from .exact import solve_exact
-from .modes import AssemblyMode, Solution
-from .numeric import SolverError, solve_numeric
+from .modes import AssemblyMode, Solution, SolverError
+from .numeric import solve_numeric
 from .scene import Scene, SceneError, load_scene, scene_from_dict
 
 

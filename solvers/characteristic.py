@@ -39,15 +39,17 @@ from itertools import product
 
 import flint
 from baranov.planner import Plan, best_plan
+from flint.utils.flint_exceptions import DomainError
 
 from .configuration import parameter_name
+from .modes import SolverError
 from .scene import Scene
 
 #: Precisions (bits) of the genuineness test of a factor, tried in turn.
 TEST_BITS = (256, 1024, 4096)
 
 
-class ExactMethodError(ValueError):
+class ExactMethodError(SolverError):
     """The exact method cannot treat this scene (the message says why)."""
 
 
@@ -120,16 +122,6 @@ class CharacteristicPolynomial:
         return [Fraction(c, coefficients[0]) for c in coefficients]
 
 
-def _rational_square_root(value: Fraction) -> Fraction | None:
-    if value < 0:
-        return None
-    numerator, rest_n = flint.fmpz(value.numerator).sqrtrem()
-    denominator, rest_d = flint.fmpz(value.denominator).sqrtrem()
-    if rest_n != 0 or rest_d != 0:
-        return None
-    return Fraction(int(numerator), int(denominator))
-
-
 def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
     """The closure conditions of ``plan`` for the dimensions of ``scene``, exactly.
 
@@ -167,8 +159,7 @@ def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
         common = numerator.gcd(denominator)
         return numerator / common, denominator / common
 
-    reference = (one, one)
-    reference = distance(a, b)
+    reference = distance(a, b)  # known or a parameter: no computed distance needs it yet
     radicands = []
     for step in plan.steps:
         i, j = step.base
@@ -180,12 +171,16 @@ def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
             imaginary = generators[plan.number_of_parameters + len(radicands)]
             radicands.append(radicand)
         else:
-            root = _rational_square_root(Fraction(str(radicand.coefficient(0)))) if radicand.is_constant() else None
+            try:  # collinear joints of a link: radicand 0, which has no terms
+                root = (flint.fmpq(0) if radicand.is_zero() else radicand.coefficient(0).sqrt()) \
+                    if radicand.is_constant() else None
+            except DomainError:  # negative, or not the square of a rational
+                root = None
             if root is None:
                 raise ExactMethodError(
                     f"link with joints {', '.join(step.triangle)}: 16·area² = {radicand} is not the square of a "
                     "rational; the exact method needs rational link areas (e.g. rational joint coordinates)")
-            imaginary = constant(root * scene.orientation(step.triangle))
+            imaginary = root * scene.orientation(step.triangle) * one
         real = first + second - third
         xi, yi, di = points[i]
         xj, yj, dj = points[j]

@@ -38,6 +38,17 @@ def distance_bound(scene: Scene) -> float:
     return sum(math.sqrt(max(float(v) for v in link.squared_distances.values())) for link in scene.links)
 
 
+def distinct_candidates(values: np.ndarray, branches: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Candidates ``(parameter values, branch)`` with repeats removed (same branch, same
+    values to 8 decimals of their logarithms): many starts converge to one root, and each
+    candidate costs a configuration."""
+    unique: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
+    for row, branch in zip(values, branches, strict=True):
+        if np.isfinite(row).all() and (row > 0).all():
+            unique.setdefault((tuple(int(s) for s in branch), *np.round(np.log(row), 8)), (row.copy(), branch))
+    return list(unique.values())
+
+
 def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates) -> tuple[AssemblyMode, ...]:
     """The verified, distinct assembly modes among ``candidates`` (parameter values,
     branch), sorted by parameters then signs."""
@@ -50,18 +61,28 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates) -> tuple[
     return tuple(modes)
 
 
-def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, branch: np.ndarray) -> AssemblyMode:
-    matrices, s_ref = compiled.matrices(values.reshape(1, -1), branch[None, :])
-    m = {joint: complex(value[0, 0]) for joint, value in matrices.items()}
+def placed_from_ground(scene: Scene, matrices: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """World positions (complex) of every joint from the plan's M_k (relative to its
+    reference, any array shape): the similarity that takes the ground link's first two
+    joints onto their world coordinates. NaN where a radicand was negative or the ground
+    joints coincide."""
     ground = scene.link_of(scene.ground)
     g1, g2 = ground.joints[0], ground.joints[1]
     world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
-    denominator = m[g2] - m[g1]
-    if not all(map(math.isfinite, (denominator.real, denominator.imag))) or abs(denominator) == 0:
-        return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)
-    reference = (world[g2] - world[g1]) / denominator
-    origin = world[g1] - m[g1] * reference
-    points = {j: origin + value * reference for j, value in m.items()}
+    with np.errstate(invalid="ignore", divide="ignore"):
+        denominator = matrices[g2] - matrices[g1]
+        reference = np.where(denominator != 0, (world[g2] - world[g1]) / np.where(denominator != 0, denominator, 1),
+                             np.nan)
+        origin = world[g1] - matrices[g1] * reference
+        return {joint: origin + value * reference for joint, value in matrices.items()}
+
+
+def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, branch: np.ndarray) -> AssemblyMode:
+    """The configuration of one candidate, with its largest relative error over every link
+    dimension (1.0 for a rigid link found mirrored; inf where it cannot be built)."""
+    matrices, _ = compiled.matrices(values.reshape(1, -1), branch[None, :])
+    points = {j: complex(p[0, 0]) for j, p in placed_from_ground(scene, matrices).items()}
+    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
     if not all(math.isfinite(p.real) and math.isfinite(p.imag) for p in points.values()):
         return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)  # a radicand was negative
     residual = 0.0
@@ -87,6 +108,7 @@ def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, br
 
 
 def same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:
+    """Whether two modes place every joint within 1e-6 of the linkage's size."""
     scale = max(1.0, distance_bound(scene))
     return all(
         math.dist(first.joints[j], second.joints[j]) < 1e-6 * scale for j in first.joints

@@ -12,7 +12,6 @@ from __future__ import annotations
 import zlib
 
 import numpy as np
-
 from baranov.planner import best_plan
 from baranov.topology import KinematicChain
 

@@ -6,6 +6,10 @@ from dataclasses import dataclass
 from typing import Any
 
 
+class SolverError(ValueError):
+    """The scene is valid but this method cannot solve it (the message says why)."""
+
+
 @dataclass(frozen=True)
 class AssemblyMode:
     """One assembly mode of a linkage.

@@ -16,7 +16,10 @@ numerical procedure"):
 5. roots without a sign change (tangential, or two roots in one cell): every local minimum
    of |f| is refined by bounded minimisation, and its cell re-sampled finely.
 
-docs/numeric.md explains each rule with the miss that required it.
+docs/numeric.md explains each rule with the miss that required it. For coupling degree 2
+the two conditions are solved together (:mod:`baranov.solvers.two_parameter`), and points
+where Newton stalls next to the domain boundary are polished on the link constraints
+(:mod:`baranov.solvers.polish`).
 
 Every candidate becomes a configuration placed from the ground link; it is kept only if
 every link dimension holds (relative residual below ``1e-8``) and no rigid link is
@@ -37,20 +40,18 @@ from .configuration import (
     assembly_modes,
     compile_scene,
     distance_bound,
+    distinct_candidates,
     parameter_name,
+    placed_from_ground,
 )
-from .modes import Solution
+from .modes import Solution, SolverError
 from .polish import polish_configurations
 from .scene import Scene
 from .two_parameter import two_parameter_roots
 
 
-class SolverError(ValueError):
-    """The scene is valid but this method cannot solve it (the message says why)."""
-
-
 def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000) -> Solution:
-    """All assembly modes of ``scene`` (coupling degree 0 or 1) by the numeric method."""
+    """All assembly modes of ``scene`` (coupling degree 0, 1 or 2) by the numeric method."""
     plan = plan or best_plan(scene.chain)
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
@@ -74,15 +75,9 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
     constraints (:func:`polish_configurations`), read back from the configurations."""
     if len(values) == 0:
         return []
-    matrices, _ = compiled.paired_matrices(values, signs)
-    ground = scene.link_of(scene.ground)
-    g1, g2 = ground.joints[0], ground.joints[1]
-    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
-    with np.errstate(invalid="ignore", divide="ignore"):
-        reference = (world[g2] - world[g1]) / (matrices[g2] - matrices[g1])
-        origin = world[g1] - matrices[g1] * reference
-        joints = sorted(matrices)
-        complex_points = np.stack([origin + matrices[j] * reference for j in joints], axis=1)
+    placed = placed_from_ground(scene, compiled.paired_matrices(values, signs))
+    joints = sorted(placed)
+    complex_points = np.stack([placed[j] for j in joints], axis=1)
     usable = np.isfinite(complex_points).all(axis=1)
     points = np.stack([complex_points.real, complex_points.imag], axis=-1)[usable]
     points, residual = polish_configurations(scene, joints, points)
@@ -91,11 +86,7 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
     parameters = np.stack([np.abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters], axis=1)
     branch = np.stack([np.where(((at[j] - at[i]).conjugate() * (at[k] - at[i])).imag > 0, 1, -1)
                        for i, j, k in compiled.free_triangles], axis=1)
-    unique = {}
-    for values_row, branch_row in zip(parameters, branch, strict=True):
-        if np.isfinite(values_row).all():
-            unique.setdefault((tuple(branch_row), *np.round(np.log(values_row), 8)), (values_row, branch_row))
-    return list(unique.values())
+    return distinct_candidates(parameters, branch)
 
 
 #: A local minimum of |f| between samples is re-sampled this finely: two close simple

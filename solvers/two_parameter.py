@@ -32,6 +32,8 @@ import numpy as np
 from baranov.closure import CompiledSystem
 from scipy.ndimage import maximum_filter, minimum_filter
 
+from .configuration import distinct_candidates
+
 #: Samples per axis of the first grid (uniform in the distances √u, √v).
 GRID = 160
 #: Each suspect cell is split into SPLIT × SPLIT sub-cells, DEPTH levels deep.
@@ -86,22 +88,22 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
         if depth >= BOUNDARY_DEPTH:
             to_polish.append(boundary)
         else:
-            interior = Cells.concatenate([interior, boundary[2]])
+            interior = Cells.concatenate([interior, boundary[1]])
         if len(interior) == 0:
             break
         interior, boundary, starts = _examine(compiled, branches, interior, SPLIT, last=depth == DEPTH - 1)
         all_starts.append(starts)
     to_polish.append(boundary)
     roots, stalled = _newton(compiled, branches, *(np.concatenate(parts) for parts in zip(*all_starts, strict=True)))
-    polish_points = np.concatenate([stalled[0]] + [points for points, _, _ in to_polish])
-    polish_branches = np.concatenate([stalled[1]] + [cells.branch for _, _, cells in to_polish])
+    polish_points = np.concatenate([stalled[0]] + [points for points, _ in to_polish])
+    polish_branches = np.concatenate([stalled[1]] + [cells.branch for _, cells in to_polish])
     return roots, (polish_points, polish_branches)
 
 
 def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: bool):
     """Split every cell into split × split sub-cells and sample them. Returns the suspect
     sub-cells inside the domain; the suspect sub-cells on its boundary as ``(best sample
-    (u, v), value there, cells)``; and the Newton starts ``(points, branch indices)``: the
+    (u, v), cells)``; and the Newton starts ``(points, branch indices)``: the
     centre and the best sample of each interior sub-cell where both conditions change
     sign (of every interior suspect at the ``last`` level)."""
     count, side = len(cells), split + 1
@@ -135,7 +137,7 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     started, started_best = cells_of((suspect if last else changes) & inside)
     centre = (started.low + started.high) / 2
     starts = (np.concatenate([centre, started_best]) ** 2, np.concatenate([started.branch] * 2))
-    return interior, (edge_best**2, None, edge_cells), starts
+    return interior, (edge_best**2, edge_cells), starts
 
 
 def _paired(compiled: CompiledSystem, roots_of_parameters: np.ndarray, signs: np.ndarray) -> np.ndarray:
@@ -216,13 +218,8 @@ def _newton(compiled: CompiledSystem, branches: np.ndarray, start: np.ndarray, b
             scale[pending] /= 2
         x[active], f[active] = xa, fa
     norm = np.max(np.abs(f), axis=1)
-    seen: set[tuple] = set()
-    roots = []
-    for n in np.flatnonzero(np.isfinite(norm) & (norm < CANDIDATE_TOLERANCE)):
-        key = (int(branch[n]), *np.round(np.log(x[n]), 8))
-        if key not in seen:
-            seen.add(key)
-            roots.append((x[n].copy(), branches[branch[n]]))
+    good = np.isfinite(norm) & (norm < CANDIDATE_TOLERANCE)
+    roots = distinct_candidates(x[good], branches[branch[good]])
     stalled = np.flatnonzero(np.isfinite(norm) & (norm >= CANDIDATE_TOLERANCE) & (norm < STALLED_TOLERANCE))
     return roots, (x[stalled], branch[stalled])
 
