@@ -57,8 +57,18 @@ class ExactMethodError(SolverError):
 class RadicalTower:
     """A plan's closure conditions as polynomials over a tower of quadratic extensions.
 
+    Every polynomial is kept in *normal form*: of degree at most 1 in each radical, since
+    r_n² is replaced by its radicand Δ_n (which involves r_1, …, r_{n-1} only). The
+    relations r_n² - Δ_n have pairwise coprime leading monomials r_n² in the lex order
+    r_m > … > r_1 > t_1 > … > t_c, so they are a Gröbner basis and the normal form is
+    unique. Without it, products of points raise the radicals' degrees and the norm grows
+    by orders of magnitude (11-link Watt–Baranov: 169 129 terms at the largest norm step,
+    17 s; in normal form 256 terms, 0.12 s). Products are formed in normal form directly
+    (:func:`_multiply`); reducing unreduced products instead took 37 s of a random
+    11-link instance's 38 s, against 1.1 s.
+
     Attributes:
-        context: the flint polynomial ring Q[t_1, …, t_c, r_1, …, r_m] (lex order).
+        context: the flint polynomial ring Q[r_m, …, r_1, t_1, …, t_c] (lex order).
         parameters: the plan's parameter pairs, one per t_n.
         radicands: Δ-numerator of r_n, a polynomial in the t's and r_1, …, r_{n-1}.
         conditions: numerator of s_{u,v}(computed) · den(known) - known · den, one per
@@ -73,6 +83,66 @@ class RadicalTower:
     @property
     def variables(self) -> tuple[str, ...]:
         return self.context.names()
+
+    def radical(self, n: int) -> flint.fmpq_mpoly:
+        """The generator r_{n+1} (``n`` counts from 0, innermost first)."""
+        return self.context.gen(len(self.radicands) - 1 - n)
+
+    def parameter(self, n: int) -> flint.fmpq_mpoly:
+        """The generator t_{n+1}."""
+        return self.context.gen(len(self.radicands) + n)
+
+    def relation(self, n: int) -> flint.fmpq_mpoly:
+        """r_{n+1}² - Δ_{n+1} (``n`` counts from 0, innermost first)."""
+        return self.radical(n) ** 2 - self.radicands[n]
+
+    def multiply(self, first: flint.fmpq_mpoly, second: flint.fmpq_mpoly, below: int | None = None) -> flint.fmpq_mpoly:
+        """The product of two normal forms free of r_n for n > ``below`` (default: all
+        radicals), in normal form."""
+        count = len(self.radicands) if below is None else below
+        return _multiply(first, second, [self.radical(n) for n in range(count)], self.radicands, count)
+
+    def normal_form(self, polynomial: flint.fmpq_mpoly, below: int | None = None) -> flint.fmpq_mpoly:
+        """``polynomial`` reduced modulo r_n² - Δ_n for the radicals r_1, …, r_below
+        (default: all)."""
+        count = len(self.radicands) if below is None else below
+        return _normal_form(polynomial, [self.relation(n) for n in range(count)])
+
+
+def _normal_form(polynomial: flint.fmpq_mpoly, relations) -> flint.fmpq_mpoly:
+    """Reduce modulo the relations r_n² - Δ_n (innermost first in ``relations``), the
+    outermost first: Δ_n only involves inner radicals, so reducing an inner one never
+    raises an outer one's degree again. Multivariate division by a relation whose leading
+    monomial is r_n² leaves a remainder of degree at most 1 in r_n."""
+    for relation in reversed(relations):
+        _, polynomial = divmod(polynomial, relation)
+    return polynomial
+
+
+def _multiply(first: flint.fmpq_mpoly, second: flint.fmpq_mpoly, radicals, radicands,
+              level: int | None = None) -> flint.fmpq_mpoly:
+    """The product of two normal forms, in normal form, without forming the unreduced
+    product (whose 3^m radical monomials made reduction the bottleneck): split on the
+    outermost radical r = r_level, (a + b r)(c + d r) = (ac + Δ bd) + ((a + b)(c + d) - ac - bd) r,
+    each product recursively over the inner radicals (Karatsuba: 3 products per level,
+    plus one by Δ)."""
+    if level is None:
+        level = len(radicands)
+    if level == 0 or first.is_constant() or second.is_constant():
+        return first * second
+    radical = radicals[level - 1]
+    odd_first, even_first = divmod(first, radical)
+    odd_second, even_second = divmod(second, radical)
+    if odd_first.is_zero() and odd_second.is_zero():
+        return _multiply(first, second, radicals, radicands, level - 1)
+    if odd_first.is_zero() or odd_second.is_zero():
+        scalar, (odd, even) = (first, (odd_second, even_second)) if odd_first.is_zero() else (second, (odd_first, even_first))
+        return (_multiply(scalar, even, radicals, radicands, level - 1)
+                + _multiply(scalar, odd, radicals, radicands, level - 1) * radical)
+    low = _multiply(even_first, even_second, radicals, radicands, level - 1)
+    high = _multiply(odd_first, odd_second, radicals, radicands, level - 1)
+    cross = _multiply(even_first + odd_first, even_second + odd_second, radicals, radicands, level - 1) - low - high
+    return low + _multiply(radicands[level - 1], high, radicals, radicands, level - 1) + cross * radical
 
 
 @dataclass(frozen=True)
@@ -125,24 +195,34 @@ class CharacteristicPolynomial:
 def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
     """The closure conditions of ``plan`` for the dimensions of ``scene``, exactly.
 
-    Every point is kept as (X + iY) / d with X, Y, d polynomials, common factors cancelled
-    (flint gcd) after each step. Raises :class:`ExactMethodError` if a dimension is inexact
-    or a link triangle has an irrational area.
+    Every point is kept as (X + iY) / d with X, Y, d polynomials in normal form (see
+    :class:`RadicalTower`), common factors cancelled (flint gcd) after each step. Raises
+    :class:`ExactMethodError` if a dimension is inexact or a link triangle has an
+    irrational area.
     """
     if not scene.exact:
         raise ExactMethodError("scene: the exact method needs integer or rational dimensions (a float was given)")
     free = [step for step in plan.steps if step.free_sign]
-    names = tuple(f"t{n + 1}" for n in range(plan.number_of_parameters)) + tuple(f"r{n + 1}" for n in range(len(free)))
+    names = tuple(f"r{n}" for n in range(len(free), 0, -1)) + tuple(f"t{n + 1}" for n in range(plan.number_of_parameters))
     context = flint.fmpq_mpoly_ctx.get(names, "lex")
     generators = context.gens()
+    radicals = generators[:len(free)][::-1]  # r_1, r_2, …
+    radicands = []
     one = context.constant(1)
+
+    def mul(*factors: flint.fmpq_mpoly) -> flint.fmpq_mpoly:
+        result = factors[0]
+        for factor in factors[1:]:
+            result = _multiply(result, factor, radicals, radicands)
+        return result
+
     zero = context.constant(0)
 
     def constant(value) -> flint.fmpq_mpoly:
         value = Fraction(value)
         return context.constant(flint.fmpq(value.numerator, value.denominator))
 
-    parameter_of = {frozenset(pair): generators[n] for n, pair in enumerate(plan.parameters)}
+    parameter_of = {frozenset(pair): generators[len(free) + n] for n, pair in enumerate(plan.parameters)}
     a, b = plan.reference
     points = {a: (zero, zero, one), b: (one, zero, one)}
 
@@ -154,21 +234,23 @@ def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
             return parameter_of[pair], one
         xu, yu, du = points[u]
         xv, yv, dv = points[v]
-        x, y = xv * du - xu * dv, yv * du - yu * dv
-        numerator, denominator = (x * x + y * y) * reference[0], (du * dv) ** 2 * reference[1]
+        x, y = mul(xv, du) - mul(xu, dv), mul(yv, du) - mul(yu, dv)
+        numerator = mul(mul(x, x) + mul(y, y), reference[0])
+        product = mul(du, dv)
+        denominator = mul(product, product, reference[1])
         common = numerator.gcd(denominator)
         return numerator / common, denominator / common
 
     reference = distance(a, b)  # known or a parameter: no computed distance needs it yet
-    radicands = []
     for step in plan.steps:
         i, j = step.base
         k = step.joint
         (s_ij, d_ij), (s_ik, d_ik), (s_jk, d_jk) = distance(i, j), distance(i, k), distance(j, k)
-        first, second, third = s_ij * d_ik * d_jk, s_ik * d_ij * d_jk, s_jk * d_ij * d_ik
-        radicand = (first + second + third) ** 2 - 2 * (first**2 + second**2 + third**2)
+        first, second, third = mul(s_ij, d_ik, d_jk), mul(s_ik, d_ij, d_jk), mul(s_jk, d_ij, d_ik)
+        total = first + second + third
+        radicand = mul(total, total) - 2 * (mul(first, first) + mul(second, second) + mul(third, third))
         if step.free_sign:
-            imaginary = generators[plan.number_of_parameters + len(radicands)]
+            imaginary = radicals[len(radicands)]
             radicands.append(radicand)
         else:
             try:  # collinear joints of a link: radicand 0, which has no terms
@@ -184,11 +266,12 @@ def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
         real = first + second - third
         xi, yi, di = points[i]
         xj, yj, dj = points[j]
-        u, v = xj * di - xi * dj, yj * di - yi * dj
-        scale = 2 * s_ij * d_ik * d_jk  # Z = (real + i imaginary) / scale
-        x = xi * scale * dj + real * u - imaginary * v
-        y = yi * scale * dj + real * v + imaginary * u
-        d = scale * di * dj
+        u, v = mul(xj, di) - mul(xi, dj), mul(yj, di) - mul(yi, dj)
+        scale = 2 * mul(s_ij, d_ik, d_jk)  # Z = (real + i imaginary) / scale
+        scale_j = mul(scale, dj)
+        x = mul(xi, scale_j) + mul(real, u) - mul(imaginary, v)
+        y = mul(yi, scale_j) + mul(real, v) + mul(imaginary, u)
+        d = mul(scale_j, di)
         common = x.gcd(y).gcd(d)
         points[k] = (x / common, y / common, d / common)
     conditions = []
@@ -199,24 +282,57 @@ def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
     return RadicalTower(context, plan.parameters, tuple(radicands), tuple(conditions))
 
 
-def eliminate_radicals(polynomial: flint.fmpq_mpoly, tower: RadicalTower) -> tuple[flint.fmpq_mpoly, tuple[int, ...]]:
-    """The norm of ``polynomial`` over all sign choices of the radicals, outermost first:
-    Res_{r_n}(F, r_n² - Δ_n) = F(√Δ_n) F(-√Δ_n) for n = m, …, 1 (thesis §3.2.1, "twice
-    squaring"): a polynomial in the parameters only. Powers of the parameters are divided
-    out after each step (clearing denominators makes many: 212 on the 11-link
-    Watt–Baranov example, which are costly to carry); their total exponents are returned
-    too, so that the caller can test whether a parameter may vanish."""
-    generators = tower.context.gens()
-    parameters = len(tower.parameters)
-    removed = [0] * parameters
+def eliminate_radicals(polynomial: flint.fmpq_mpoly,
+                       tower: RadicalTower) -> tuple[flint.fmpq_mpoly, list[tuple[flint.fmpq_mpoly, int]]]:
+    """The norm of ``polynomial`` over all sign choices of the radicals, outermost first
+    (thesis §3.2.1, "twice squaring"): a polynomial in the parameters only.
+
+    In normal form F = A + B r_n with A, B free of r_n, and the norm step is
+    Res_{r_n}(F, r_n² - Δ_n) = F(√Δ_n) F(-√Δ_n) = A² - Δ_n B², reduced again modulo the
+    inner radicals; n = m, …, 1. Before each step the *content* — the gcd, a polynomial in
+    the parameters, of the coefficients of the radical monomials — is divided out: it
+    comes from clearing denominators (thesis eqs. 3.6, 3.20, 3.34, 3.92) and would be
+    squared by every later step (on a random 11-link instance, a sextic to the power 492
+    and t^584 beside a characteristic factor of degree 126). Returns the norm without
+    them and the removed contents with the multiplicity (a power of 2) they would have
+    had in the full norm, so that the caller can test their roots too.
+    Cost: m steps, each a few products of polynomials of at most 2^(n-1) radical
+    monomials times the parameter degrees (thesis §3.6.2: the degree doubles per step).
+    """
+    polynomial = tower.normal_form(polynomial)
+    removed = []
     for n in range(len(tower.radicands) - 1, -1, -1):
-        radical = generators[parameters + n]
-        polynomial = polynomial.resultant(radical * radical - tower.radicands[n], tower.variables[parameters + n])
-        exponents = [int(e) for e in polynomial.term_content().monoms()[0][:parameters]]
-        monomial = tower.context.from_dict({tuple(exponents) + (0,) * len(tower.radicands): 1})
-        polynomial = polynomial / monomial
-        removed = [r + e for r, e in zip(removed, exponents, strict=True)]
-    return polynomial, tuple(removed)
+        content = _radical_content(polynomial, len(tower.radicands))
+        if not content.is_constant():
+            polynomial = polynomial / content
+            removed.append((content, 2 ** (n + 1)))
+        odd, even = divmod(polynomial, tower.radical(n))
+        polynomial = tower.multiply(even, even, n) - tower.multiply(tower.radicands[n], tower.multiply(odd, odd, n), n)
+    return polynomial, removed
+
+
+def _radical_content(polynomial: flint.fmpq_mpoly, radicals: int) -> flint.fmpq_mpoly:
+    """The gcd of the coefficients of ``polynomial`` as a polynomial in the first
+    ``radicals`` generators (a polynomial in the remaining ones, monic)."""
+    groups: dict[tuple, dict] = {}
+    for exponents, coefficient in polynomial.to_dict().items():
+        groups.setdefault(tuple(exponents[:radicals]), {})[(0,) * radicals + tuple(exponents[radicals:])] = coefficient
+    context = polynomial.context()
+    content = None
+    for terms in sorted(groups.values(), key=len):
+        coefficient = context.from_dict(terms)
+        content = coefficient if content is None else content.gcd(coefficient)
+        if content.is_constant():
+            break
+    return content if content is not None else context.constant(1)
+
+
+def _univariate(polynomial: flint.fmpq_mpoly) -> flint.fmpz_poly:
+    """A polynomial in the last generator only, as a primitive integer polynomial."""
+    coefficients = [flint.fmpq(0)] * (polynomial.degrees()[-1] + 1)
+    for exponents, coefficient in zip(polynomial.monoms(), polynomial.coeffs(), strict=True):
+        coefficients[exponents[-1]] = coefficient
+    return flint.fmpq_poly(coefficients).numer()
 
 
 def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> CharacteristicPolynomial:
@@ -234,15 +350,16 @@ def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> Charact
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method derives one-parameter polynomials so far")
     tower = radical_tower(scene, plan)
-    norm, (power,) = eliminate_radicals(tower.conditions[0], tower)
-    coefficients = [flint.fmpq(0)] * (norm.degrees()[0] + 1)
-    for exponents, coefficient in zip(norm.monoms(), norm.coeffs(), strict=True):
-        coefficients[exponents[0]] = coefficient
-    univariate = flint.fmpq_poly(coefficients)
+    norm, contents = eliminate_radicals(tower.conditions[0], tower)
     kept, dropped = [], []
-    _, factors = univariate.numer().factor()
-    if power:
-        factors.append((flint.fmpz_poly([0, 1]), power))
+    _, factors = _univariate(norm).factor()
+    for content, power in contents:
+        factors += [(factor, multiplicity * power) for factor, multiplicity in _univariate(content).factor()[1]]
+    merged: dict[tuple[int, ...], int] = {}
+    for factor, multiplicity in factors:
+        key = tuple(int(c) for c in factor.coeffs())
+        merged[key] = merged.get(key, 0) + multiplicity
+    factors = [(flint.fmpz_poly(list(key)), multiplicity) for key, multiplicity in merged.items()]
     for factor, multiplicity in factors:
         (kept if _is_genuine(factor, scene, plan) else dropped).append((factor, multiplicity))
     polynomial = flint.fmpz_poly([1])
