@@ -110,7 +110,7 @@ def run_solve(args: argparse.Namespace) -> int:
     rows = []
     for number, mode in enumerate(modes, 1):
         rows.append([str(number), *(f"{v:.6g}" for v in mode.parameters.values()),
-                     "".join("+" if s > 0 else "-" for s in mode.signs),
+                     "".join("+" if s > 0 else "-" if s < 0 else "0" for s in mode.signs),
                      *(f"({mode.joints[j][0]:.4f}, {mode.joints[j][1]:.4f})" for j in joints),
                      f"{mode.max_residual:.1e}"])
     widths = [max(len(header[c]), *(len(r[c]) for r in rows)) for c in range(len(header))]

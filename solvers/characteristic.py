@@ -154,12 +154,16 @@ class CharacteristicPolynomial:
         polynomial: primitive integer polynomial, positive leading coefficient.
         factors: its irreducible factors with multiplicities.
         extraneous: the irreducible factors of the norm that were dropped.
+        degenerate: those dropped factors at whose roots the plan is undefined (a base
+            distance vanishes: joints coincide), with the joint pairs found coincident;
+            the plan cannot tell whether they are assembly modes (thesis §5.1.3.2).
     """
 
     variable: str
     polynomial: flint.fmpz_poly
     factors: tuple[tuple[flint.fmpz_poly, int], ...]
     extraneous: tuple[tuple[flint.fmpz_poly, int], ...]
+    degenerate: tuple[tuple[flint.fmpz_poly, frozenset[frozenset[str]]], ...] = ()
 
     @property
     def degree(self) -> int:
@@ -360,20 +364,27 @@ def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> Charact
         key = tuple(int(c) for c in factor.coeffs())
         merged[key] = merged.get(key, 0) + multiplicity
     factors = [(flint.fmpz_poly(list(key)), multiplicity) for key, multiplicity in merged.items()]
+    degenerate = []
     for factor, multiplicity in factors:
-        (kept if _is_genuine(factor, scene, plan) else dropped).append((factor, multiplicity))
+        verdict = _is_genuine(factor, scene, plan)
+        (kept if verdict is True else dropped).append((factor, multiplicity))
+        if verdict not in (True, False):
+            degenerate.append((factor, verdict))
     polynomial = flint.fmpz_poly([1])
     for factor, multiplicity in kept:
         polynomial *= factor**multiplicity
     if polynomial.degree() > 0 and polynomial.coeffs()[-1] < 0:
         polynomial = -polynomial
-    return CharacteristicPolynomial(parameter_name(plan.parameters[0]), polynomial, tuple(kept), tuple(dropped))
+    return CharacteristicPolynomial(parameter_name(plan.parameters[0]), polynomial, tuple(kept), tuple(dropped),
+                                    tuple(degenerate))
 
 
-def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool:
+def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | frozenset[frozenset[str]]:
     """Whether one root of the irreducible ``factor`` solves the closure condition on
     some sign branch with every bilateration defined (base distances and the reference
-    distance non-zero). The plan is evaluated in complex ball arithmetic (flint acb), x and
+    distance non-zero). Where no branch confirms it but some could not be evaluated
+    because a base distance vanishes there, the plan cannot decide: the joint pairs
+    found coincident are returned instead (see :func:`baranov.solvers.exact.solve_exact`). The plan is evaluated in complex ball arithmetic (flint acb), x and
     y coordinates separately, since a complex parameter gives complex coordinates.
 
     A branch confirms the factor when the closure residual's ball contains 0 and is
@@ -389,10 +400,14 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool:
         for bits in TEST_BITS:
             flint.ctx.prec = bits
             root = factor.complex_roots()[0][0]
-            still = []
+            still, coincident = [], set()
             for signs in undecided:
-                residual, scale = _closure_residual(scene, plan, root, signs)
-                if residual is None or not residual.contains(0):
+                residual, scale, pair = _closure_residual(scene, plan, root, signs)
+                if residual is None:  # a base distance's ball contains 0: try more bits
+                    coincident.add(pair)
+                    still.append(signs)
+                    continue
+                if not residual.contains(0):
                     continue
                 if max(residual.real.rad(), residual.imag.rad()) < scale * flint.arb(2) ** (-bits // 8):
                     return True
@@ -400,15 +415,16 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool:
             if not still:
                 return False
             undecided = still
-        return False
+        return frozenset(coincident) if coincident else False
     finally:
         flint.ctx.prec = previous
 
 
-def _closure_residual(scene: Scene, plan: Plan, parameter: flint.acb, signs) -> tuple[flint.acb | None, flint.arb]:
+def _closure_residual(scene: Scene, plan: Plan, parameter: flint.acb,
+                      signs) -> tuple[flint.acb | None, flint.arb, frozenset[str] | None]:
     """s_{u,v}(computed) - s_{u,v}(known) on one branch at a complex parameter value (thesis
-    eq. 2.6 with coordinates as complex numbers), None where a bilateration is undefined;
-    and s_{u,v}(known)."""
+    eq. 2.6 with coordinates as complex numbers) and s_{u,v}(known); where a bilateration
+    is undefined (its base distance may vanish), None and the base's joint pair."""
     known = {pair: flint.acb(flint.fmpq(Fraction(v).numerator, Fraction(v).denominator))
              for pair, v in scene.known.items()}
     parameter_pair = frozenset(plan.parameters[0])
@@ -429,17 +445,17 @@ def _closure_residual(scene: Scene, plan: Plan, parameter: flint.acb, signs) -> 
     target = known[frozenset((u, v))]
     reference = distance(a, b)
     if reference.contains(0):
-        return None, target.real
+        return None, target.real, frozenset((a, b))
     free = iter(signs)
     for step in plan.steps:
         i, j = step.base
         s_ij, s_ik, s_jk = distance(i, j), distance(i, step.joint), distance(j, step.joint)
         if s_ij.contains(0):
-            return None, target.real
+            return None, target.real, frozenset((i, j))
         area = ((s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)).sqrt()
         sign = next(free) if step.free_sign else scene.orientation(step.triangle)
         real, imaginary = (s_ij + s_ik - s_jk) / (2 * s_ij), sign * area / (2 * s_ij)
         (xi, yi), (xj, yj) = points[i], points[j]
         points[step.joint] = (xi + real * (xj - xi) - imaginary * (yj - yi),
                               yi + real * (yj - yi) + imaginary * (xj - xi))
-    return distance(u, v, computed=True) - target, target.real
+    return distance(u, v, computed=True) - target, target.real, None

@@ -87,9 +87,10 @@ def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, br
         return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)  # a radicand was negative
     residual = 0.0
     for link in scene.links:
+        size = max(float(target) for target in link.squared_distances.values())
         for pair, target in link.squared_distances.items():
-            u, v = tuple(pair)
-            residual = max(residual, abs(abs(points[u] - points[v]) ** 2 - float(target)) / float(target))
+            u, v = tuple(pair)  # relative error; for coincident joints (0), relative to the link's size
+            residual = max(residual, abs(abs(points[u] - points[v]) ** 2 - float(target)) / (float(target) or size))
         triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
         if triangle is not None:
             i, j, k = (points[n] for n in triangle)

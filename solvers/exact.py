@@ -6,7 +6,10 @@ arithmetic").
    (:func:`baranov.solvers.characteristic.characteristic_polynomial`);
 2. isolate its real roots with certified enclosures (flint/arb);
 3. map every real root to the sign branches on which the radical closure condition holds
-   there, and build and verify the configurations like the numeric backend.
+   there, and build and verify the configurations like the numeric backend;
+4. at a real root where the plan itself is undefined — a bilateration's base joints
+   coincide, as at T = s1,5 = 0 in thesis §5.1.3.2 — solve again with another plan
+   (:mod:`baranov.solvers.coincidence`).
 
 Coupling degree 0 needs no polynomial: every branch is a candidate.
 """
@@ -22,6 +25,7 @@ from .characteristic import (
     ExactMethodError,
     characteristic_polynomial,
 )
+from .coincidence import with_coincident_modes
 from .configuration import assembly_modes, compile_scene, parameter_name
 from .modes import Solution
 from .scene import Scene
@@ -31,9 +35,10 @@ from .scene import Scene
 BRANCH_TOLERANCE = 1e-6
 
 
-def solve_exact(scene: Scene, plan: Plan | None = None) -> Solution:
+def solve_exact(scene: Scene, plan: Plan | None = None, *, degenerate_roots: bool = True) -> Solution:
     """All assembly modes of ``scene`` (coupling degree 0 or 1) by the exact method; the
-    result carries the characteristic polynomial."""
+    result carries the characteristic polynomial. ``degenerate_roots=False`` skips step 4
+    (used by step 4 itself)."""
     plan = plan or best_plan(scene.chain)
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
@@ -52,5 +57,12 @@ def solve_exact(scene: Scene, plan: Plan | None = None) -> Solution:
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 and 1 so far")
+    modes = assembly_modes(scene, compiled, candidates)
+    if polynomial is not None and degenerate_roots:
+        for factor, pairs in polynomial.degenerate:
+            roots = [float(root.real.mid()) for root, _ in factor.complex_roots() if root.imag == 0 and root.real >= 0]
+            if roots:
+                modes = with_coincident_modes(scene, plan, pairs, roots, modes,
+                                              lambda p: solve_exact(scene, p, degenerate_roots=False))
     return Solution("exact", plan.number_of_parameters, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, assembly_modes(scene, compiled, candidates), polynomial)
+                    plan.free_sign_triangles, modes, polynomial)

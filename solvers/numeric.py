@@ -29,12 +29,14 @@ mirrored. Modes found on several branches are reported once.
 from __future__ import annotations
 
 import math
+from itertools import combinations
 
 import numpy as np
 from baranov.closure import CompiledSystem, sign_branches
 from baranov.planner import Plan, best_plan
 from scipy.optimize import brentq, minimize_scalar
 
+from .coincidence import with_coincident_modes
 from .configuration import (
     RESIDUAL_TOLERANCE,
     assembly_modes,
@@ -60,14 +62,19 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000) -
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
         candidates = _one_parameter_roots(compiled, branches, distance_bound(scene) ** 2, samples)
+        candidates += _roots_at_critical_values(compiled, branches, _critical_values(scene, plan))
     elif degree == 2:
         upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
         candidates, (stalled, stalled_branches) = two_parameter_roots(compiled, branches, upper)
         candidates += _polished(scene, compiled, stalled, branches[stalled_branches])
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
+    modes = assembly_modes(scene, compiled, candidates)
+    if degree == 1:  # the sampled interval starts just above 0: modes with the parameter's joints coincident
+        modes = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], modes,
+                                      lambda other: solve_numeric(scene, other, samples))
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, assembly_modes(scene, compiled, candidates))
+                    plan.free_sign_triangles, modes)
 
 
 def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs: np.ndarray):
@@ -100,6 +107,33 @@ REFINEMENT = 400
 #: regression: tests/regressions/9-missed-2.json, a window 0.6 wide in a cell 7 wide).
 WINDOW_SAMPLES = 64
 WINDOW_DEPTH = 6
+
+
+def _critical_values(scene: Scene, plan: Plan) -> list[float]:
+    """Parameter values where a triangle of the plan with the parameter as one side and
+    two known sides d_a, d_b is flat: (d_a ± d_b)². There a radicand vanishes, the
+    feasible domain may end or shrink to a point, and a root may sit on it — the double
+    root T = 49 of thesis §5.1.3.1, where both free-sign triangles are flat and the
+    feasible domain is that single value, which sampling cannot find."""
+    parameter = frozenset(plan.parameters[0])
+    values = []
+    for step in plan.steps:
+        sides = [frozenset(pair) for pair in combinations(step.triangle, 2)]
+        if parameter in sides:
+            known = [scene.known.get(side) for side in sides if side != parameter]
+            if all(value is not None for value in known):
+                a, b = (math.sqrt(float(value)) for value in known)
+                values += [(a - b) ** 2, (a + b) ** 2]
+    return sorted(set(v for v in values if v > 0))
+
+
+def _roots_at_critical_values(compiled: CompiledSystem, branches: np.ndarray, values: list[float]):
+    """The (value, branch) pairs among the critical values where the closure residual
+    vanishes (relative 1e-9)."""
+    if not values:
+        return []
+    residuals = np.abs(compiled.residuals(np.array(values)[:, None], branches)[:, :, 0])
+    return [(np.array([values[n]]), branches[b]) for b, n in zip(*np.nonzero(residuals < 1e-9), strict=True)]
 
 
 def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: float, samples: int):

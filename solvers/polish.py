@@ -44,6 +44,7 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray) -
     first = np.array([u for u, _, _ in pairs])
     second = np.array([v for _, v, _ in pairs])
     target = np.array([t for _, _, t in pairs])
+    weight = np.where(target > 0, target, target.max())  # relative errors; coincident joints: to scale
     free = np.flatnonzero(~fixed)
     column = -np.ones(len(joints), int)
     column[free] = np.arange(len(free))
@@ -51,7 +52,7 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray) -
 
     def residuals(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         difference = p[:, first] - p[:, second]  # (K, E, 2)
-        return difference, (np.sum(difference**2, axis=-1) - target) / target
+        return difference, (np.sum(difference**2, axis=-1) - target) / weight
 
     difference, residual = residuals(points)
     size = np.abs(residual).max(axis=1)
@@ -63,7 +64,7 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray) -
         for end, sign in ((first, 2.0), (second, -2.0)):
             movable = column[end] >= 0
             jacobian[:, rows[movable], column[end][movable], :] = (sign * difference[active][:, movable]
-                                                                  / target[movable, None])
+                                                                  / weight[movable, None])
         jacobian = jacobian.reshape(active.size, len(pairs), 2 * len(free))
         normal = np.einsum("kei,kej->kij", jacobian, jacobian) + 1e-14 * np.eye(2 * len(free))
         gradient = np.einsum("kei,ke->ki", jacobian, residual[active])

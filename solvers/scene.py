@@ -202,10 +202,16 @@ def _embed(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], 
     return local
 
 
-def _require_positive(name: str, squared: Mapping[frozenset[str], Number]) -> None:
+def _require_positive(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], Number]) -> None:
+    """Squared distances are positive, except that two joints of a link with three or more
+    may coincide (0: coalescent attachments, thesis §5.1.3.3) as long as its first two
+    joints, which fix the link's own frame, do not."""
     for key, value in squared.items():
-        if value <= 0:
-            raise SceneError(f"link {name}: squared distance {','.join(sorted(key))} = {value} must be positive")
+        coalescent = value == 0 and len(joints) >= 3 and key != frozenset(joints[:2])
+        if value < 0 or (value == 0 and not coalescent):
+            raise SceneError(f"link {name}: squared distance {','.join(sorted(key))} = {value} must be positive"
+                             + (" (joints of a link with three or more may coincide, but not its first two)"
+                                if value == 0 and len(joints) >= 3 else ""))
 
 
 def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
@@ -252,13 +258,13 @@ def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
             if text not in ("ccw", "cw"):
                 raise SceneError(f"link {name}: \"orientation\" must be \"ccw\" or \"cw\" (of {', '.join(joints[:3])})")
             orientation = 1 if text == "ccw" else -1
-        _require_positive(name, squared)
+        _require_positive(name, joints, squared)
         local = _embed(name, joints, squared, orientation) if len(joints) >= 2 else {}
     else:
         raise SceneError(f"link {name}: \"joints\" must be a list of names or a map of coordinates")
     if len(joints) < 2 or len(set(joints)) != len(joints):
         raise SceneError(f"link {name}: needs at least two different joints")
-    _require_positive(name, squared)  # coordinates: coincident joints
+    _require_positive(name, joints, squared)  # coordinates: coincident joints
     for a, b, c in combinations(joints, 3):  # collinear joints are fine (a straight bar)
         sides = [float(squared[frozenset(p)]) for p in ((a, b), (a, c), (b, c))]
         if _triangle_area16(*sides) < -1e-9 * max(sides) ** 2:

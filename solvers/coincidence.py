@@ -1,0 +1,91 @@
+"""Assembly modes where a plan is undefined: two joints that a bilateration uses as its
+base coincide.
+
+A plan's bilateration Z_{i,j,k} divides by s_{i,j} (thesis eq. 2.7), so at a configuration
+with P_i = P_j the plan cannot place the next joint, and a root of the characteristic
+polynomial there can be neither confirmed nor ruled out by that plan. Thesis §5.1.3.2 has
+such a case: a 3-RPR robot whose characteristic polynomial has a quadruple root at
+T = s1,5 = 0, "that leads to two valid configurations", found there by two bilaterations
+that do not use P1 P5 as a base. Here the scene is solved again with the best plan none
+of whose bases (nor its reference) is a coincident pair, and its modes at the parameter
+values in question are kept.
+
+Two joints can coincide only if a known distance between them is 0 or absent, and every
+joint with known distances to both is equally far from each; the extra solve is skipped
+otherwise (for generic dimensions it always is).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable
+
+from baranov.planner import Plan, bilateration_plans
+
+from .configuration import distance_bound, parameter_name, same_mode
+from .modes import AssemblyMode, Solution
+from .scene import Scene
+
+#: How many of the best plans are searched for one defined where the joints coincide.
+ALTERNATIVE_PLANS = 50
+
+
+def coincidence_possible(scene: Scene, pair: frozenset[str]) -> bool:
+    """Whether the two joints of ``pair`` can coincide (see the module docstring).
+
+    Cost: O(number of known distances)."""
+    if pair in scene.known:
+        return scene.known[pair] == 0
+    u, v = tuple(pair)
+    for w in {joint for key in scene.known for joint in key} - pair:
+        to_u, to_v = scene.known.get(frozenset((u, w))), scene.known.get(frozenset((v, w)))
+        if to_u is not None and to_v is not None and to_u != to_v:
+            return False
+    return True
+
+
+def alternative_plan(scene: Scene, pairs: Iterable[frozenset[str]]) -> Plan | None:
+    """The best plan (of the first ALTERNATIVE_PLANS) with none of ``pairs`` as its
+    reference or as a bilateration base; None if there is none."""
+    pairs = set(pairs)
+    return next((plan for plan in bilateration_plans(scene.chain, ALTERNATIVE_PLANS)
+                 if not pairs & ({frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps})), None)
+
+
+def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[str]], values: list[float],
+                          modes: tuple[AssemblyMode, ...],
+                          solver: Callable[[Plan], Solution]) -> tuple[AssemblyMode, ...]:
+    """``modes`` and the modes at which ``plan``'s parameter (coupling degree 1) takes one
+    of ``values`` and the joints of ``pairs`` coincide, found by ``solver`` with an
+    alternative plan. The added modes carry ``plan``'s parameter and the orientation of
+    its free-sign triangles (0 where flat)."""
+    pairs = set(pairs)
+    if not all(coincidence_possible(scene, pair) for pair in pairs):
+        return modes
+    alternative = alternative_plan(scene, pairs)
+    if alternative is None:
+        return modes
+    found = list(modes)
+    (u, v), name = plan.parameters[0], parameter_name(plan.parameters[0])
+    scale = max(1.0, distance_bound(scene)) ** 2
+    for mode in solver(alternative).assembly_modes:
+        (xu, yu), (xv, yv) = mode.joints[u], mode.joints[v]
+        value = (xu - xv) ** 2 + (yu - yv) ** 2
+        closest = min(values, key=lambda r: abs(value - r))
+        if abs(value - closest) <= 1e-9 * scale and not any(same_mode(mode, other, scene) for other in found):
+            found.append(AssemblyMode({name: closest}, _branch_signs(mode, plan, scale), mode.joints, mode.max_residual))
+    found.sort(key=lambda m: (tuple(m.parameters.values()), m.signs))
+    return tuple(found)
+
+
+def _branch_signs(mode: AssemblyMode, plan: Plan, scale: float) -> tuple[int, ...]:
+    """The orientation of each free-sign triangle of ``plan`` in ``mode``: 0 where its
+    doubled area is below 1e-6 of the squared size, since at a coincidence the numeric
+    method places joints to about √ε of the size only (a tangency: thesis §5.1.3.2's
+    quadruple root)."""
+    signs = []
+    for i, j, k in plan.free_sign_triangles:
+        (xi, yi), (xj, yj), (xk, yk) = mode.joints[i], mode.joints[j], mode.joints[k]
+        cross = (xj - xi) * (yk - yi) - (yj - yi) * (xk - xi)
+        signs.append(0 if abs(cross) <= 1e-6 * scale else int(math.copysign(1, cross)))
+    return tuple(signs)
