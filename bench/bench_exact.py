@@ -37,7 +37,8 @@ def median(function, repeats: int) -> float:
 
 
 def sympy_elimination(name: str) -> float:
-    """The same resultant chain as :func:`eliminate_radicals`, in sympy; seconds."""
+    """Clearing the radicals of the same (normal-form) closure condition in sympy, by the
+    resultant chain Res_r(F, r² − Δ), outermost radical first; seconds."""
     scene = load_scene(EXAMPLES / f"{name}.json")
     tower = radical_tower(scene, best_plan(scene.chain))
     symbols = sympy.symbols(tower.variables)
@@ -85,7 +86,7 @@ def main() -> None:
         flint_time = median(lambda name=name: flint_elimination(name), args.repeats)
         print(f"clearing radicals, {name}: python-flint {flint_time:.4f} s; "
               f"sympy {sympy_with_timeout(name, args.sympy_timeout)}", flush=True)
-    for name in ("5-B1", "7-B1", "7-B2", "7-B3", "11-watt-baranov"):
+    for name in ("5-B1", "7-B1", "7-B2", "7-B3", "11-watt-baranov", "13-watt-baranov"):
         scene = load_scene(EXAMPLES / f"{name}.json")
         print(f"characteristic polynomial, {name}: median "
               f"{median(lambda scene=scene: characteristic_polynomial(scene), args.repeats):.3f} s", flush=True)

@@ -227,8 +227,10 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
     """Add the ends of the feasible domain (one per defined/undefined neighbour pair), and
     the defined samples the edge search made on the way, to the samples: f often turns
     quickly near an edge, and two roots between the last coarse sample and the edge show
-    no sign change there (tests/regressions/11-missed-21.json). Also return the edges with
-    their values (a root may sit on an edge)."""
+    no sign change there (tests/regressions/11-missed-21.json); a root 3e-7 from an edge at
+    s = 2811.6 changed sign only between the edge and the last sample before it
+    (tests/regressions/7-root-at-edge.json, found by the completeness test). Also return
+    the edges with their values (a root may sit on an edge)."""
     finite = np.isfinite(values)
     edges, extra_points, extra_values = [], [], []
     for i in np.flatnonzero(finite[:-1] != finite[1:]):
@@ -237,6 +239,9 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
         extra_values.append(seen_values)
         if edge is not None:
             edges.append((edge, float(sampled(np.array([edge]))[0])))
+    if edges:  # the edges are samples too: a root within 1e-10 (relative) of an edge changes sign only there
+        extra_points.append(np.array([edge for edge, _ in edges]))
+        extra_values.append(np.array([value for _, value in edges]))
     if not extra_points:
         return points, values, edges
     return (*_merge(points, values, np.concatenate(extra_points), np.concatenate(extra_values)), edges)
