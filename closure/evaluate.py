@@ -70,12 +70,16 @@ class CompiledSystem:
         lie between them even if no sample falls inside it."""
         return self._evaluate(parameter_values, signs)[2]
 
-    def failure_profile(self, parameter_values: np.ndarray, signs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`first_failures` and, where a step fails, its radicand relative to the
-        squared largest side (negative; NaN where all steps succeed). A window between two
-        values failing at the same step shows as a local maximum of that radicand."""
-        _, _, failures, radicands = self._evaluate(parameter_values, signs, profile=True)
-        return failures, radicands
+    def failure_profile(self, parameter_values: np.ndarray,
+                        signs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`first_failures`; where a step fails, its radicand relative to the squared
+        largest side (negative; NaN where all steps succeed); and the relative radicands of
+        the free-sign steps, shape (B, N, free), NaN where undefined. A window between two
+        values failing at the same step shows as a local maximum of that radicand; an
+        undefined gap between two defined values, as a local minimum of one free-sign
+        step's radicand."""
+        _, _, failures, radicands, margins = self._evaluate(parameter_values, signs, profile=True)
+        return failures, radicands, np.stack(margins, axis=-1) if margins else np.zeros((*failures.shape, 0))
 
     def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> dict[str, np.ndarray]:
         """M_k for every joint, point n on branch ``signs[n]``; shape (N,)."""
@@ -102,6 +106,7 @@ class CompiledSystem:
         matrices: dict[str, np.ndarray] = {a: np.zeros(shape, complex), b: np.ones(shape, complex)}
         failures = np.full(shape, len(self.plan.steps))
         radicands = np.full(shape, np.nan)
+        margins = []
         free = 0
         for index, step in enumerate(self.plan.steps):
             i, j = step.base
@@ -124,7 +129,9 @@ class CompiledSystem:
                     scale = np.maximum(np.maximum(s_ij, s_ik), s_jk) ** 2
                     radicand = ((s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)) / scale
                 radicands = np.where(newly, radicand, radicands)
-        return matrices, s_ref, failures, radicands
+                if step.free_sign:
+                    margins.append(radicand)
+        return matrices, s_ref, failures, radicands, margins
 
     def _distance(self, u: str, v: str, parameter, s_ref, matrices) -> np.ndarray:
         pair = frozenset((u, v))

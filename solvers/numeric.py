@@ -139,7 +139,7 @@ def _roots_at_critical_values(compiled: CompiledSystem, branches: np.ndarray, va
 def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: float, samples: int):
     grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
     table = compiled.residuals(grid[:, None], branches)[:, :, 0]
-    failures, radicands = compiled.failure_profile(grid[:, None], branches)
+    failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
     candidates = []
     for b, branch in enumerate(branches):
         def sampled(points: np.ndarray, branch=branch) -> np.ndarray:
@@ -151,7 +151,7 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
         def failing(points: np.ndarray, branch=branch) -> np.ndarray:
             return compiled.first_failures(points[:, None], branch[None, :])[0]
 
-        points, values = _with_windows(grid, table[b], failures[b], radicands[b], sampled, failing,
+        points, values = _with_windows(grid, table[b], failures[b], radicands[b], margins[b], sampled, failing,
                                        len(compiled.plan.steps))
         points, values, edges = _with_edges(points, values, sampled)
         roots = [edge for edge, value in edges if abs(value) < 1e-7]
@@ -181,13 +181,26 @@ def _radicand_bumps(codes: np.ndarray, radicands: np.ndarray, feasible: int) -> 
     return np.flatnonzero((inner < feasible) & left_ok & right_ok) + 1
 
 
-def _with_windows(grid, values, failures, radicands, sampled, failing, feasible):
+def _radicand_dips(codes: np.ndarray, margins: np.ndarray, feasible: int) -> np.ndarray:
+    """Indices i of defined samples between defined neighbours where some free-sign
+    step's radicand (``margins``, one column per step) is a local minimum: it may turn
+    negative between samples, an undefined gap with a domain edge (and a root next to it)
+    on each side (tests/regressions/9-gap-between-samples.json, found by the completeness
+    test)."""
+    inner = margins[1:-1]
+    defined = (codes[:-2] == feasible) & (codes[1:-1] == feasible) & (codes[2:] == feasible)
+    minimum = ((inner <= margins[:-2]) & (inner <= margins[2:])).any(axis=-1)
+    return np.flatnonzero(defined & minimum) + 1
+
+
+def _with_windows(grid, values, failures, radicands, margins, sampled, failing, feasible):
     """The grid plus dense samples wherever a feasible window may hide between samples:
     neighbours failing at different steps, or a local maximum of a failing radicand;
     refined level by level (all cells of a level in one vectorised evaluation)."""
     extra = []
     cells = [(grid[i], grid[i + 1]) for i in _window_cells(failures, feasible)]
     cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_bumps(failures, radicands, feasible)]
+    cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_dips(failures, margins, feasible)]
     for _ in range(WINDOW_DEPTH):
         if not cells:
             break
