@@ -38,9 +38,10 @@ from fractions import Fraction
 from itertools import product
 
 import flint
-from baranov.planner import Plan, best_plan
+from baranov.planner import Plan
 from flint.utils.flint_exceptions import DomainError
 
+from .coincidence import solvable_plan
 from .configuration import parameter_name
 from .modes import SolverError
 from .scene import Scene
@@ -88,35 +89,20 @@ class RadicalTower:
         """The generator r_{n+1} (``n`` counts from 0, innermost first)."""
         return self.context.gen(len(self.radicands) - 1 - n)
 
-    def parameter(self, n: int) -> flint.fmpq_mpoly:
-        """The generator t_{n+1}."""
-        return self.context.gen(len(self.radicands) + n)
-
-    def relation(self, n: int) -> flint.fmpq_mpoly:
-        """r_{n+1}² - Δ_{n+1} (``n`` counts from 0, innermost first)."""
-        return self.radical(n) ** 2 - self.radicands[n]
-
     def multiply(self, first: flint.fmpq_mpoly, second: flint.fmpq_mpoly, below: int | None = None) -> flint.fmpq_mpoly:
         """The product of two normal forms free of r_n for n > ``below`` (default: all
         radicals), in normal form."""
         count = len(self.radicands) if below is None else below
         return _multiply(first, second, [self.radical(n) for n in range(count)], self.radicands, count)
 
-    def normal_form(self, polynomial: flint.fmpq_mpoly, below: int | None = None) -> flint.fmpq_mpoly:
-        """``polynomial`` reduced modulo r_n² - Δ_n for the radicals r_1, …, r_below
-        (default: all)."""
-        count = len(self.radicands) if below is None else below
-        return _normal_form(polynomial, [self.relation(n) for n in range(count)])
-
-
-def _normal_form(polynomial: flint.fmpq_mpoly, relations) -> flint.fmpq_mpoly:
-    """Reduce modulo the relations r_n² - Δ_n (innermost first in ``relations``), the
-    outermost first: Δ_n only involves inner radicals, so reducing an inner one never
-    raises an outer one's degree again. Multivariate division by a relation whose leading
-    monomial is r_n² leaves a remainder of degree at most 1 in r_n."""
-    for relation in reversed(relations):
-        _, polynomial = divmod(polynomial, relation)
-    return polynomial
+    def normal_form(self, polynomial: flint.fmpq_mpoly) -> flint.fmpq_mpoly:
+        """``polynomial`` reduced modulo r_n² - Δ_n, outermost radical first: Δ_n only
+        involves inner radicals, so reducing an inner one never raises an outer one's
+        degree again. Multivariate division by a relation whose leading monomial is r_n²
+        leaves a remainder of degree at most 1 in r_n."""
+        for n in range(len(self.radicands) - 1, -1, -1):
+            _, polynomial = divmod(polynomial, self.radical(n) ** 2 - self.radicands[n])
+        return polynomial
 
 
 def _multiply(first: flint.fmpq_mpoly, second: flint.fmpq_mpoly, radicals, radicands,
@@ -213,14 +199,13 @@ def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
     radicals = generators[:len(free)][::-1]  # r_1, r_2, …
     radicands = []
     one = context.constant(1)
+    zero = context.constant(0)
 
     def mul(*factors: flint.fmpq_mpoly) -> flint.fmpq_mpoly:
         result = factors[0]
         for factor in factors[1:]:
             result = _multiply(result, factor, radicals, radicands)
         return result
-
-    zero = context.constant(0)
 
     def constant(value) -> flint.fmpq_mpoly:
         value = Fraction(value)
@@ -349,7 +334,7 @@ def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> Charact
     >>> characteristic_polynomial(scene).degree   # thesis §3.3.1: 14 assembly modes
     14
     """
-    plan = plan or best_plan(scene.chain)
+    plan = plan or solvable_plan(scene)
     if plan.number_of_parameters != 1:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method derives one-parameter polynomials so far")

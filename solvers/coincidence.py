@@ -13,6 +13,10 @@ values in question are kept.
 Two joints can coincide only if a known distance between them is 0 or absent, and every
 joint with known distances to both is equally far from each; the extra solve is skipped
 otherwise (for generic dimensions it always is).
+
+Joints that coincide by the scene's own dimensions (a link with a squared distance 0,
+coalescent attachments, thesis §5.1.3.3) must never be a base: :func:`solvable_plan`
+chooses the plan accordingly.
 """
 
 from __future__ import annotations
@@ -20,10 +24,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable
 
-from baranov.planner import Plan, bilateration_plans
+from baranov.planner import Plan, best_plan, bilateration_plans
 
-from .configuration import distance_bound, parameter_name, same_mode
-from .modes import AssemblyMode, Solution
+from .configuration import distance_bound, parameter_name, same_mode, sorted_modes
+from .modes import AssemblyMode, Solution, SolverError
 from .scene import Scene
 
 #: How many of the best plans are searched for one defined where the joints coincide.
@@ -52,6 +56,21 @@ def alternative_plan(scene: Scene, pairs: Iterable[frozenset[str]]) -> Plan | No
                  if not pairs & ({frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps})), None)
 
 
+def solvable_plan(scene: Scene) -> Plan:
+    """The best plan with no joint pair at known distance 0 as its reference or a base;
+    raises :class:`SolverError` (naming the pair) if none of the ALTERNATIVE_PLANS best
+    has that property."""
+    coincident = {pair for pair, value in scene.known.items() if value == 0}
+    if not coincident:
+        return best_plan(scene.chain)
+    plan = alternative_plan(scene, coincident)
+    if plan is None:
+        names = ", ".join(sorted(",".join(sorted(pair)) for pair in coincident))
+        raise SolverError(f"joints {names}: coincident (squared distance 0), and none of the {ALTERNATIVE_PLANS} "
+                          "best plans avoids them as a bilateration base")
+    return plan
+
+
 def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[str]], values: list[float],
                           modes: tuple[AssemblyMode, ...],
                           solver: Callable[[Plan], Solution]) -> tuple[AssemblyMode, ...]:
@@ -74,8 +93,7 @@ def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[st
         closest = min(values, key=lambda r: abs(value - r))
         if abs(value - closest) <= 1e-9 * scale and not any(same_mode(mode, other, scene) for other in found):
             found.append(AssemblyMode({name: closest}, _branch_signs(mode, plan, scale), mode.joints, mode.max_residual))
-    found.sort(key=lambda m: (tuple(m.parameters.values()), m.signs))
-    return tuple(found)
+    return sorted_modes(found)
 
 
 def _branch_signs(mode: AssemblyMode, plan: Plan, scale: float) -> tuple[int, ...]:

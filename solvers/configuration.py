@@ -57,8 +57,12 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates) -> tuple[
         mode = configuration(scene, compiled, np.asarray(values, float), np.asarray(branch))
         if mode.max_residual < RESIDUAL_TOLERANCE and not any(same_mode(mode, other, scene) for other in modes):
             modes.append(mode)
-    modes.sort(key=lambda m: (tuple(m.parameters.values()), m.signs))
-    return tuple(modes)
+    return sorted_modes(modes)
+
+
+def sorted_modes(modes) -> tuple[AssemblyMode, ...]:
+    """``modes`` by parameter values, then signs (the order every backend reports)."""
+    return tuple(sorted(modes, key=lambda m: (tuple(m.parameters.values()), m.signs)))
 
 
 def placed_from_ground(scene: Scene, matrices: dict[str, np.ndarray]) -> dict[str, np.ndarray]:

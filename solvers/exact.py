@@ -18,14 +18,14 @@ from __future__ import annotations
 
 import numpy as np
 from baranov.closure import sign_branches
-from baranov.planner import Plan, best_plan
+from baranov.planner import Plan
 
 from .characteristic import (
     CharacteristicPolynomial,
     ExactMethodError,
     characteristic_polynomial,
 )
-from .coincidence import with_coincident_modes
+from .coincidence import solvable_plan, with_coincident_modes
 from .configuration import assembly_modes, compile_scene, parameter_name
 from .modes import Solution
 from .scene import Scene
@@ -35,11 +35,11 @@ from .scene import Scene
 BRANCH_TOLERANCE = 1e-6
 
 
-def solve_exact(scene: Scene, plan: Plan | None = None, *, degenerate_roots: bool = True) -> Solution:
+def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = True) -> Solution:
     """All assembly modes of ``scene`` (coupling degree 0 or 1) by the exact method; the
-    result carries the characteristic polynomial. ``degenerate_roots=False`` skips step 4
+    result carries the characteristic polynomial. ``coincidences=False`` skips step 4
     (used by step 4 itself)."""
-    plan = plan or best_plan(scene.chain)
+    plan = plan or solvable_plan(scene)
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None
@@ -58,11 +58,15 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, degenerate_roots: boo
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 and 1 so far")
     modes = assembly_modes(scene, compiled, candidates)
-    if polynomial is not None and degenerate_roots:
-        for factor, pairs in polynomial.degenerate:
-            roots = [float(root.real.mid()) for root, _ in factor.complex_roots() if root.imag == 0 and root.real >= 0]
-            if roots:
-                modes = with_coincident_modes(scene, plan, pairs, roots, modes,
-                                              lambda p: solve_exact(scene, p, degenerate_roots=False))
+    if polynomial is not None and coincidences:
+        pairs, roots = set(), []
+        for factor, coincident in polynomial.degenerate:
+            real = [float(root.real.mid()) for root, _ in factor.complex_roots() if root.imag == 0 and root.real >= 0]
+            if real:
+                pairs |= coincident
+                roots += real
+        if roots:
+            modes = with_coincident_modes(scene, plan, pairs, roots, modes,
+                                          lambda other: solve_exact(scene, other, coincidences=False))
     return Solution("exact", plan.number_of_parameters, tuple(parameter_name(p) for p in plan.parameters),
                     plan.free_sign_triangles, modes, polynomial)

@@ -33,10 +33,10 @@ from itertools import combinations
 
 import numpy as np
 from baranov.closure import CompiledSystem, sign_branches
-from baranov.planner import Plan, best_plan
+from baranov.planner import Plan
 from scipy.optimize import brentq, minimize_scalar
 
-from .coincidence import with_coincident_modes
+from .coincidence import solvable_plan, with_coincident_modes
 from .configuration import (
     RESIDUAL_TOLERANCE,
     assembly_modes,
@@ -52,9 +52,12 @@ from .scene import Scene
 from .two_parameter import two_parameter_roots
 
 
-def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000) -> Solution:
-    """All assembly modes of ``scene`` (coupling degree 0, 1 or 2) by the numeric method."""
-    plan = plan or best_plan(scene.chain)
+def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *,
+                  coincidences: bool = True) -> Solution:
+    """All assembly modes of ``scene`` (coupling degree 0, 1 or 2) by the numeric method.
+    ``coincidences=False`` skips the modes where the parameter's joints coincide (solved
+    with another plan, :mod:`baranov.solvers.coincidence`; used by that solve itself)."""
+    plan = plan or solvable_plan(scene)
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
@@ -70,9 +73,9 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000) -
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
     modes = assembly_modes(scene, compiled, candidates)
-    if degree == 1:  # the sampled interval starts just above 0: modes with the parameter's joints coincident
+    if degree == 1 and coincidences:  # the sampled interval starts above 0: the parameter's joints coincident
         modes = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], modes,
-                                      lambda other: solve_numeric(scene, other, samples))
+                                      lambda other: solve_numeric(scene, other, samples, coincidences=False))
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
                     plan.free_sign_triangles, modes)
 

@@ -137,3 +137,30 @@ def test_example_vi_mirrored_triangles_both_methods_agree():
     the modes, the same for both methods."""
     exact, numeric = solve(scene("VI"), method="exact"), solve(scene("VI"))
     assert mode_values(exact) == mode_values(numeric) == [1.2229, 2.1317]
+
+
+def test_coincident_joints_are_never_a_bilateration_base():
+    from baranov.solvers.coincidence import solvable_plan
+
+    plan = solvable_plan(scene("III"))
+    bases = {frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps}
+    assert frozenset(("P1", "P3")) not in bases
+
+
+def test_zero_length_binary_link_and_coincident_frame_joints_are_refused(tmp_path):
+    import json
+    import subprocess
+    import sys
+
+    data = json.loads((EXAMPLES / "3-RPR-III.json").read_text())
+    data["links"][2]["squared_length"] = 0
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps(data))
+    run = subprocess.run([sys.executable, "-m", "baranov.cli", "solve", str(path)], capture_output=True, text=True)
+    assert run.returncode == 2 and run.stderr.count("\n") == 1
+    assert "link leg14: squared distance P1,P4 = 0 must be positive" in run.stderr
+    data = json.loads((EXAMPLES / "3-RPR-III.json").read_text())
+    data["links"][0]["joints"] = ["P1", "P3", "P2"]  # the coincident pair first: it would fix the link's frame
+    path.write_text(json.dumps(data))
+    run = subprocess.run([sys.executable, "-m", "baranov.cli", "solve", str(path)], capture_output=True, text=True)
+    assert run.returncode == 2 and "not its first two" in run.stderr
