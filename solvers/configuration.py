@@ -86,14 +86,29 @@ def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, br
     dimension (1.0 for a rigid link found mirrored; inf where it cannot be built)."""
     matrices, _ = compiled.matrices(values.reshape(1, -1), branch[None, :])
     points = {j: complex(p[0, 0]) for j, p in placed_from_ground(scene, matrices).items()}
-    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
     if not all(math.isfinite(p.real) and math.isfinite(p.imag) for p in points.values()):
         return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)  # a radicand was negative
+    residual = joint_residual(scene, points)
+    names = [parameter_name(p) for p in compiled.parameters]
+    return AssemblyMode(
+        {name: float(v) for name, v in zip(names, values, strict=True)},
+        tuple(int(s) for s in branch),
+        {j: (p.real, p.imag) for j, p in sorted(points.items())},
+        residual,
+    )
+
+
+def joint_residual(scene: Scene, points: dict[str, complex]) -> float:
+    """The largest relative error of joint positions (complex) on every link dimension
+    and ground joint; 1.0 if a rigid link is mirrored (its widest triangle reversed). For
+    coincident joints (target 0) the error is relative to the link's size. Shared by every
+    method, baselines included, so their residuals compare."""
+    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
     residual = 0.0
     for link in scene.links:
         size = max(float(target) for target in link.squared_distances.values())
         for pair, target in link.squared_distances.items():
-            u, v = tuple(pair)  # relative error; for coincident joints (0), relative to the link's size
+            u, v = tuple(pair)
             residual = max(residual, abs(abs(points[u] - points[v]) ** 2 - float(target)) / (float(target) or size))
         triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
         if triangle is not None:
@@ -103,13 +118,7 @@ def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, br
                 residual = max(residual, 1.0)  # mirrored rigid link
     for joint, target in world.items():
         residual = max(residual, abs(points[joint] - target) / max(abs(target), 1.0))
-    names = [parameter_name(p) for p in compiled.parameters]
-    return AssemblyMode(
-        {name: float(v) for name, v in zip(names, values, strict=True)},
-        tuple(int(s) for s in branch),
-        {j: (p.real, p.imag) for j, p in sorted(points.items())},
-        residual,
-    )
+    return residual
 
 
 def same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:

@@ -4,14 +4,19 @@ import doctest
 import importlib
 import pkgutil
 
+import baranov.baselines
 import baranov.cli
+import baranov.closure
 import baranov.enumerate
+import baranov.planner
+import baranov.solvers
 import baranov.topology
 import pytest
 
 MODULES = sorted(
     info.name
-    for package in (baranov.topology, baranov.enumerate, baranov.cli)
+    for package in (baranov.topology, baranov.enumerate, baranov.planner, baranov.closure, baranov.solvers,
+                    baranov.baselines, baranov.cli)
     for info in pkgutil.walk_packages(package.__path__, package.__name__ + ".")
     if not info.name.endswith("__main__")
 ) + ["baranov.topology", "baranov.enumerate"]
