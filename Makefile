@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed
 # nauty's geng for the brute-force cross-check; --no-deps keeps it to one ~40 MB wheel.
 GENG_WHEEL := passagemath-nauty==10.8.13
 
-.PHONY: catalog catalog-13 test test-slow bench clean
+.PHONY: catalog catalog-13 test test-slow bench bench-quick bench-timing clean
 
 $(STAMP): pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -26,7 +26,14 @@ test: $(STAMP)  ## default test suite (a few minutes)
 test-slow: $(STAMP)  ## long checks (about 25 min): 13-link enumeration by both methods, numeric vs exact completeness on 5400 random instances
 	$(BIN)/pytest -q -m slow
 
-bench: $(STAMP)  ## timing and memory medians
+bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (about 30 min)
+	$(BIN)/python bench/speed_vs_accuracy.py
+	$(BIN)/python bench/stability.py
+
+bench-quick: $(STAMP)  ## a smaller speed-vs-accuracy run (about 2 min; overwrites the same files)
+	$(BIN)/python bench/speed_vs_accuracy.py --quick
+
+bench-timing: $(STAMP)  ## timing and memory medians of each stage
 	$(BIN)/python bench/bench_enumeration.py
 	$(BIN)/python bench/bench_planner.py
 	$(BIN)/python bench/bench_numeric.py

@@ -198,6 +198,8 @@ def _substituted(polynomial: sympy.Poly, variable: sympy.Symbol, known: dict) ->
             if exponent and gen != variable:
                 term *= mpmath.mpf(known[gen]) ** exponent
         coefficients[polynomial.degree(variable) - monomial[position]] += term
+    while len(coefficients) > 1 and coefficients[0] == 0:  # the leading term vanished at ``known``
+        coefficients.pop(0)
     return coefficients
 
 
