@@ -5,7 +5,12 @@ rounded to floats. Used by ``bench/speed_vs_accuracy.py`` and the stability stud
 
 from .cartesian import cartesian_size, solve_cartesian
 from .float_polynomial import FloatPolynomialError, float_roots, solve_float_polynomial
-from .loop_equations import LoopEquationError, loop_equations, loop_size, solve_loop_equations
+from .loop_equations import (
+    LoopEquationError,
+    loop_equations,
+    loop_size,
+    solve_loop_equations,
+)
 
 __all__ = [
     "FloatPolynomialError", "LoopEquationError", "cartesian_size", "float_roots", "loop_equations", "loop_size",

@@ -12,7 +12,12 @@ from __future__ import annotations
 
 import numpy as np
 from baranov.solvers import Scene, Solution
-from baranov.solvers.configuration import distance_bound, joint_residual, same_mode, sorted_modes
+from baranov.solvers.configuration import (
+    distance_bound,
+    joint_residual,
+    same_mode,
+    sorted_modes,
+)
 from baranov.solvers.modes import AssemblyMode
 from scipy.optimize import least_squares
 
@@ -23,9 +28,8 @@ CONVERGED = 1e-10
 def cartesian_size(scene: Scene) -> tuple[int, int]:
     """(unknowns, equations) of the Cartesian formulation: two coordinates per joint off
     the ground link, one equation per known distance not within the ground link."""
-    free = _free_joints(scene)
-    equations = [pair for pair in scene.known if pair & set(free)]
-    return 2 * len(free), len(equations)
+    free, pairs = _unknowns_and_equations(scene)
+    return 2 * len(free), len(pairs)
 
 
 def solve_cartesian(scene: Scene, starts: int = 100, seed: int = 0) -> Solution:
@@ -40,10 +44,9 @@ def solve_cartesian(scene: Scene, starts: int = 100, seed: int = 0) -> Solution:
     >>> sum(m.max_residual < 1e-8 for m in modes), sum(m.max_residual == 1.0 for m in modes)  # modes, mirrored
     (6, 4)
     """
-    free = _free_joints(scene)
+    free, pairs = _unknowns_and_equations(scene)
     index = {joint: n for n, joint in enumerate(free)}
     world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
-    pairs = [tuple(sorted(pair)) for pair in scene.known if pair & set(free)]
     targets = np.array([float(scene.known[frozenset(p)]) for p in pairs])
     scale = np.where(targets > 0, targets, max(targets.max(), 1.0))
 
@@ -81,6 +84,8 @@ def solve_cartesian(scene: Scene, starts: int = 100, seed: int = 0) -> Solution:
     return Solution(f"cartesian-{starts}", 0, (), (), sorted_modes(modes))
 
 
-def _free_joints(scene: Scene) -> list[str]:
-    ground = set(scene.world)
-    return sorted({j for link in scene.links for j in link.joints} - ground)
+def _unknowns_and_equations(scene: Scene) -> tuple[list[str], list[tuple[str, str]]]:
+    """The joints off the ground link, and the joint pairs of known distance that involve
+    one of them."""
+    free = sorted({j for link in scene.links for j in link.joints} - set(scene.world))
+    return free, [tuple(sorted(pair)) for pair in scene.known if pair & set(free)]

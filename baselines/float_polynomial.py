@@ -22,7 +22,13 @@ import numpy as np
 from baranov.closure import sign_branches
 from baranov.solvers import Scene, Solution, SolverError, characteristic_polynomial
 from baranov.solvers.coincidence import solvable_plan
-from baranov.solvers.configuration import compile_scene, configuration, parameter_name, same_mode, sorted_modes
+from baranov.solvers.configuration import (
+    compile_scene,
+    configuration,
+    parameter_name,
+    same_mode,
+    sorted_modes,
+)
 from baranov.solvers.exact import BRANCH_TOLERANCE
 
 #: A computed root is taken as real when |imaginary part| ≤ REAL_TOLERANCE · |root|.
@@ -45,13 +51,10 @@ def float_roots(coefficients: list, digits: int | None = None) -> np.ndarray:
     leading = coefficients[0]
     monic = [c / leading for c in coefficients]
     if digits is None:
-        try:
-            values = [float(c) for c in monic]
+        try:  # float(Fraction) raises rather than returning inf
+            return np.roots([float(c) for c in monic])
         except OverflowError:
             raise FloatPolynomialError("a coefficient of the monic polynomial overflows float64") from None
-        if not np.all(np.isfinite(values)):
-            raise FloatPolynomialError("a coefficient of the monic polynomial overflows float64")
-        return np.roots(values)
     with mpmath.workdps(digits):
         values = [mpmath.mpf(c.numerator) / c.denominator for c in monic]
         try:
@@ -85,5 +88,5 @@ def solve_float_polynomial(scene: Scene, digits: int | None = None) -> Solution:
             mode = configuration(scene, compiled, np.array([root]), branches[b])
             if mode.joints and not any(same_mode(mode, other, scene) for other in modes):
                 modes.append(mode)
-    name = "float-polynomial" if digits is None else f"mpmath-polynomial-{digits}"
+    name = "float64-polynomial" if digits is None else f"mpmath{digits}-polynomial"
     return Solution(name, 1, (parameter_name(plan.parameters[0]),), plan.free_sign_triangles, sorted_modes(modes))

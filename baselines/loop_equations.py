@@ -121,7 +121,7 @@ def eliminate(equations: list[sympy.Poly], variables: list[sympy.Symbol]) -> lis
             if resultant.is_zero:
                 raise LoopEquationError(f"the resultant eliminating {variable} vanishes identically")
             reduced.append(resultant.sqf_part().primitive()[1])
-        current = [sympy.Poly(p.as_expr(), *variables, domain="QQ") for p in reduced + rest]
+        current = reduced + rest
         levels.append(current)
     return levels[::-1]
 
@@ -214,15 +214,10 @@ def _joint_positions(scene: Scene, placing: dict, values: dict) -> dict[str, com
     parent, vectors, world, variables = placing["parent"], placing["vectors"], placing["world"], placing["variables"]
     angles = {link: 2 * math.atan(values[symbol]) for link, symbol in variables.items()}
     points = {j: complex(float(x), float(y)) for j, (x, y) in world.items()}
-    placed = {scene.ground}
-    while len(placed) < len(scene.links):
-        for link, (entry, above) in parent.items():
-            if link in placed or above not in placed or entry not in points:
-                continue
-            rotation = complex(math.cos(angles[link]), math.sin(angles[link]))
-            ex, ey = vectors[link][entry]
-            for joint, (x, y) in vectors[link].items():
-                if joint != entry:
-                    points[joint] = points[entry] + rotation * complex(float(x - ex), float(y - ey))
-            placed.add(link)
+    for link, (entry, _) in parent.items():  # breadth-first order: the entry joint is placed
+        rotation = complex(math.cos(angles[link]), math.sin(angles[link]))
+        ex, ey = vectors[link][entry]
+        for joint, (x, y) in vectors[link].items():
+            if joint != entry:
+                points[joint] = points[entry] + rotation * complex(float(x - ex), float(y - ey))
     return points

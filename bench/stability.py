@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import signal
 import time
 from fractions import Fraction
 from pathlib import Path
@@ -25,7 +24,6 @@ import numpy as np
 from baranov.enumerate import baranov_trusses
 from baranov.solvers import (
     Scene,
-    SolverError,
     characteristic_polynomial,
     load_scene,
 )
@@ -41,36 +39,12 @@ from baranov.solvers.hard_instances import (
     perturbed_scene,
 )
 from baranov.solvers.instances import generic_integer_configuration, scene_of
-from speed_vs_accuracy import TimeLimit, _alarm, run
+from speed_vs_accuracy import outcome, timed_run
 
 ROOT = Path(__file__).resolve().parents[1]
 METHODS = ("numeric", "exact", "cartesian-100", "loop-equations", "float64-polynomial", "mpmath100-polynomial")
 #: Assembly modes the thesis reports for the 3-RPR examples of §5.1.3 (Figs. 5.2–5.7).
 THESIS_MODES = {"I": 1, "II": 4, "III": 4, "IV": 4, "V": 4, "VI": 2}
-
-
-def solved(method: str, scene: Scene, limit: float):
-    """(solution or None, seconds, status) of one method with a time limit."""
-    signal.signal(signal.SIGALRM, _alarm)
-    signal.setitimer(signal.ITIMER_REAL, limit)
-    start = time.perf_counter()
-    try:
-        return run(method, scene), time.perf_counter() - start, "ok"
-    except TimeLimit:
-        return None, time.perf_counter() - start, f"time limit {limit:g} s"
-    except SolverError as error:
-        return None, time.perf_counter() - start, f"refused: {error}"
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-
-
-def outcome(scene: Scene, solution, reference) -> tuple[int, int, int]:
-    """(found, missed, spurious) of a solution against reference modes."""
-    modes = solution.assembly_modes if solution else ()
-    found = sum(any(same_mode(r, m, scene) and m.max_residual < RESIDUAL_TOLERANCE for m in modes) for r in reference)
-    spurious = sum(1 for m in modes if m.max_residual >= RESIDUAL_TOLERANCE
-                   or not any(same_mode(m, r, scene) for r in reference))
-    return found, len(reference) - found, spurious
 
 
 def _cell(scene, result, reference) -> str:
@@ -86,9 +60,10 @@ def three_rpr(limit: float) -> list[str]:
              "|---|---:|---|" + "---|" * len(METHODS)]
     for name, expected in THESIS_MODES.items():
         scene = load_scene(ROOT / "examples" / f"3-RPR-{name}.json")
-        results = {m: solved(m, scene, limit) for m in METHODS}
-        kind = "exact" if results["exact"][0] else "numeric (exact refuses: irrational input)"
-        reference = results[kind.split()[0]][0].assembly_modes
+        results = {m: timed_run(m, scene, limit) for m in METHODS}
+        source = "exact" if results["exact"][0] else "numeric"
+        reference = results[source][0].assembly_modes
+        kind = source if source == "exact" else "numeric; exact fails: irrational input"
         cells = [_cell(scene, results[m], reference) for m in METHODS]
         lines.append(f"| {name} | {expected} | {len(reference)} ({kind}) | " + " | ".join(cells) + " |")
     return lines
@@ -109,7 +84,7 @@ def merging(limit: float) -> list[str]:
         separation = abs(near[0] - near[1]) / target if len(near) == 2 else math.nan
         cells = []
         for method in METHODS:
-            solution, _, status = solved(method, scene, limit)
+            solution, _, status = timed_run(method, scene, limit)
             if solution is None:
                 cells.append(status.split(":")[0])
                 continue
@@ -134,7 +109,7 @@ def families(limit: float) -> list[str]:
     lines = ["| case | reference modes (exact) | " + " | ".join(METHODS) + " |",
              "|---|---:|" + "---|" * len(METHODS)]
     for label, scene in cases:
-        results = {m: solved(m, scene, limit) for m in METHODS}
+        results = {m: timed_run(m, scene, limit) for m in METHODS}
         reference = results["exact"][0].assembly_modes
         lines.append(f"| {label} | {len(reference)} | " + " | ".join(
             _cell(scene, results[m], reference) for m in METHODS) + " |")
@@ -151,7 +126,7 @@ def conditioning(limit: float) -> list[str]:
     links = [(link.name, {j: coordinates[j] for j in link.joints}) for link in base_scene.links]
     links.sort(key=lambda item: item[0] != base_scene.ground)
     methods = ("numeric", "exact", "cartesian-100", "float64-polynomial", "mpmath100-polynomial")
-    original = {m: solved(m, base_scene, limit)[0] for m in methods}
+    original = {m: timed_run(m, base_scene, limit)[0] for m in methods}
     reference = original["exact"].assembly_modes
     scale = distance_bound(base_scene)
     lines = ["| ε | " + " | ".join(methods) + " |", "|---|" + "---|" * len(methods)]
@@ -162,7 +137,7 @@ def conditioning(limit: float) -> list[str]:
         for method in methods:
             before = [m for m in (original[method].assembly_modes if original[method] else ())
                       if m.max_residual < RESIDUAL_TOLERANCE and any(same_mode(m, r, base_scene) for r in reference)]
-            solution = solved(method, scene, limit)[0]
+            solution = timed_run(method, scene, limit)[0]
             after = [m for m in (solution.assembly_modes if solution else ()) if m.max_residual < RESIDUAL_TOLERANCE]
             ratios = [min(max(math.dist(m.joints[j], n.joints[j]) for j in m.joints) for n in after) / scale / epsilon
                       for m in before] if after else []
