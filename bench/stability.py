@@ -204,24 +204,29 @@ figure grows like 1/ε.
 
 {conditioning}
 
-## Known failures of the project's backends (pinned as expected failures in tests/test_stability.py)
+## Known failures of the project's backends (pinned in tests/test_stability.py)
 
 - Nearly coincident joints (a leg much shorter than the other sides of its bilateration
   triangle): the area radicand 4 s_ij s_ik − (s_ij + s_ik − s_jk)², evaluated in floats,
-  cancels, the joint placed with it misses the 1e-8 verification, and both backends lose
-  the modes that the Cartesian and loop-equation baselines find (rows "nearly coincident
-  joints" above). Kahan's stable form of Heron's formula (from the side lengths) fixed
-  the 1e-4 row when tried, but broke others: alone, the numeric backend lost one of the
-  modes of 3-RPR II at its exactly flat triangles; combined with the expanded form away
-  from cancellation, it lost the branch-boundary mode; and it made the numeric backend
-  about 18 % slower. It was reverted; a fix that keeps exactly flat triangles flat is
-  the next step.
-- A link 1e-8 of its size from collinear: the exact backend maps the certified roots to
-  sign branches with the same float closure evaluation and misses both modes, which the
-  numeric backend finds (row "height 1/10000000").
-- Modes closer than 1e-6 of the linkage's size are one mode for every method: that is
-  the tolerance at which modes are identified. The exact backend's certified roots still
-  tell them apart (section "Two assembly modes merging").
+  cancels. At a leg of 1e-4 the numeric backend's candidates miss the 1e-8 verification
+  by ~1e-6 and are polished on the link constraints (Gauss–Newton, as next to the domain
+  boundary); from a leg of 1e-6 on it finds no candidate at all (rows "nearly coincident
+  joints" above; pinned as an expected failure at 1e-5). The exact backend maps its
+  certified roots to branches and places the joints in ball arithmetic from the exact
+  dimensions, raising the precision while a branch is undecided or a configuration misses
+  the verification, and finds both modes down to a leg of 1e-8. Kahan's stable form of
+  Heron's formula, tried for the numeric backend, fixed the 1e-4 row but lost a mode of
+  3-RPR II at its exactly flat triangles, lost the branch-boundary mode when combined with
+  the expanded form, and made the backend about 18 % slower; it was not kept.
+- A link 1e-8 of its size from collinear: rounding the dimensions to floats moves the
+  roots of the float closure condition by ~4e-6 (relative); the numeric backend reports
+  configurations that hold every dimension to 1e-8 at those shifted parameter values. The
+  exact backend used to map its certified roots to branches with the float condition and
+  found no branch; it now does so in ball arithmetic (row "height 1/10000000").
+- Modes closer than 1e-6 of the linkage's size are one mode for the numeric backend and
+  the baselines: that is the tolerance at which they identify modes. The exact backend
+  reports one mode per certified real root and branch, so it keeps them apart as long as
+  the roots are distinct (section "Two assembly modes merging").
 """
 
 

@@ -387,7 +387,7 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
             root = factor.complex_roots()[0][0]
             still, coincident = [], set()
             for signs in undecided:
-                residual, scale, pair = _closure_residual(scene, plan, root, signs)
+                residual, scale, pair = closure_residual(scene, plan, root, signs)
                 if residual is None:  # a base distance's ball contains 0: try more bits
                     coincident.add(pair)
                     still.append(signs)
@@ -405,42 +405,64 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
         flint.ctx.prec = previous
 
 
-def _closure_residual(scene: Scene, plan: Plan, parameter: flint.acb,
-                      signs) -> tuple[flint.acb | None, flint.arb, frozenset[str] | None]:
-    """s_{u,v}(computed) - s_{u,v}(known) on one branch at a complex parameter value (thesis
-    eq. 2.6 with coordinates as complex numbers) and s_{u,v}(known); where a bilateration
-    is undefined (its base distance may vanish), None and the base's joint pair."""
+def placed_points(scene: Scene, plan: Plan, parameter: flint.acb, signs) -> tuple[
+        dict[str, tuple[flint.acb, flint.acb]] | None, flint.acb, frozenset[str] | None]:
+    """The plan's points at a complex parameter value on one sign branch, in complex ball
+    arithmetic at the current precision: (x, y) per joint in the reference frame M_a = 0,
+    M_b = 1 (thesis eq. 2.6–2.7, coordinates as complex numbers, since a complex parameter
+    gives complex coordinates), and the reference distance s_{a,b}. Where a bilateration is
+    undefined (its base distance's ball contains 0), None and the base's joint pair.
+
+    Cost: O(steps) ball operations."""
     known = {pair: flint.acb(flint.fmpq(Fraction(v).numerator, Fraction(v).denominator))
              for pair, v in scene.known.items()}
     parameter_pair = frozenset(plan.parameters[0])
     a, b = plan.reference
     points = {a: (flint.acb(0), flint.acb(0)), b: (flint.acb(1), flint.acb(0))}
+    reference = flint.acb(1)
 
-    def distance(u: str, v: str, computed: bool = False) -> flint.acb:
+    def distance(u: str, v: str) -> flint.acb:
         pair = frozenset((u, v))
-        if pair in known and not computed:
+        if pair in known:
             return known[pair]
         if pair == parameter_pair:
             return parameter
-        (xu, yu), (xv, yv) = points[u], points[v]
-        return ((xv - xu) ** 2 + (yv - yu) ** 2) * reference
+        return computed_distance(points, u, v, reference)
 
-    reference = flint.acb(1)
-    u, v = plan.closure_pairs[0]
-    target = known[frozenset((u, v))]
     reference = distance(a, b)
     if reference.contains(0):
-        return None, target.real, frozenset((a, b))
+        return None, reference, frozenset((a, b))
     free = iter(signs)
     for step in plan.steps:
         i, j = step.base
         s_ij, s_ik, s_jk = distance(i, j), distance(i, step.joint), distance(j, step.joint)
         if s_ij.contains(0):
-            return None, target.real, frozenset((i, j))
+            return None, reference, frozenset((i, j))
         area = ((s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)).sqrt()
         sign = next(free) if step.free_sign else scene.orientation(step.triangle)
         real, imaginary = (s_ij + s_ik - s_jk) / (2 * s_ij), sign * area / (2 * s_ij)
         (xi, yi), (xj, yj) = points[i], points[j]
         points[step.joint] = (xi + real * (xj - xi) - imaginary * (yj - yi),
                               yi + real * (yj - yi) + imaginary * (xj - xi))
-    return distance(u, v, computed=True) - target, target.real, None
+    return points, reference, None
+
+
+def computed_distance(points: dict[str, tuple[flint.acb, flint.acb]], u: str, v: str,
+                      reference: flint.acb) -> flint.acb:
+    """s_{u,v} = |M_v - M_u|² s_{a,b} from the points of :func:`placed_points` (x and y
+    squared separately: complex coordinates)."""
+    (xu, yu), (xv, yv) = points[u], points[v]
+    return ((xv - xu) ** 2 + (yv - yu) ** 2) * reference
+
+
+def closure_residual(scene: Scene, plan: Plan, parameter: flint.acb,
+                      signs) -> tuple[flint.acb | None, flint.arb, frozenset[str] | None]:
+    """s_{u,v}(computed) - s_{u,v}(known) on one branch at a complex parameter value, and
+    s_{u,v}(known); where a bilateration is undefined, None and the base's joint pair."""
+    u, v = plan.closure_pairs[0]
+    known = Fraction(scene.known[frozenset((u, v))])
+    target = flint.arb(flint.fmpq(known.numerator, known.denominator))
+    points, reference, pair = placed_points(scene, plan, parameter, signs)
+    if points is None:
+        return None, target, pair
+    return computed_distance(points, u, v, reference) - target, target, None

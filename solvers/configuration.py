@@ -12,10 +12,17 @@ from baranov.planner import Plan
 from baranov.topology import thesis_subscript
 
 from .modes import AssemblyMode
+from .polish import polish_configurations
 from .scene import Scene
 
 #: A candidate is an assembly mode when every link dimension holds to this (relative).
 RESIDUAL_TOLERANCE = 1e-8
+
+#: A candidate whose configuration misses RESIDUAL_TOLERANCE but holds to this is polished
+#: on the link constraints first: where a triangle of the plan is very short or very flat,
+#: the float radicand loses digits to cancellation (joints 1e-4 apart among sides ~10:
+#: residual ~1e-6, docs/stability.md) although the candidate is next to a true mode.
+POLISH_LIMIT = 1e-3
 
 
 def parameter_name(pair: tuple[str, str]) -> str:
@@ -55,6 +62,8 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates) -> tuple[
     modes: list[AssemblyMode] = []
     for values, branch in candidates:
         mode = configuration(scene, compiled, np.asarray(values, float), np.asarray(branch))
+        if RESIDUAL_TOLERANCE <= mode.max_residual < POLISH_LIMIT:
+            mode = polished_mode(scene, compiled, mode)
         if mode.max_residual < RESIDUAL_TOLERANCE and not any(same_mode(mode, other, scene) for other in modes):
             modes.append(mode)
     return sorted_modes(modes)
@@ -96,6 +105,18 @@ def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, br
         {j: (p.real, p.imag) for j, p in sorted(points.items())},
         residual,
     )
+
+
+def polished_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -> AssemblyMode:
+    """``mode`` polished on the link constraints (:func:`polish_configurations`), with its
+    parameters and free-sign branch read back from the polished configuration."""
+    joints = sorted(mode.joints)
+    points, _ = polish_configurations(scene, joints, np.array([[mode.joints[j] for j in joints]]))
+    at = {j: complex(*points[0, n]) for n, j in enumerate(joints)}
+    parameters = {parameter_name((u, v)): abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters}
+    signs = tuple(1 if ((at[j] - at[i]).conjugate() * (at[k] - at[i])).imag > 0 else -1
+                  for i, j, k in compiled.free_triangles)
+    return AssemblyMode(parameters, signs, {j: (p.real, p.imag) for j, p in at.items()}, joint_residual(scene, at))
 
 
 def joint_residual(scene: Scene, points: dict[str, complex]) -> float:

@@ -6,7 +6,11 @@ arithmetic").
    (:func:`baranov.solvers.characteristic.characteristic_polynomial`);
 2. isolate its real roots with certified enclosures (flint/arb);
 3. map every real root to the sign branches on which the radical closure condition holds
-   there, and build and verify the configurations like the numeric backend;
+   there, in ball arithmetic (flint arb) from the exact dimensions, and build the
+   configurations from the same balls; verify them like the numeric backend. (Evaluating
+   the condition in floats instead lost both modes of a pentad whose platform is 1e-8 of
+   its width from collinear: rounding the dimensions moves the float condition's roots
+   by ~4e-6 there, docs/stability.md);
 4. at a real root where the plan itself is undefined — a bilateration's base joints
    coincide, as at T = s1,5 = 0 in thesis §5.1.3.2 — solve again with another plan
    (:mod:`baranov.solvers.coincidence`).
@@ -16,6 +20,9 @@ Coupling degree 0 needs no polynomial: every branch is a candidate.
 
 from __future__ import annotations
 
+import math
+
+import flint
 import numpy as np
 from baranov.closure import sign_branches
 from baranov.planner import Plan
@@ -23,16 +30,32 @@ from baranov.planner import Plan
 from .characteristic import (
     CharacteristicPolynomial,
     ExactMethodError,
+    closure_residual,
     characteristic_polynomial,
+    placed_points,
 )
 from .coincidence import solvable_plan, with_coincident_modes
-from .configuration import assembly_modes, compile_scene, parameter_name
-from .modes import Solution
+from .configuration import (
+    RESIDUAL_TOLERANCE,
+    assembly_modes,
+    compile_scene,
+    joint_residual,
+    parameter_name,
+    placed_from_ground,
+    same_mode,
+    sorted_modes,
+)
+from .modes import AssemblyMode, Solution
 from .scene import Scene
 
-#: A branch is tried for a real root when its closure residual there is below this
-#: (relative; the configuration is then verified to 1e-8 on every link dimension).
+#: A branch is a candidate at a real root when its closure residual's ball there contains
+#: 0 and is narrower than this (relative; the configuration is then verified to 1e-8 on
+#: every link dimension).
 BRANCH_TOLERANCE = 1e-6
+
+#: Precisions (bits) at which a real root and its branch residuals are evaluated, in turn,
+#: while some branch is undecided.
+ROOT_BITS = (64, 256, 1024)
 
 
 def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = True) -> Solution:
@@ -40,24 +63,16 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     result carries the characteristic polynomial. ``coincidences=False`` skips step 4
     (used by step 4 itself)."""
     plan = plan or solvable_plan(scene)
-    compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None
     if plan.number_of_parameters == 0:
-        candidates = [(np.zeros(0), branch) for branch in branches]
+        modes = assembly_modes(scene, compile_scene(scene, plan), [(np.zeros(0), branch) for branch in branches])
     elif plan.number_of_parameters == 1:
         polynomial = characteristic_polynomial(scene, plan)
-        roots = np.array([float(root.mid()) for root in polynomial.real_roots()])
-        roots = np.unique(roots[roots > 0])
-        candidates = []
-        if roots.size:
-            residuals = np.abs(compiled.residuals(roots[:, None], branches)[:, :, 0])
-            for b, n in zip(*np.nonzero(residuals < BRANCH_TOLERANCE), strict=True):
-                candidates.append((roots[n:n + 1], branches[b]))
+        modes = modes_at_real_roots(scene, plan, polynomial, branches)
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 and 1 so far")
-    modes = assembly_modes(scene, compiled, candidates)
     if polynomial is not None and coincidences:
         pairs, roots = set(), []
         for factor, coincident in polynomial.degenerate:
@@ -70,3 +85,74 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
                                           lambda other: solve_exact(scene, other, coincidences=False))
     return Solution("exact", plan.number_of_parameters, tuple(parameter_name(p) for p in plan.parameters),
                     plan.free_sign_triangles, modes, polynomial)
+
+
+def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
+                        branches: np.ndarray) -> tuple[AssemblyMode, ...]:
+    """The verified assembly modes at the positive real roots of ``polynomial``.
+
+    Each root is enclosed at ROOT_BITS[0] bits and every branch's closure residual is
+    evaluated over the enclosure in ball arithmetic from the exact dimensions
+    (:func:`~baranov.solvers.characteristic.placed_points`): a branch whose ball excludes 0
+    is ruled out (rigorously); where the ball contains 0 and is narrower than
+    BRANCH_TOLERANCE of the closure distance, the configuration (the balls' midpoints) is
+    built and verified to RESIDUAL_TOLERANCE on every link dimension. Branches still
+    undecided, or whose configuration fails the verification (joints 1e-5 apart place
+    too coarsely at 64 bits), are evaluated again with a tighter root at the next
+    precision. Modes at distinct roots are distinct (their parameter differs), however
+    close; at one root, branches that place every joint alike (a flat free-sign triangle)
+    are one mode.
+
+    Cost: O(real roots × 2^m × steps) ball operations (m free-sign triangles), plus a
+    root isolation per precision used."""
+    name = parameter_name(plan.parameters[0])
+    modes: list[AssemblyMode] = []
+    previous = flint.ctx.prec
+    try:
+        for factor, _ in polynomial.factors:
+            undecided = {index: [tuple(int(s) for s in b) for b in branches]
+                         for index in range(sum(1 for root, _ in factor.complex_roots() if root.imag == 0))}
+            found: dict[int, list[AssemblyMode]] = {index: [] for index in undecided}
+            for bits in ROOT_BITS:
+                if not undecided:
+                    break
+                flint.ctx.prec = bits
+                roots = sorted((root.real for root, _ in factor.complex_roots() if root.imag == 0),
+                               key=lambda r: float(r.mid()))
+                for index, signs_list in list(undecided.items()):
+                    root, still = roots[index], []
+                    if not root > 0:
+                        del undecided[index]
+                        continue
+                    for signs in signs_list:
+                        residual, target, _ = closure_residual(scene, plan, flint.acb(root), signs)
+                        if residual is None or not residual.contains(0):
+                            continue
+                        mode = None
+                        if max(residual.real.rad(), residual.imag.rad()) <= BRANCH_TOLERANCE * target:
+                            mode = _ball_configuration(scene, plan, root, signs, name)
+                        if mode is None or mode.max_residual >= RESIDUAL_TOLERANCE:
+                            still.append(signs)  # too wide, or placed too coarsely: more bits
+                        elif not any(same_mode(mode, other, scene) for other in found[index]):
+                            found[index].append(mode)
+                    if still:
+                        undecided[index] = still
+                    else:
+                        del undecided[index]
+            modes += [mode for at_root in found.values() for mode in at_root]
+    finally:
+        flint.ctx.prec = previous
+    return sorted_modes(modes)
+
+
+def _ball_configuration(scene: Scene, plan: Plan, root: flint.arb, signs: tuple[int, ...],
+                        name: str) -> AssemblyMode:
+    """The configuration at a real root on one branch, from ball-arithmetic points."""
+    points, _, _ = placed_points(scene, plan, flint.acb(root), signs)
+    matrices = {joint: np.array([complex(float(x.real.mid()), float(y.real.mid()))])
+                for joint, (x, y) in points.items()}
+    placed = {joint: complex(value[0]) for joint, value in placed_from_ground(scene, matrices).items()}
+    if not all(math.isfinite(p.real) and math.isfinite(p.imag) for p in placed.values()):
+        return AssemblyMode({}, signs, {}, math.inf)
+    return AssemblyMode({name: float(root.mid())}, signs,
+                        {j: (p.real, p.imag) for j, p in sorted(placed.items())}, joint_residual(scene, placed))
