@@ -24,10 +24,12 @@ from pathlib import Path
 
 from baranov.closure import closure_system
 from baranov.enumerate import baranov_link_graphs
+from baranov.enumerate.appendix_a import appendix_a_labelling, link_pairs_required, names_by_closure_conditions
 from baranov.enumerate.crosscheck import baranov_link_graphs_by_filter, find_geng
 from baranov.enumerate.literature import (
     APPENDIX_A_ASSEMBLY_MODES,
     name_by_invariants,
+    nine_link_signature,
     thesis_joint_names,
     thesis_name,
 )
@@ -37,6 +39,7 @@ from baranov.planner import best_plan
 from baranov.solvers.configuration import parameter_name
 from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology import (
+    KinematicChain,
     adjacency_masks,
     automorphism_group,
     chain_from_link_graph,
@@ -79,12 +82,43 @@ ASSEMBLY_MODES_MAX_LINKS = 9
 Progress = Callable[[str], None]
 
 
+def nine_link_name(chain: KinematicChain, identifier: str,
+                   signature: tuple[int, int, bool]) -> tuple[str, str | None, dict[str, str] | None]:
+    """(name, evidence, {joint: thesis joint}) of a nine-link truss that is not isomorphic
+    to a recorded one: the thesis name whose Appendix A closure conditions fit it
+    (:func:`~baranov.enumerate.appendix_a.appendix_a_labelling`) among those with its
+    (assembly modes, coupling degree, planarity), when exactly one does; else the name
+    those invariants alone single out; else the project id."""
+    count, coupling, planar = signature
+    invariants = (f"{count} assembly modes (Appendix A), coupling degree {coupling} (§3.4.2) and a "
+                  f"{'planar' if planar else 'non-planar (§3.4.1)'} link graph")
+    fitting = [n for n in names_by_closure_conditions(chain) if nine_link_signature(n) == signature]
+    by_invariants = name_by_invariants(count, coupling, planar)
+    if len(fitting) == 1:
+        name = fitting[0]
+        on_link, off_link = link_pairs_required(name)
+        labelling = {joint: thesis for thesis, joint in appendix_a_labelling(chain, name).items()}
+        evidence = (f"thesis Appendix A closure conditions of {name}: under the joint labelling "
+                    f"thesis_joint_names, the {len(on_link)} distances they take as known are link dimensions "
+                    f"and their {len(off_link)} parameters and computed distances are not; among the thesis "
+                    f"trusses with {invariants}, only {name}'s conditions fit")
+        if by_invariants == name:
+            evidence += f"; it is also the only thesis truss with {invariants}"
+        if len(labelling) < len(chain.joints):
+            evidence += f" (the conditions mention {len(labelling)} of the {len(chain.joints)} joints, which alone are named)"
+        return name, evidence, {joint.name: labelling[joint.name] for joint in chain.joints if joint.name in labelling}
+    if by_invariants:
+        return by_invariants, f"the only nine-link thesis truss with {invariants}", None
+    return identifier, None, None
+
+
 def truss_entry(item: tuple[str, str]) -> dict:
     """The catalog object of one truss, from its project id and canonical graph6.
 
     ``name`` is the thesis name where the truss is isomorphic to one recorded in
-    :mod:`baranov.enumerate.literature` (``name_evidence`` says where it was read),
-    otherwise the project id.
+    :mod:`baranov.enumerate.literature`, or for nine links where the Appendix A closure
+    conditions or invariants single it out (:func:`nine_link_name`); ``name_evidence``
+    says how. Otherwise the project id.
     """
     identifier, graph6 = item
     chain = chain_from_link_graph(graph6)
@@ -105,20 +139,16 @@ def truss_entry(item: tuple[str, str]) -> dict:
                     else f"not derived: more than {ASSEMBLY_MODES_MAX_LINKS} links")
     count, planar = realization_count(chain), is_planar(chain)
     name, name_evidence = identifier, None
+    joint_names = thesis_joint_names(chain, published) if published else None
     if published:
         name, name_evidence = published.name, f"isomorphic to the truss of {published.source}"
     elif chain.number_of_links == 9:
-        by_invariants = name_by_invariants(count, plan.number_of_parameters, planar)
-        if by_invariants:
-            name = by_invariants
-            name_evidence = (f"the only nine-link thesis truss with {count} assembly modes (Appendix A), coupling "
-                             f"degree {plan.number_of_parameters} (§3.4.2) and a "
-                             f"{'planar' if planar else 'non-planar (§3.4.1)'} link graph")
+        name, name_evidence, joint_names = nine_link_name(chain, identifier, (count, plan.number_of_parameters, planar))
     return {
         "id": identifier,
         "name": name,
         "name_evidence": name_evidence,
-        "thesis_joint_names": thesis_joint_names(chain, published) if published else None,
+        "thesis_joint_names": joint_names,
         "link_graph6": graph6,
         "links": chain.number_of_links,
         "joints": {joint.name: list(joint.links) for joint in chain.joints},
@@ -312,7 +342,7 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
         published = sorted(APPENDIX_A_ASSEMBLY_MODES.values())
         lines += ["", "Thesis Appendix A lists the assembly modes of the 28 nine-link trusses 9/B1-9/B28; as a "
                   "multiset they " + ("equal" if ours == published else "DIFFER from") + " the realization counts above.",
-                  "", "Nine-link thesis names identified so far (`name_evidence` in the catalog says how): "
+                  "", "Nine-link thesis names given (`name_evidence` in the catalog says how each was identified): "
                   + ", ".join(sorted((e["name"] for e in catalogs[9] if e["name"].startswith("9/B")),
                                      key=lambda n: int(n[3:]))) + "."]
     lines += ["", "## Where this differs from the literature", "", *DISCREPANCY_NOTE, ""]

@@ -152,7 +152,7 @@ def test_show_latex_catalog_id_graph6_and_file(tmp_path):
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["9/B5"], "9/B5: no such truss in the catalog"),
+        (["9/B29"], "9/B29: no such truss in the catalog"),
         (["zzz"], "graph6 'zzz': not a valid graph6 string"),
         (["5/B1", "--reference", "P1,P9"], "joint P9: no such joint in this chain"),
         (["5/B1", "--reference", "P1"], "--reference P1: expected two joint names"),
