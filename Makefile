@@ -26,7 +26,7 @@ test: $(STAMP)  ## default test suite (a few minutes)
 test-slow: $(STAMP)  ## long checks (about 25 min): 13-link enumeration by both methods, numeric vs exact completeness on 5400 random instances
 	$(BIN)/pytest -q -m slow
 
-bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (about 30 min)
+bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (19 min 49 s measured, 2 cores)
 	$(BIN)/python bench/speed_vs_accuracy.py
 	$(BIN)/python bench/stability.py
 

@@ -5,7 +5,7 @@ Writes ``docs/bench/results.csv`` (one row per method and instance),
 ``docs/bench/speed-vs-accuracy.png`` and ``docs/benchmarks.md`` (medians per method and
 link count). Every number in the document comes from this run.
 
-    python bench/speed_vs_accuracy.py [--quick] [--workers 2] [--time-limit 120]
+    python bench/speed_vs_accuracy.py [--quick] [--workers 2] [--time-limit 60]
 
 Methods: ``numeric`` and ``exact`` (the project), ``cartesian-N`` (least squares from N
 random starts), ``loop-equations`` (sympy resultants), ``float64-polynomial`` and
@@ -356,7 +356,7 @@ def main() -> None:
     args = parser.parse_args()
     args.repeats = args.repeats or (1 if args.quick else 3)
     args.instances = args.instances or (1 if args.quick else 3)
-    args.time_limit = args.time_limit or (20.0 if args.quick else 120.0)
+    args.time_limit = args.time_limit or (20.0 if args.quick else 60.0)
     start = time.perf_counter()
     work = tasks(args.quick, args.repeats, args.time_limit, args.instances)
     rows: list[dict] = []
