@@ -37,7 +37,7 @@ bench-timing: $(STAMP)  ## timing and memory medians of each stage
 	$(BIN)/python bench/bench_enumeration.py
 	$(BIN)/python bench/bench_planner.py
 	$(BIN)/python bench/bench_numeric.py
-	$(BIN)/python bench/bench_exact.py
+	$(BIN)/python bench/bench_exact.py --coupling-two
 
 clean:
 	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis

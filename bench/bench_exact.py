@@ -4,7 +4,7 @@ and the time to a characteristic polynomial. Medians of ``--repeats`` runs, one 
 Targets (issue 5, 2-core machine): 7-link ≤ 0.5 s; 9-link coupling-1 ≤ 10 s; 13-link
 Watt–Baranov ≤ 60 s; 9/B28 ≤ 15 min.
 
-    python bench/bench_exact.py [--repeats 3] [--sympy-timeout 600]
+    python bench/bench_exact.py [--repeats 3] [--sympy-timeout 600] [--coupling-two]
 """
 
 from __future__ import annotations
@@ -22,6 +22,8 @@ from baranov.enumerate import baranov_trusses
 from baranov.planner import best_plan, coupling_degree
 from baranov.solvers import characteristic_polynomial, load_scene
 from baranov.solvers.characteristic import eliminate_radicals, radical_tower
+from baranov.solvers.coincidence import solvable_plan
+from baranov.solvers.coupling_two import characteristic_polynomial_two
 from baranov.solvers.instances import generic_integer_configuration, scene_of
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -81,6 +83,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--sympy-timeout", type=float, default=600)
+    parser.add_argument("--coupling-two", action="store_true", help="also 9/B28 (minutes)")
     args = parser.parse_args()
     for name in ("5-B1", "7-B1"):
         flint_time = median(lambda name=name: flint_elimination(name), args.repeats)
@@ -96,6 +99,11 @@ def main() -> None:
     times = [median(lambda s=s: characteristic_polynomial(s), 1) for s in scenes]
     print(f"characteristic polynomial, the 24 coupling-1 trusses of 9 links (one random instance each): "
           f"median {statistics.median(times):.2f} s, max {max(times):.2f} s", flush=True)
+    if args.coupling_two:
+        scene = load_scene(EXAMPLES / "9-B28.json")
+        plan = solvable_plan(scene)
+        seconds = median(lambda: characteristic_polynomial_two(scene, plan), 1)
+        print(f"characteristic polynomial, 9-B28 (coupling degree 2), one run: {seconds:.1f} s", flush=True)
 
 
 if __name__ == "__main__":

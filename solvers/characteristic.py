@@ -33,6 +33,7 @@ dimensions.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from itertools import product
@@ -387,7 +388,7 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
             root = factor.complex_roots()[0][0]
             still, coincident = [], set()
             for signs in undecided:
-                residual, scale, pair = closure_residual(scene, plan, root, signs)
+                residual, scale, pair = closure_residual(scene, plan, (root,), signs)
                 if residual is None:  # a base distance's ball contains 0: try more bits
                     coincident.add(pair)
                     still.append(signs)
@@ -405,9 +406,10 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
         flint.ctx.prec = previous
 
 
-def placed_points(scene: Scene, plan: Plan, parameter: flint.acb, signs) -> tuple[
+def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs) -> tuple[
         dict[str, tuple[flint.acb, flint.acb]] | None, flint.acb, frozenset[str] | None]:
-    """The plan's points at a complex parameter value on one sign branch, in complex ball
+    """The plan's points at complex parameter values (one per plan parameter) on one sign
+    branch, in complex ball
     arithmetic at the current precision: (x, y) per joint in the reference frame M_a = 0,
     M_b = 1 (thesis eq. 2.6–2.7, coordinates as complex numbers, since a complex parameter
     gives complex coordinates), and the reference distance s_{a,b}. Where a bilateration is
@@ -416,7 +418,7 @@ def placed_points(scene: Scene, plan: Plan, parameter: flint.acb, signs) -> tupl
     Cost: O(steps) ball operations."""
     known = {pair: flint.acb(flint.fmpq(Fraction(v).numerator, Fraction(v).denominator))
              for pair, v in scene.known.items()}
-    parameter_pair = frozenset(plan.parameters[0])
+    values = {frozenset(pair): value for pair, value in zip(plan.parameters, parameters, strict=True)}
     a, b = plan.reference
     points = {a: (flint.acb(0), flint.acb(0)), b: (flint.acb(1), flint.acb(0))}
     reference = flint.acb(1)
@@ -425,8 +427,8 @@ def placed_points(scene: Scene, plan: Plan, parameter: flint.acb, signs) -> tupl
         pair = frozenset((u, v))
         if pair in known:
             return known[pair]
-        if pair == parameter_pair:
-            return parameter
+        if pair in values:
+            return values[pair]
         return computed_distance(points, u, v, reference)
 
     reference = distance(a, b)
@@ -455,14 +457,15 @@ def computed_distance(points: dict[str, tuple[flint.acb, flint.acb]], u: str, v:
     return ((xv - xu) ** 2 + (yv - yu) ** 2) * reference
 
 
-def closure_residual(scene: Scene, plan: Plan, parameter: flint.acb,
-                      signs) -> tuple[flint.acb | None, flint.arb, frozenset[str] | None]:
-    """s_{u,v}(computed) - s_{u,v}(known) on one branch at a complex parameter value, and
-    s_{u,v}(known); where a bilateration is undefined, None and the base's joint pair."""
-    u, v = plan.closure_pairs[0]
+def closure_residual(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs,
+                     condition: int = 0) -> tuple[flint.acb | None, flint.arb, frozenset[str] | None]:
+    """s_{u,v}(computed) - s_{u,v}(known) of the plan's closure pair number ``condition``
+    on one branch at complex parameter values, and s_{u,v}(known); where a bilateration is
+    undefined, None and the base's joint pair."""
+    u, v = plan.closure_pairs[condition]
     known = Fraction(scene.known[frozenset((u, v))])
     target = flint.arb(flint.fmpq(known.numerator, known.denominator))
-    points, reference, pair = placed_points(scene, plan, parameter, signs)
+    points, reference, pair = placed_points(scene, plan, parameters, signs)
     if points is None:
         return None, target, pair
     return computed_distance(points, u, v, reference) - target, target, None

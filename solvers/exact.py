@@ -15,7 +15,10 @@ arithmetic").
    coincide, as at T = s1,5 = 0 in thesis §5.1.3.2 — solve again with another plan
    (:mod:`baranov.solvers.coincidence`).
 
-Coupling degree 0 needs no polynomial: every branch is a candidate.
+Coupling degree 0 needs no polynomial: every branch is a candidate. Coupling degree 2
+(thesis §3.4.1.3) eliminates the second parameter by a resultant
+(:mod:`baranov.solvers.coupling_two`); the second parameter of a mode is the real common
+root of the two genuine curves above the first.
 """
 
 from __future__ import annotations
@@ -35,6 +38,7 @@ from .characteristic import (
     placed_points,
 )
 from .coincidence import solvable_plan, with_coincident_modes
+from .coupling_two import characteristic_polynomial_two, common_points
 from .configuration import (
     RESIDUAL_TOLERANCE,
     assembly_modes,
@@ -59,8 +63,8 @@ ROOT_BITS = (64, 256, 1024)
 
 
 def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = True) -> Solution:
-    """All assembly modes of ``scene`` (coupling degree 0 or 1) by the exact method; the
-    result carries the characteristic polynomial. ``coincidences=False`` skips step 4
+    """All assembly modes of ``scene`` (coupling degree 0, 1 or 2) by the exact method;
+    the result carries the characteristic polynomial (in the first parameter). ``coincidences=False`` skips step 4
     (used by step 4 itself)."""
     plan = plan or solvable_plan(scene)
     branches = sign_branches(len(plan.free_sign_triangles))
@@ -70,10 +74,13 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     elif plan.number_of_parameters == 1:
         polynomial = characteristic_polynomial(scene, plan)
         modes = modes_at_real_roots(scene, plan, polynomial, branches)
+    elif plan.number_of_parameters == 2:
+        polynomial, curves = characteristic_polynomial_two(scene, plan)
+        modes = modes_at_real_roots(scene, plan, polynomial, branches, curves)
     else:
         raise ExactMethodError(
-            f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 and 1 so far")
-    if polynomial is not None and coincidences:
+            f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
+    if polynomial is not None and coincidences and plan.number_of_parameters == 1:
         pairs, roots = set(), []
         for factor, coincident in polynomial.degenerate:
             real = [float(root.real.mid()) for root, _ in factor.complex_roots() if root.imag == 0 and root.real >= 0]
@@ -87,15 +94,17 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
                     plan.free_sign_triangles, modes, polynomial)
 
 
-def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
-                        branches: np.ndarray) -> tuple[AssemblyMode, ...]:
-    """The verified assembly modes at the positive real roots of ``polynomial``.
+def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial, branches: np.ndarray,
+                        curves: tuple | None = None) -> tuple[AssemblyMode, ...]:
+    """The verified assembly modes at the positive real roots of ``polynomial``; for
+    coupling degree 2, at the real common points (u, v > 0) of the two ``curves`` above
+    each root u (:func:`~baranov.solvers.coupling_two.common_points`).
 
-    Each root is enclosed at ROOT_BITS[0] bits and every branch's closure residual is
+    Each root is enclosed at ROOT_BITS[0] bits and every branch's closure residuals are
     evaluated over the enclosure in ball arithmetic from the exact dimensions
-    (:func:`~baranov.solvers.characteristic.placed_points`): a branch whose ball excludes 0
-    is ruled out (rigorously); where the ball contains 0 and is narrower than
-    BRANCH_TOLERANCE of the closure distance, the configuration (the balls' midpoints) is
+    (:func:`~baranov.solvers.characteristic.placed_points`): a branch where a ball
+    excludes 0 is ruled out (rigorously); where every ball contains 0 and is narrower than
+    BRANCH_TOLERANCE of its closure distance, the configuration (the balls' midpoints) is
     built and verified to RESIDUAL_TOLERANCE on every link dimension. Branches still
     undecided, or whose configuration fails the verification (joints 1e-5 apart place
     too coarsely at 64 bits), are evaluated again with a tighter root at the next
@@ -105,7 +114,8 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
 
     Cost: O(real roots × 2^m × steps) ball operations (m free-sign triangles), plus a
     root isolation per precision used."""
-    name = parameter_name(plan.parameters[0])
+    names = tuple(parameter_name(pair) for pair in plan.parameters)
+    conditions = range(len(plan.closure_pairs))
     modes: list[AssemblyMode] = []
     previous = flint.ctx.prec
     try:
@@ -113,30 +123,30 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
             undecided = {index: [tuple(int(s) for s in b) for b in branches]
                          for index in range(sum(1 for root, _ in factor.complex_roots() if root.imag == 0))}
             found: dict[int, list[AssemblyMode]] = {index: [] for index in undecided}
-            for bits in ROOT_BITS:
+            for bits in ROOT_BITS if curves is None else ROOT_BITS[1:] + (4 * ROOT_BITS[-1],):
                 if not undecided:
                     break
                 flint.ctx.prec = bits
                 roots = sorted((root.real for root, _ in factor.complex_roots() if root.imag == 0),
                                key=lambda r: float(r.mid()))
                 for index, signs_list in list(undecided.items()):
-                    root, still = roots[index], []
-                    if not root > 0:
-                        del undecided[index]
-                        continue
-                    for signs in signs_list:
-                        residual, target, _ = closure_residual(scene, plan, flint.acb(root), signs)
-                        if residual is None or not residual.contains(0):
-                            continue
-                        mode = None
-                        if max(residual.real.rad(), residual.imag.rad()) <= BRANCH_TOLERANCE * target:
-                            mode = _ball_configuration(scene, plan, root, signs, name)
-                        if mode is None or mode.max_residual >= RESIDUAL_TOLERANCE:
-                            still.append(signs)  # too wide, or placed too coarsely: more bits
-                        elif not any(same_mode(mode, other, scene) for other in found[index]):
-                            found[index].append(mode)
+                    root, still = roots[index], set()
+                    points = _parameter_points(root, curves)
+                    if points is None:  # the second parameter could not be isolated: more bits
+                        still.update(signs_list)
+                        points = []
+                    for point in points:
+                        for signs in signs_list:
+                            verdict = _branch_verdict(scene, plan, point, signs, conditions)
+                            if verdict is False:
+                                continue
+                            mode = _ball_configuration(scene, plan, point, signs, names) if verdict else None
+                            if mode is None or mode.max_residual >= RESIDUAL_TOLERANCE:
+                                still.add(signs)  # too wide, or placed too coarsely: more bits
+                            elif not any(same_mode(mode, other, scene) for other in found[index]):
+                                found[index].append(mode)
                     if still:
-                        undecided[index] = still
+                        undecided[index] = sorted(still)
                     else:
                         del undecided[index]
             modes += [mode for at_root in found.values() for mode in at_root]
@@ -145,14 +155,43 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
     return sorted_modes(modes)
 
 
-def _ball_configuration(scene: Scene, plan: Plan, root: flint.arb, signs: tuple[int, ...],
-                        name: str) -> AssemblyMode:
-    """The configuration at a real root on one branch, from ball-arithmetic points."""
-    points, _, _ = placed_points(scene, plan, flint.acb(root), signs)
+def _parameter_points(root: flint.arb, curves: tuple | None) -> list[tuple[flint.acb, ...]]:
+    """The parameter values to try at a real root: (root,) for coupling 1; the real common
+    points (root, v), v > 0, of the two curves for coupling 2 (None if they cannot be
+    isolated at this precision); [] where root ≤ 0."""
+    if not root > 0:
+        return []
+    if curves is None:
+        return [(flint.acb(root),)]
+    common = common_points(curves, flint.acb(root))
+    if common is None:
+        return None
+    return [(u, flint.acb(v.real)) for u, v in common if v.imag.contains(0) and v.real > 0]
+
+
+def _branch_verdict(scene: Scene, plan: Plan, point, signs, conditions) -> bool | None:
+    """False if some closure residual's ball excludes 0 (or the plan is undefined there),
+    True if every ball contains 0 and is narrower than BRANCH_TOLERANCE of its target, None
+    otherwise."""
+    verdict = True
+    for condition in conditions:
+        residual, target, _ = closure_residual(scene, plan, point, signs, condition)
+        if residual is None or not residual.contains(0):
+            return False
+        if max(residual.real.rad(), residual.imag.rad()) > BRANCH_TOLERANCE * target:
+            verdict = None
+    return verdict
+
+
+def _ball_configuration(scene: Scene, plan: Plan, point: tuple[flint.acb, ...], signs: tuple[int, ...],
+                        names: tuple[str, ...]) -> AssemblyMode:
+    """The configuration at parameter values ``point`` on one branch, from ball-arithmetic
+    points."""
+    points, _, _ = placed_points(scene, plan, point, signs)
     matrices = {joint: np.array([complex(float(x.real.mid()), float(y.real.mid()))])
                 for joint, (x, y) in points.items()}
     placed = {joint: complex(value[0]) for joint, value in placed_from_ground(scene, matrices).items()}
     if not all(math.isfinite(p.real) and math.isfinite(p.imag) for p in placed.values()):
         return AssemblyMode({}, signs, {}, math.inf)
-    return AssemblyMode({name: float(root.mid())}, signs,
+    return AssemblyMode({name: float(value.real.mid()) for name, value in zip(names, point, strict=True)}, signs,
                         {j: (p.real, p.imag) for j, p in sorted(placed.items())}, joint_residual(scene, placed))

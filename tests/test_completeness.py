@@ -1,8 +1,9 @@
 """Completeness of the numeric backend against the exact one (issue 5): on 200 random
 generic instances of every 7- and 9-link truss of coupling degree 1, the numeric method
 finds exactly the assembly modes whose parameter values the exact method certifies as
-real roots. The four 9-link trusses of coupling degree 2 are not covered: the exact
-method derives one-parameter polynomials only.
+real roots. The four 9-link trusses of coupling degree 2 are not covered: their exact
+polynomial takes 45 s (9/B25) to minutes (9/B28) per instance, so 200 instances each would
+take hours; tests/test_exact.py checks one instance of 9/B25 and the 9/B28 example.
 
 Slow (`make test-slow`): 27 trusses × 200 instances, two worker processes; a miss prints
 the instance's coordinates, to be saved under tests/regressions/.

@@ -18,6 +18,7 @@ from baranov.solvers import (
     scene_from_dict,
     solve,
 )
+from baranov.solvers.configuration import same_mode
 from baranov.solvers.instances import generic_integer_configuration, scene_of
 from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology.realizations import realization_count
@@ -170,3 +171,33 @@ def test_characteristic_degrees_equal_realization_counts_up_to_nine_links():
                 if links == 9:
                     nine.append(degree)
     assert sorted(nine) == sorted(APPENDIX_A_ASSEMBLY_MODES[f"9/B{n}"] for n in range(1, 25))
+
+
+def same_modes(scene, first, second) -> bool:
+    return len(first) == len(second) and all(any(same_mode(m, n, scene) for n in second) for m in first)
+
+
+def test_coupling_two_characteristic_polynomial_on_a_random_instance():
+    """9/B25 (coupling degree 2, thesis §3.4.2) on a random integer instance: the
+    characteristic polynomial in the first parameter (resultant of the two genuine curves,
+    genuine factors kept) has degree 52, the Appendix A count and the realization count;
+    its real roots give exactly the numeric backend's modes."""
+    truss = [t for t in baranov_trusses(9) if coupling_degree(t) == 2][0]
+    assert realization_count(truss) == APPENDIX_A_ASSEMBLY_MODES["9/B25"]
+    scene = scene_of(truss, generic_integer_configuration(truss, np.random.default_rng(3)))
+    exact, numeric = solve(scene, method="exact"), solve(scene)
+    assert exact.characteristic_polynomial.degree == 52
+    assert len(exact.characteristic_polynomial.real_roots()) == len(exact.assembly_modes) == 4
+    assert same_modes(scene, exact.assembly_modes, numeric.assembly_modes)
+
+
+@pytest.mark.slow
+def test_nine_link_b28_example_by_the_exact_method():
+    """Thesis §3.4.1.4: 9/B28 has a characteristic polynomial of degree 58 (the factor of
+    a resultant of degree 1826 in the thesis; 1728 here, with this plan's curves) and the
+    example 14 real roots; the exact modes are the numeric backend's."""
+    scene = load_scene(EXAMPLES / "9-B28.json")
+    exact, numeric = solve(scene, method="exact"), solve(scene)
+    assert exact.characteristic_polynomial.degree == 58
+    assert len(exact.characteristic_polynomial.real_roots()) == len(exact.assembly_modes) == 14
+    assert same_modes(scene, exact.assembly_modes, numeric.assembly_modes)
