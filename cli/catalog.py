@@ -19,7 +19,7 @@ import multiprocessing
 import sys
 from collections import Counter
 from collections.abc import Callable, Iterable
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 from baranov.closure import closure_system
@@ -75,8 +75,8 @@ ENTRY_FIELDS = (
 )
 
 #: Characteristic polynomials are derived for the assembly-mode count up to this many
-#: links (coupling degree 1): 0.2-4 s per 9-link truss; a random 11-link instance took
-#: over 10 minutes with the resultant elimination (docs/exact.md).
+#: links (coupling degrees 1 and 2): 0.1-0.3 s per coupling-1 9-link instance, 40 s to
+#: minutes per coupling-2 one; 11-link ones would take hours in all (docs/exact.md).
 ASSEMBLY_MODES_MAX_LINKS = 9
 
 Progress = Callable[[str], None]
@@ -126,17 +126,19 @@ def truss_entry(item: tuple[str, str]) -> dict:
     sliders = count_slider_chains(chain, group) if chain.number_of_links <= SLIDER_CHAINS_MAX_LINKS else None
     published = thesis_name(chain)
     plan = best_plan(chain)
-    if plan.number_of_parameters == 1 and chain.number_of_links <= ASSEMBLY_MODES_MAX_LINKS:
+    if plan.number_of_parameters in (1, 2) and chain.number_of_links <= ASSEMBLY_MODES_MAX_LINKS:
         modes, degrees = characteristic_degree(chain)
         evidence = (f"degree of the characteristic polynomial in {parameter_name(plan.parameters[0])} on random "
                     f"integer-coordinate instances: {', '.join(map(str, degrees))}")
+        if plan.number_of_parameters == 2:
+            evidence += (f" (after eliminating {parameter_name(plan.parameters[1])} by a resultant and keeping its "
+                         "genuine factors)")
     elif plan.number_of_parameters == 0:
         modes = 2 ** len(plan.free_sign_triangles)
         evidence = "coupling degree 0: one configuration per sign branch of the free triangles"
     else:
         modes = None
-        evidence = (f"not derived: coupling degree {plan.number_of_parameters}" if plan.number_of_parameters > 1
-                    else f"not derived: more than {ASSEMBLY_MODES_MAX_LINKS} links")
+        evidence = f"not derived: more than {ASSEMBLY_MODES_MAX_LINKS} links"
     count, planar = realization_count(chain), is_planar(chain)
     name, name_evidence = identifier, None
     joint_names = thesis_joint_names(chain, published) if published else None
@@ -193,8 +195,21 @@ def catalog_links(links: int, workers: int, show_progress: bool) -> list[dict]:
     items = [(f"{links}/N{i + 1}", graph6) for i, (graph6, _) in enumerate(trusses)]
     bar = tqdm(total=len(items), desc=f"{links} links", unit="truss", disable=not show_progress, file=sys.stderr)
     entries = []
-    if workers > 1 and len(items) > 16:
-        # spawn, not fork: a forked worker deadlocked once flint and lnumber had run in the parent
+    # Worker processes are spawned, not forked: a forked worker deadlocked once flint and
+    # lnumber had run in the parent.
+    if workers > 1 and len(items) > 16 and links <= ASSEMBLY_MODES_MAX_LINKS:
+        # Costs differ by 1000x (coupling-2 polynomials take minutes): the costliest first,
+        # one per task, so that no worker is left with a long tail.
+        coupling = [best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6 in items]
+        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
+            futures = {pool.submit(truss_entry, items[i]): i
+                       for i in sorted(range(len(items)), key=lambda i: (-coupling[i], i))}
+            done: dict[int, dict] = {}
+            for future in as_completed(futures):
+                done[futures[future]] = future.result()
+                bar.update()
+        entries = [done[i] for i in range(len(items))]
+    elif workers > 1 and len(items) > 16:
         with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
             for entry in pool.map(truss_entry, items, chunksize=max(1, len(items) // (8 * workers))):
                 entries.append(entry)
@@ -324,8 +339,8 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
         )
     lines += ["", "## Assembly modes", "",
               "Degree of the characteristic polynomial (`assembly_modes`, derived exactly on random integer-coordinate",
-              "instances, coupling degree 1 up to " + str(ASSEMBLY_MODES_MAX_LINKS) + " links) and the realization-count identity",
-              "(`realization_count`, pyrigi; `baranov.topology.realizations`), as count: trusses.", "",
+              "instances, coupling degrees 1 and 2 up to " + str(ASSEMBLY_MODES_MAX_LINKS) + " links) and the realization-count",
+              "identity (`realization_count`, pyrigi; `baranov.topology.realizations`), as count: trusses.", "",
               "| links | assembly modes (characteristic polynomial) | realization count | trusses where both are known "
               "| of them equal |", "|---|---|---|---|---|"]
     for links, entries in sorted(catalogs.items()):
@@ -340,8 +355,11 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
     if 9 in catalogs:
         ours = sorted(e["realization_count"] for e in catalogs[9])
         published = sorted(APPENDIX_A_ASSEMBLY_MODES.values())
+        by_name = all(e["assembly_modes"] in (None, APPENDIX_A_ASSEMBLY_MODES.get(e["name"])) for e in catalogs[9])
         lines += ["", "Thesis Appendix A lists the assembly modes of the 28 nine-link trusses 9/B1-9/B28; as a "
-                  "multiset they " + ("equal" if ours == published else "DIFFER from") + " the realization counts above.",
+                  "multiset they " + ("equal" if ours == published else "DIFFER from") + " the realization counts above, "
+                  "and under the thesis names every derived nine-link degree " + ("equals" if by_name else "does NOT equal")
+                  + " its Appendix A value.",
                   "", "Nine-link thesis names given (`name_evidence` in the catalog says how each was identified): "
                   + ", ".join(sorted((e["name"] for e in catalogs[9] if e["name"].startswith("9/B")),
                                      key=lambda n: int(n[3:]))) + "."]

@@ -16,6 +16,7 @@ from baranov.planner import best_plan
 from baranov.topology import KinematicChain
 
 from .characteristic import characteristic_polynomial
+from .coupling_two import characteristic_polynomial_two
 from .instances import generic_integer_configuration, scene_of
 
 #: Instances that must agree, and the most that are drawn.
@@ -25,7 +26,9 @@ MOST_INSTANCES = 6
 
 def characteristic_degree(chain: KinematicChain, seed: int | None = None) -> tuple[int, list[int]]:
     """The generic degree of the characteristic polynomial of ``chain`` (coupling degree
-    1), and the degrees seen on the instances drawn. ``seed`` defaults to a checksum of the
+    1 or 2; for 2, in the first parameter after eliminating the second:
+    :func:`~baranov.solvers.coupling_two.characteristic_polynomial_two`), and the degrees
+    seen on the instances drawn. ``seed`` defaults to a checksum of the
     chain's joints, so the result is reproducible.
 
     >>> from baranov.enumerate import baranov_trusses
@@ -39,7 +42,10 @@ def characteristic_degree(chain: KinematicChain, seed: int | None = None) -> tup
     degrees: list[int] = []
     while len(degrees) < MOST_INSTANCES:
         scene = scene_of(chain, generic_integer_configuration(chain, rng))
-        degrees.append(characteristic_polynomial(scene, plan).degree)
+        if plan.number_of_parameters == 2:
+            degrees.append(characteristic_polynomial_two(scene, plan)[0].degree)
+        else:
+            degrees.append(characteristic_polynomial(scene, plan).degree)
         if len(degrees) >= AGREEING_INSTANCES and degrees.count(max(degrees)) >= AGREEING_INSTANCES:
             break
     return max(degrees), degrees
