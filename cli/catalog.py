@@ -197,23 +197,20 @@ def catalog_links(links: int, workers: int, show_progress: bool) -> list[dict]:
     entries = []
     # Worker processes are spawned, not forked: a forked worker deadlocked once flint and
     # lnumber had run in the parent.
-    if workers > 1 and len(items) > 16 and links <= ASSEMBLY_MODES_MAX_LINKS:
-        # Costs differ by 1000x (coupling-2 polynomials take minutes): the costliest first,
-        # one per task, so that no worker is left with a long tail.
-        coupling = [best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6 in items]
+    if workers > 1 and len(items) > 16:
+        order = list(range(len(items)))
+        if links <= ASSEMBLY_MODES_MAX_LINKS:
+            # Costs differ by 1000x (coupling-2 polynomials take minutes): the costliest
+            # first, so that no worker is left with a long tail.
+            coupling = [best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6 in items]
+            order.sort(key=lambda i: -coupling[i])
         with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-            futures = {pool.submit(truss_entry, items[i]): i
-                       for i in sorted(range(len(items)), key=lambda i: (-coupling[i], i))}
+            futures = {pool.submit(truss_entry, items[i]): i for i in order}
             done: dict[int, dict] = {}
             for future in as_completed(futures):
                 done[futures[future]] = future.result()
                 bar.update()
         entries = [done[i] for i in range(len(items))]
-    elif workers > 1 and len(items) > 16:
-        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-            for entry in pool.map(truss_entry, items, chunksize=max(1, len(items) // (8 * workers))):
-                entries.append(entry)
-                bar.update()
     else:
         for item in items:
             entries.append(truss_entry(item))

@@ -388,16 +388,16 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
             root = factor.complex_roots()[0][0]
             still, coincident = [], set()
             for signs in undecided:
-                residual, scale, pair = closure_residual(scene, plan, (root,), signs)
-                if residual is None:  # a base distance's ball contains 0: try more bits
+                residuals, _, pair = closure_residuals(scene, plan, (root,), signs)
+                if residuals is None:  # a base distance's ball contains 0: try more bits
                     coincident.add(pair)
                     still.append(signs)
                     continue
-                if not residual.contains(0):
-                    continue
-                if max(residual.real.rad(), residual.imag.rad()) < scale * flint.arb(2) ** (-bits // 8):
+                verdict = residual_verdict(residuals, flint.arb(2) ** (-bits // 8))
+                if verdict:
                     return True
-                still.append(signs)
+                if verdict is None:
+                    still.append(signs)
             if not still:
                 return False
             undecided = still
@@ -409,10 +409,10 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
 def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs) -> tuple[
         dict[str, tuple[flint.acb, flint.acb]] | None, flint.acb, frozenset[str] | None]:
     """The plan's points at complex parameter values (one per plan parameter) on one sign
-    branch, in complex ball
-    arithmetic at the current precision: (x, y) per joint in the reference frame M_a = 0,
-    M_b = 1 (thesis eq. 2.6–2.7, coordinates as complex numbers, since a complex parameter
-    gives complex coordinates), and the reference distance s_{a,b}. Where a bilateration is
+    branch, in complex ball arithmetic at the current precision: (x, y) per joint in the
+    reference frame M_a = 0, M_b = 1 (thesis eq. 2.6–2.7, coordinates as complex numbers,
+    since a complex parameter gives complex coordinates), and the reference distance
+    s_{a,b}. Where a bilateration is
     undefined (its base distance's ball contains 0), None and the base's joint pair.
 
     Cost: O(steps) ball operations."""
@@ -457,15 +457,28 @@ def computed_distance(points: dict[str, tuple[flint.acb, flint.acb]], u: str, v:
     return ((xv - xu) ** 2 + (yv - yu) ** 2) * reference
 
 
-def closure_residual(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs,
-                     condition: int = 0) -> tuple[flint.acb | None, flint.arb, frozenset[str] | None]:
-    """s_{u,v}(computed) - s_{u,v}(known) of the plan's closure pair number ``condition``
-    on one branch at complex parameter values, and s_{u,v}(known); where a bilateration is
-    undefined, None and the base's joint pair."""
-    u, v = plan.closure_pairs[condition]
-    known = Fraction(scene.known[frozenset((u, v))])
-    target = flint.arb(flint.fmpq(known.numerator, known.denominator))
+def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs) -> tuple[
+        list[tuple[flint.acb, flint.arb]] | None, dict[str, tuple[flint.acb, flint.acb]] | None, frozenset[str] | None]:
+    """(s_{u,v}(computed) - s_{u,v}(known), s_{u,v}(known)) for every closure pair of the
+    plan on one branch at complex parameter values, and the placed points they come from
+    (:func:`placed_points`, done once for all pairs); where a bilateration is undefined,
+    (None, None, the base's joint pair)."""
     points, reference, pair = placed_points(scene, plan, parameters, signs)
     if points is None:
-        return None, target, pair
-    return computed_distance(points, u, v, reference) - target, target, None
+        return None, None, pair
+    residuals = []
+    for u, v in plan.closure_pairs:
+        known = Fraction(scene.known[frozenset((u, v))])
+        target = flint.arb(flint.fmpq(known.numerator, known.denominator))
+        residuals.append((computed_distance(points, u, v, reference) - target, target))
+    return residuals, points, None
+
+
+def residual_verdict(residuals: list[tuple[flint.acb, flint.arb]] | None, tolerance) -> bool | None:
+    """False if the plan is undefined (None) or some residual ball excludes 0; True if
+    every ball contains 0 and is narrower than ``tolerance`` times its target; None
+    (undecided: more precision needed) otherwise."""
+    if residuals is None or not all(residual.contains(0) for residual, _ in residuals):
+        return False
+    narrow = all(max(residual.real.rad(), residual.imag.rad()) < tolerance * target for residual, target in residuals)
+    return True if narrow else None

@@ -107,16 +107,32 @@ def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, br
     )
 
 
+def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """The plan's parameter values and free-sign branch of configurations given as joint
+    positions (complex arrays of one shape S): arrays of shape S + (parameters,) and
+    S + (free-sign triangles,)."""
+    shape = np.shape(next(iter(at.values())))
+
+    def stacked(columns: list) -> np.ndarray:
+        return np.stack(columns, axis=-1) if columns else np.zeros((*shape, 0))
+
+    parameters = stacked([np.abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters])
+    branch = stacked([np.where(((at[j] - at[i]).conjugate() * (at[k] - at[i])).imag > 0, 1, -1)
+                      for i, j, k in compiled.free_triangles])
+    return parameters, branch
+
+
 def polished_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -> AssemblyMode:
     """``mode`` polished on the link constraints (:func:`polish_configurations`), with its
     parameters and free-sign branch read back from the polished configuration."""
     joints = sorted(mode.joints)
     points, _ = polish_configurations(scene, joints, np.array([[mode.joints[j] for j in joints]]))
     at = {j: complex(*points[0, n]) for n, j in enumerate(joints)}
-    parameters = {parameter_name((u, v)): abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters}
-    signs = tuple(1 if ((at[j] - at[i]).conjugate() * (at[k] - at[i])).imag > 0 else -1
-                  for i, j, k in compiled.free_triangles)
-    return AssemblyMode(parameters, signs, {j: (p.real, p.imag) for j, p in at.items()}, joint_residual(scene, at))
+    parameters, branch = read_back(compiled, {j: np.asarray(p) for j, p in at.items()})
+    return AssemblyMode({parameter_name(pair): float(v) for pair, v in zip(compiled.parameters, parameters,
+                                                                           strict=True)},
+                        tuple(int(s) for s in branch), {j: (p.real, p.imag) for j, p in at.items()},
+                        joint_residual(scene, at))
 
 
 def joint_residual(scene: Scene, points: dict[str, complex]) -> float:

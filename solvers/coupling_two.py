@@ -29,12 +29,13 @@ from baranov.planner import Plan
 from .characteristic import (
     TEST_BITS,
     CharacteristicPolynomial,
-    closure_residual,
+    closure_residuals,
     eliminate_radicals,
     radical_tower,
+    residual_verdict,
 )
 from .configuration import parameter_name
-from .resultant import resultant_by_primes
+from .resultant import coefficients_in_v, resultant_by_primes
 from .scene import Scene
 
 #: The bivariate ring of the two parameters (u = first plan parameter, v = second).
@@ -65,35 +66,23 @@ def roots_in_v(polynomial: flint.fmpz_mpoly, u: flint.acb) -> list[flint.acb]:
 
 def column(polynomial: flint.fmpz_mpoly, u: flint.acb) -> flint.acb_poly:
     """``polynomial`` at u, as a polynomial in v with ball coefficients."""
-    coefficients: dict[int, flint.acb] = {}
-    for (power_u, power_v), c in zip(polynomial.monoms(), polynomial.coeffs(), strict=True):
-        coefficients[power_v] = coefficients.get(power_v, flint.acb(0)) + flint.acb(c) * u**power_u
-    return flint.acb_poly([coefficients.get(k, flint.acb(0)) for k in range(max(coefficients) + 1)])
-
-
-def _branches(plan: Plan):
-    return list(product((1, -1), repeat=len(plan.free_sign_triangles)))
+    return flint.acb_poly([sum((flint.acb(c) * u**k for k, c in terms.items()), flint.acb(0))
+                           for terms in coefficients_in_v(polynomial)])
 
 
 def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditions: Sequence[int],
                   bits: int) -> bool | None:
     """Whether on some sign branch every closure condition in ``conditions`` holds at the
-    parameter values ``values``: True when one branch's residual balls all contain 0 and
-    are narrower than 2^(-bits/8) of their targets, False when every branch excludes 0
-    from some residual, None (undecided) otherwise."""
+    parameter values ``values`` (:func:`~baranov.solvers.characteristic.residual_verdict`
+    with tolerance 2^(-bits/8)): True if one branch confirms, False if every branch rules
+    itself out, None (undecided) otherwise."""
     undecided = False
-    for signs in _branches(plan):
-        verdicts = []
-        for index in conditions:
-            residual, target, _ = closure_residual(scene, plan, values, signs, index)
-            if residual is None or not residual.contains(0):  # None: the plan is undefined there
-                verdicts.append(False)
-                continue
-            narrow = max(residual.real.rad(), residual.imag.rad()) < target * flint.arb(2) ** (-bits // 8)
-            verdicts.append(True if narrow else None)
-        if all(verdict is True for verdict in verdicts):
+    for signs in product((1, -1), repeat=len(plan.free_sign_triangles)):
+        residuals, _, _ = closure_residuals(scene, plan, values, signs)
+        verdict = residual_verdict(residuals and [residuals[i] for i in conditions], flint.arb(2) ** (-bits // 8))
+        if verdict:
             return True
-        undecided |= False not in verdicts
+        undecided |= verdict is None
     return None if undecided else False
 
 
@@ -125,16 +114,11 @@ def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, conditi
     def points() -> list:
         if curve.degrees()[1] > 0:
             return [(flint.acb(value), v) for v in roots_in_v(curve, flint.acb(value)) or []]
-        return [(root, flint.acb(value)) for root, _ in flint.fmpz_poly(_u_coefficients(curve)).complex_roots()]
+        terms = coefficients_in_v(curve)[0]  # a vertical line: a polynomial in u only
+        line = flint.fmpz_poly([terms.get(k, 0) for k in range(max(terms) + 1)])
+        return [(root, flint.acb(value)) for root, _ in line.complex_roots()]
 
     return _some_point_solves(points, scene, plan, (condition,))
-
-
-def _u_coefficients(polynomial: flint.fmpz_mpoly) -> list[int]:
-    coefficients = [0] * (polynomial.degrees()[0] + 1)
-    for (power_u, _), c in zip(polynomial.monoms(), polynomial.coeffs(), strict=True):
-        coefficients[power_u] += int(c)
-    return coefficients
 
 
 def common_points(curves: Sequence[flint.fmpz_mpoly], u: flint.acb) -> list[tuple[flint.acb, flint.acb]] | None:

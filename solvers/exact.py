@@ -33,9 +33,9 @@ from baranov.planner import Plan
 from .characteristic import (
     CharacteristicPolynomial,
     ExactMethodError,
-    closure_residual,
     characteristic_polynomial,
-    placed_points,
+    closure_residuals,
+    residual_verdict,
 )
 from .coincidence import solvable_plan, with_coincident_modes
 from .coupling_two import characteristic_polynomial_two, common_points
@@ -58,14 +58,16 @@ from .scene import Scene
 BRANCH_TOLERANCE = 1e-6
 
 #: Precisions (bits) at which a real root and its branch residuals are evaluated, in turn,
-#: while some branch is undecided.
+#: while some branch is undecided; coupling degree 2 starts higher, since the second
+#: parameter is isolated from a curve with coefficients of hundreds of bits.
 ROOT_BITS = (64, 256, 1024)
+ROOT_BITS_TWO = (256, 1024, 4096)
 
 
 def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = True) -> Solution:
     """All assembly modes of ``scene`` (coupling degree 0, 1 or 2) by the exact method;
-    the result carries the characteristic polynomial (in the first parameter). ``coincidences=False`` skips step 4
-    (used by step 4 itself)."""
+    the result carries the characteristic polynomial (in the first parameter).
+    ``coincidences=False`` skips step 4 (used by step 4 itself)."""
     plan = plan or solvable_plan(scene)
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None
@@ -100,12 +102,12 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
     coupling degree 2, at the real common points (u, v > 0) of the two ``curves`` above
     each root u (:func:`~baranov.solvers.coupling_two.common_points`).
 
-    Each root is enclosed at ROOT_BITS[0] bits and every branch's closure residuals are
-    evaluated over the enclosure in ball arithmetic from the exact dimensions
-    (:func:`~baranov.solvers.characteristic.placed_points`): a branch where a ball
-    excludes 0 is ruled out (rigorously); where every ball contains 0 and is narrower than
-    BRANCH_TOLERANCE of its closure distance, the configuration (the balls' midpoints) is
-    built and verified to RESIDUAL_TOLERANCE on every link dimension. Branches still
+    Each root is enclosed at ROOT_BITS[0] bits (ROOT_BITS_TWO for coupling 2) and every
+    branch's closure residuals are evaluated over the enclosure in ball arithmetic from
+    the exact dimensions (:func:`~baranov.solvers.characteristic.closure_residuals`): a
+    branch where a ball excludes 0 is ruled out (rigorously); where every ball contains 0
+    and is narrower than BRANCH_TOLERANCE of its closure distance, the configuration (the
+    balls' midpoints of the same placement) is built and verified to RESIDUAL_TOLERANCE on every link dimension. Branches still
     undecided, or whose configuration fails the verification (joints 1e-5 apart place
     too coarsely at 64 bits), are evaluated again with a tighter root at the next
     precision. Modes at distinct roots are distinct (their parameter differs), however
@@ -115,32 +117,33 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
     Cost: O(real roots × 2^m × steps) ball operations (m free-sign triangles), plus a
     root isolation per precision used."""
     names = tuple(parameter_name(pair) for pair in plan.parameters)
-    conditions = range(len(plan.closure_pairs))
+    every_branch = [tuple(int(s) for s in b) for b in branches]
     modes: list[AssemblyMode] = []
     previous = flint.ctx.prec
     try:
         for factor, _ in polynomial.factors:
-            undecided = {index: [tuple(int(s) for s in b) for b in branches]
-                         for index in range(sum(1 for root, _ in factor.complex_roots() if root.imag == 0))}
-            found: dict[int, list[AssemblyMode]] = {index: [] for index in undecided}
-            for bits in ROOT_BITS if curves is None else ROOT_BITS[1:] + (4 * ROOT_BITS[-1],):
-                if not undecided:
-                    break
+            undecided: dict[int, list[tuple[int, ...]]] | None = None
+            found: dict[int, list[AssemblyMode]] = {}
+            for bits in ROOT_BITS if curves is None else ROOT_BITS_TWO:
                 flint.ctx.prec = bits
                 roots = sorted((root.real for root, _ in factor.complex_roots() if root.imag == 0),
                                key=lambda r: float(r.mid()))
+                if undecided is None:
+                    undecided = {index: every_branch for index in range(len(roots))}
+                    found = {index: [] for index in undecided}
                 for index, signs_list in list(undecided.items()):
-                    root, still = roots[index], set()
-                    points = _parameter_points(root, curves)
+                    still = set()
+                    points = _parameter_points(roots[index], curves)
                     if points is None:  # the second parameter could not be isolated: more bits
                         still.update(signs_list)
                         points = []
                     for point in points:
                         for signs in signs_list:
-                            verdict = _branch_verdict(scene, plan, point, signs, conditions)
+                            residuals, placed, _ = closure_residuals(scene, plan, point, signs)
+                            verdict = residual_verdict(residuals, BRANCH_TOLERANCE)
                             if verdict is False:
                                 continue
-                            mode = _ball_configuration(scene, plan, point, signs, names) if verdict else None
+                            mode = _ball_configuration(scene, placed, point, signs, names) if verdict else None
                             if mode is None or mode.max_residual >= RESIDUAL_TOLERANCE:
                                 still.add(signs)  # too wide, or placed too coarsely: more bits
                             elif not any(same_mode(mode, other, scene) for other in found[index]):
@@ -149,6 +152,8 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
                         undecided[index] = sorted(still)
                     else:
                         del undecided[index]
+                if not undecided:
+                    break
             modes += [mode for at_root in found.values() for mode in at_root]
     finally:
         flint.ctx.prec = previous
@@ -169,29 +174,14 @@ def _parameter_points(root: flint.arb, curves: tuple | None) -> list[tuple[flint
     return [(u, flint.acb(v.real)) for u, v in common if v.imag.contains(0) and v.real > 0]
 
 
-def _branch_verdict(scene: Scene, plan: Plan, point, signs, conditions) -> bool | None:
-    """False if some closure residual's ball excludes 0 (or the plan is undefined there),
-    True if every ball contains 0 and is narrower than BRANCH_TOLERANCE of its target, None
-    otherwise."""
-    verdict = True
-    for condition in conditions:
-        residual, target, _ = closure_residual(scene, plan, point, signs, condition)
-        if residual is None or not residual.contains(0):
-            return False
-        if max(residual.real.rad(), residual.imag.rad()) > BRANCH_TOLERANCE * target:
-            verdict = None
-    return verdict
-
-
-def _ball_configuration(scene: Scene, plan: Plan, point: tuple[flint.acb, ...], signs: tuple[int, ...],
+def _ball_configuration(scene: Scene, points: dict, parameters: tuple[flint.acb, ...], signs: tuple[int, ...],
                         names: tuple[str, ...]) -> AssemblyMode:
-    """The configuration at parameter values ``point`` on one branch, from ball-arithmetic
-    points."""
-    points, _, _ = placed_points(scene, plan, point, signs)
+    """The configuration from the plan's points placed in ball arithmetic
+    (:func:`~baranov.solvers.characteristic.placed_points`) at ``parameters``."""
     matrices = {joint: np.array([complex(float(x.real.mid()), float(y.real.mid()))])
                 for joint, (x, y) in points.items()}
     placed = {joint: complex(value[0]) for joint, value in placed_from_ground(scene, matrices).items()}
     if not all(math.isfinite(p.real) and math.isfinite(p.imag) for p in placed.values()):
         return AssemblyMode({}, signs, {}, math.inf)
-    return AssemblyMode({name: float(value.real.mid()) for name, value in zip(names, point, strict=True)}, signs,
-                        {j: (p.real, p.imag) for j, p in sorted(placed.items())}, joint_residual(scene, placed))
+    return AssemblyMode({name: float(value.real.mid()) for name, value in zip(names, parameters, strict=True)},
+                        signs, {j: (p.real, p.imag) for j, p in sorted(placed.items())}, joint_residual(scene, placed))

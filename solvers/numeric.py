@@ -45,6 +45,7 @@ from .configuration import (
     distinct_candidates,
     parameter_name,
     placed_from_ground,
+    read_back,
 )
 from .modes import Solution, SolverError
 from .polish import polish_configurations
@@ -92,10 +93,8 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
     points = np.stack([complex_points.real, complex_points.imag], axis=-1)[usable]
     points, residual = polish_configurations(scene, joints, points)
     points = points[residual < RESIDUAL_TOLERANCE]
-    at = {j: points[:, n, 0] + 1j * points[:, n, 1] for n, j in enumerate(joints)}
-    parameters = np.stack([np.abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters], axis=1)
-    branch = np.stack([np.where(((at[j] - at[i]).conjugate() * (at[k] - at[i])).imag > 0, 1, -1)
-                       for i, j, k in compiled.free_triangles], axis=1)
+    parameters, branch = read_back(compiled, {j: points[:, n, 0] + 1j * points[:, n, 1]
+                                              for n, j in enumerate(joints)})
     return distinct_candidates(parameters, branch)
 
 

@@ -7,10 +7,10 @@ polynomials with coefficients of hundreds of bits and degrees ~30–70 in each v
 ``fmpz_mpoly.resultant`` did not finish on 9/B28 in 15 minutes; modulo a word-size prime
 the resultant is cheap, so it is computed modulo enough primes and lifted:
 
-* modulo p, F(a, v) and G(a, v) are univariate in v for each of deg_u R + 1 points a
-  (their coefficients in v evaluated at all points at once, flint's multipoint
-  evaluation), their resultants R(a) are taken (flint ``nmod_poly.resultant``) and R is
-  interpolated (subproduct tree);
+* modulo p, F(a, v) and G(a, v) are univariate in v for each of deg_u R + 1 random points
+  a (every coefficient in v evaluated at all points by one matrix product), their
+  resultants R(a) are taken (flint ``nmod_poly.resultant``) and R is interpolated
+  (subproduct tree); the first image's degree sets the number of points for the others;
 * the images are combined by the Chinese remainder theorem into symmetric residues, until
   two more primes leave every coefficient unchanged;
 * the result is checked against the resultant over Z at random integer points (a wrong
@@ -26,7 +26,7 @@ import random
 
 import flint
 
-#: Primes just below 2^62, generated once (flint's probable-prime test).
+#: The primes used are the ones just below 2^62, in decreasing order.
 _PRIME_START = (1 << 62) - 1
 
 
@@ -38,7 +38,7 @@ def _primes():
             yield candidate
 
 
-def _coefficients_in_v(polynomial: flint.fmpz_mpoly) -> list[dict[int, int]]:
+def coefficients_in_v(polynomial: flint.fmpz_mpoly) -> list[dict[int, int]]:
     """``polynomial`` (variables u, v) as its coefficients in v: {power of u: integer}."""
     columns: dict[int, dict[int, int]] = {}
     for (power_u, power_v), coefficient in zip(polynomial.monoms(), polynomial.coeffs(), strict=True):
@@ -118,7 +118,7 @@ def resultant_by_primes(f: flint.fmpz_mpoly, g: flint.fmpz_mpoly, degree: int,
     >>> resultant_by_primes(v**2 - u, v - 3 * u + 1, 2)  # (3u - 1)² - u
     9*x^2 + (-7)*x + 1
     """
-    columns_f, columns_g = _coefficients_in_v(f), _coefficients_in_v(g)
+    columns_f, columns_g = coefficients_in_v(f), coefficients_in_v(g)
     rng = random.Random(seed)
     residues = [0] * (degree + 1)
     modulus, stable, previous = 1, 0, None
@@ -151,4 +151,4 @@ def resultant_by_primes(f: flint.fmpz_mpoly, g: flint.fmpz_mpoly, degree: int,
 
 def _at(polynomial: flint.fmpz_mpoly, a: int) -> flint.fmpz_poly:
     """``polynomial`` with u = a, as a polynomial in v."""
-    return flint.fmpz_poly([sum(c * a**k for k, c in column.items()) for column in _coefficients_in_v(polynomial)])
+    return flint.fmpz_poly([sum(c * a**k for k, c in column.items()) for column in coefficients_in_v(polynomial)])

@@ -18,13 +18,13 @@ from baranov.solvers import (
     scene_from_dict,
     solve,
 )
-from baranov.solvers.configuration import same_mode
 from baranov.solvers.instances import generic_integer_configuration, scene_of
 from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology.realizations import realization_count
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from test_solvers import PUBLISHED_EXAMPLES, SOLVABLE
+from test_stability import same_modes
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -170,10 +170,6 @@ def test_characteristic_degrees_equal_realization_counts_up_to_nine_links():
                 if links == 9:
                     nine.append(degree)
     assert sorted(nine) == sorted(APPENDIX_A_ASSEMBLY_MODES[f"9/B{n}"] for n in range(1, 25))
-
-
-def same_modes(scene, first, second) -> bool:
-    return len(first) == len(second) and all(any(same_mode(m, n, scene) for n in second) for m in first)
 
 
 def test_coupling_two_characteristic_polynomial_on_a_random_instance():
