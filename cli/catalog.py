@@ -74,10 +74,11 @@ ENTRY_FIELDS = (
     "assembly_modes", "assembly_modes_evidence", "realization_count",
 )
 
-#: Characteristic polynomials are derived for the assembly-mode count up to this many
-#: links (coupling degrees 1 and 2): 0.1-0.3 s per coupling-1 9-link instance, 40 s to
-#: minutes per coupling-2 one; 11-link ones would take hours in all (docs/exact.md).
-ASSEMBLY_MODES_MAX_LINKS = 9
+#: Assembly modes are counted up to this many links (coupling degrees 1 and 2), as the
+#: degree of the characteristic polynomial modulo a prime (:mod:`baranov.solvers.modular`):
+#: about 0.01-3 s per 11-link coupling-1 instance and 1-10 s per coupling-2 one. 13 links
+#: (thousands of trusses) are left to a separate run.
+ASSEMBLY_MODES_MAX_LINKS = 11
 
 Progress = Callable[[str], None]
 
@@ -128,11 +129,11 @@ def truss_entry(item: tuple[str, str]) -> dict:
     plan = best_plan(chain)
     if plan.number_of_parameters in (1, 2) and chain.number_of_links <= ASSEMBLY_MODES_MAX_LINKS:
         modes, degrees = characteristic_degree(chain)
-        evidence = (f"degree of the characteristic polynomial in {parameter_name(plan.parameters[0])} on random "
-                    f"integer-coordinate instances: {', '.join(map(str, degrees))}")
+        evidence = (f"degree of the characteristic polynomial in {parameter_name(plan.parameters[0])} modulo a random "
+                    f"62-bit prime, on random integer-coordinate instances: {', '.join(map(str, degrees))}")
         if plan.number_of_parameters == 2:
-            evidence += (f" (after eliminating {parameter_name(plan.parameters[1])} by a resultant and keeping its "
-                         "genuine factors)")
+            evidence += (f" (after eliminating {parameter_name(plan.parameters[1])} by resultants; common points on "
+                         "different sign branches, undefined points and points at infinity removed)")
     elif plan.number_of_parameters == 0:
         modes = 2 ** len(plan.free_sign_triangles)
         evidence = "coupling degree 0: one configuration per sign branch of the free triangles"
@@ -200,8 +201,8 @@ def catalog_links(links: int, workers: int, show_progress: bool) -> list[dict]:
     if workers > 1 and len(items) > 16:
         order = list(range(len(items)))
         if links <= ASSEMBLY_MODES_MAX_LINKS:
-            # Costs differ by 1000x (coupling-2 polynomials take minutes): the costliest
-            # first, so that no worker is left with a long tail.
+            # Coupling-2 counts cost ~10x coupling-1 ones: the costliest first, so that
+            # no worker is left with a long tail.
             coupling = [best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6 in items]
             order.sort(key=lambda i: -coupling[i])
         with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
@@ -335,8 +336,9 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
             + (", ".join(f"{d}: {n}" for d, n in sorted(theirs.items())) if theirs else "—") + " |"
         )
     lines += ["", "## Assembly modes", "",
-              "Degree of the characteristic polynomial (`assembly_modes`, derived exactly on random integer-coordinate",
-              "instances, coupling degrees 1 and 2 up to " + str(ASSEMBLY_MODES_MAX_LINKS) + " links) and the realization-count",
+              "Degree of the characteristic polynomial (`assembly_modes`, derived modulo random 62-bit primes on random",
+              "integer-coordinate instances, coupling degrees 1 and 2 up to " + str(ASSEMBLY_MODES_MAX_LINKS) + " links;",
+              "`baranov.solvers.modular`, equal to the degree over Q wherever both were derived) and the realization-count",
               "identity (`realization_count`, pyrigi; `baranov.topology.realizations`), as count: trusses.", "",
               "| links | assembly modes (characteristic polynomial) | realization count | trusses where both are known "
               "| of them equal |", "|---|---|---|---|---|"]

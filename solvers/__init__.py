@@ -6,6 +6,8 @@ from .characteristic import (
     characteristic_polynomial,
 )
 from .exact import solve_exact
+from .mode_counts import characteristic_degree
+from .modular import characteristic_degree_modulo
 from .modes import AssemblyMode, Solution, SolverError
 from .numeric import solve_numeric
 from .scene import Scene, SceneError, load_scene, scene_from_dict
@@ -22,5 +24,5 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
 
 __all__ = [
     "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "Scene", "SceneError", "Solution", "SolverError",
-    "characteristic_polynomial", "load_scene", "scene_from_dict", "solve", "solve_exact", "solve_numeric",
+    "characteristic_degree", "characteristic_degree_modulo", "characteristic_polynomial", "load_scene", "scene_from_dict", "solve", "solve_exact", "solve_numeric",
 ]

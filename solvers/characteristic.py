@@ -33,14 +33,14 @@ dimensions.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from itertools import product
+from itertools import combinations, product
 
 import flint
 from baranov.planner import Plan
-from flint.utils.flint_exceptions import DomainError
 
 from .coincidence import solvable_plan
 from .configuration import parameter_name
@@ -75,12 +75,16 @@ class RadicalTower:
         radicands: Δ-numerator of r_n, a polynomial in the t's and r_1, …, r_{n-1}.
         conditions: numerator of s_{u,v}(computed) · den(known) - known · den, one per
             closure pair.
+        denominators: den, the denominator of s_{u,v}(computed), one per closure pair:
+            where it vanishes the condition holds without the distance being the known
+            one (the extraneous roots; thesis eqs. 3.6, 3.20, 3.34, 3.92).
     """
 
     context: flint.fmpq_mpoly_ctx
     parameters: tuple[tuple[str, str], ...]
     radicands: tuple[flint.fmpq_mpoly, ...]
     conditions: tuple[flint.fmpq_mpoly, ...]
+    denominators: tuple[flint.fmpq_mpoly, ...] = ()
 
     @property
     def variables(self) -> tuple[str, ...]:
@@ -183,19 +187,25 @@ class CharacteristicPolynomial:
         return [Fraction(c, coefficients[0]) for c in coefficients]
 
 
-def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
-    """The closure conditions of ``plan`` for the dimensions of ``scene``, exactly.
+def radical_tower(scene: Scene, plan: Plan, prime: int | None = None) -> RadicalTower:
+    """The closure conditions of ``plan`` for the dimensions of ``scene``, exactly, or
+    their images modulo ``prime`` (a word-size prime; polynomials then in flint
+    ``nmod_mpoly``, see :mod:`baranov.solvers.modular`).
 
     Every point is kept as (X + iY) / d with X, Y, d polynomials in normal form (see
     :class:`RadicalTower`), common factors cancelled (flint gcd) after each step. Raises
     :class:`ExactMethodError` if a dimension is inexact or a link triangle has an
-    irrational area.
+    irrational area, and ``ZeroDivisionError`` if ``prime`` divides a denominator of the
+    dimensions.
     """
     if not scene.exact:
         raise ExactMethodError("scene: the exact method needs integer or rational dimensions (a float was given)")
     free = [step for step in plan.steps if step.free_sign]
     names = tuple(f"r{n}" for n in range(len(free), 0, -1)) + tuple(f"t{n + 1}" for n in range(plan.number_of_parameters))
-    context = flint.fmpq_mpoly_ctx.get(names, "lex")
+    if prime is None:
+        context = flint.fmpq_mpoly_ctx.get(names, "lex")
+    else:
+        context = flint.nmod_mpoly_ctx.get(names, modulus=prime, ordering="lex")
     generators = context.gens()
     radicals = generators[:len(free)][::-1]  # r_1, r_2, …
     radicands = []
@@ -210,6 +220,8 @@ def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
 
     def constant(value) -> flint.fmpq_mpoly:
         value = Fraction(value)
+        if prime is not None:
+            return context.constant(value.numerator * pow(value.denominator, -1, prime) % prime)
         return context.constant(flint.fmpq(value.numerator, value.denominator))
 
     parameter_of = {frozenset(pair): generators[len(free) + n] for n, pair in enumerate(plan.parameters)}
@@ -243,16 +255,7 @@ def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
             imaginary = radicals[len(radicands)]
             radicands.append(radicand)
         else:
-            try:  # collinear joints of a link: radicand 0, which has no terms
-                root = (flint.fmpq(0) if radicand.is_zero() else radicand.coefficient(0).sqrt()) \
-                    if radicand.is_constant() else None
-            except DomainError:  # negative, or not the square of a rational
-                root = None
-            if root is None:
-                raise ExactMethodError(
-                    f"link with joints {', '.join(step.triangle)}: 16·area² = {radicand} is not the square of a "
-                    "rational; the exact method needs rational link areas (e.g. rational joint coordinates)")
-            imaginary = root * scene.orientation(step.triangle) * one
+            imaginary = constant(link_area_root(scene, step.triangle))
         real = first + second - third
         xi, yi, di = points[i]
         xj, yj, dj = points[j]
@@ -264,12 +267,35 @@ def radical_tower(scene: Scene, plan: Plan) -> RadicalTower:
         d = mul(scale_j, di)
         common = x.gcd(y).gcd(d)
         points[k] = (x / common, y / common, d / common)
-    conditions = []
+    conditions, denominators = [], []
     for u, v in plan.closure_pairs:
         numerator, denominator = distance(u, v, computed=True)
         target = Fraction(scene.known[frozenset((u, v))])
         conditions.append(numerator * target.denominator - denominator * target.numerator)
-    return RadicalTower(context, plan.parameters, tuple(radicands), tuple(conditions))
+        denominators.append(denominator)
+    return RadicalTower(context, plan.parameters, tuple(radicands), tuple(conditions), tuple(denominators))
+
+
+def link_area_root(scene: Scene, triangle: tuple[str, str, str]) -> Fraction:
+    """√Δ = 4·(oriented area) of three joints of one link, from its known squared
+    distances (thesis eq. 2.7), exactly; raises :class:`ExactMethodError` unless it is
+    rational.
+
+    >>> from baranov.solvers import load_scene
+    >>> from pathlib import Path
+    >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
+    >>> link = next(link for link in scene.links if len(link.joints) == 3)
+    >>> abs(link_area_root(scene, tuple(link.joints))) > 0
+    True
+    """
+    a, b, c = (Fraction(scene.known[frozenset(pair)]) for pair in combinations(triangle, 2))
+    radicand = (a + b + c) ** 2 - 2 * (a * a + b * b + c * c)
+    roots = [math.isqrt(part) if part >= 0 else -1 for part in (radicand.numerator, radicand.denominator)]
+    if roots[0] < 0 or roots[0] ** 2 != radicand.numerator or roots[1] ** 2 != radicand.denominator:
+        raise ExactMethodError(
+            f"link with joints {', '.join(triangle)}: 16·area² = {radicand} is not the square of a "
+            "rational; the exact method needs rational link areas (e.g. rational joint coordinates)")
+    return Fraction(roots[0], roots[1]) * scene.orientation(triangle)
 
 
 def eliminate_radicals(polynomial: flint.fmpq_mpoly,

@@ -71,7 +71,7 @@ def _interpolate(points: list, values: list, context: flint.fmpz_mod_poly_ctx):
     return level[0]
 
 
-def _resultant_modulo(columns_f, columns_g, degree: int, prime: int, rng: random.Random) -> list[int] | None:
+def resultant_modulo(columns_f, columns_g, degree: int, prime: int, rng: random.Random) -> list[int] | None:
     """Coefficients of Res_v(F, G) modulo ``prime`` (degree ≤ ``degree`` in u) from its
     values at degree + 1 random points, or None if a leading coefficient in v vanishes at
     one of them (the resultant there is not the image of R).
@@ -123,7 +123,7 @@ def resultant_by_primes(f: flint.fmpz_mpoly, g: flint.fmpz_mpoly, degree: int,
     residues = [0] * (degree + 1)
     modulus, stable, previous = 1, 0, None
     for prime in _primes():
-        image = _resultant_modulo(columns_f, columns_g, degree, prime, rng)
+        image = resultant_modulo(columns_f, columns_g, degree, prime, rng)
         if image is None:
             continue
         if modulus == 1:  # the first image's degree (R's, unless p divides its leading

@@ -1,0 +1,186 @@
+"""The degree of the characteristic polynomial modulo a prime: assembly-mode counts at the
+cost of word-size arithmetic.
+
+Over Q (:mod:`baranov.solvers.characteristic`) the norm of a closure condition of an
+11-link truss has degree ~2000 and coefficients of ~340 000 bits, and separating its
+genuine factor from the extraneous ones means factoring it (on the order of a minute per
+instance). Only the *degree* of the genuine part is needed to count assembly modes, and the
+extraneous factors are known in advance: they vanish where the computed distance's
+denominator D does (clearing denominators brings them in; thesis eqs. 3.6, 3.20, 3.34,
+3.92). So, modulo a random word-size prime p (flint ``nmod_mpoly``/``nmod_poly``):
+
+* the radical tower and the norms are computed as over Q, coefficients mod p;
+* the norm N of the condition is *saturated* by the norm M of D — every factor it shares
+  with M is divided out, with its multiplicity (repeated gcds) — and so is each content
+  removed during the elimination (:func:`~baranov.solvers.characteristic.eliminate_radicals`);
+  what remains is the characteristic polynomial mod p, and its degree is counted.
+
+Coupling degree 2 (thesis §3.4.1.3): the saturated norms N_1(u, v), N_2(u, v) of the two
+conditions meet at the assembly modes but also where condition 1 holds on one sign branch
+and condition 2 on another. Those mismatches are removed without factoring: with c a
+random constant, the norm N_c of F_1 + c·F_2 vanishes at a point where F_1 and F_2 vanish on
+one branch, and generically not at a mismatch. The count is the degree of
+gcd(Res_v(N_1, N_2), Res_v(N_1, N_c)), the resultants mod p by evaluation and
+interpolation (:mod:`baranov.solvers.resultant`).
+
+A prime can only *lower* the count, never raise it: by dividing a leading coefficient, by
+a gcd mod p larger than over Q, or by a genuine factor meeting M mod p — each with
+probability about (degree / p) ≈ 10^-15. Callers take the largest count over instances
+drawn with different primes (:func:`baranov.solvers.mode_counts.characteristic_degree`).
+The counts equal the degrees over Q for every truss up to 9 links and the realization
+counts for every truss of 11 links (tests/test_modular.py, the catalog's summary).
+"""
+
+from __future__ import annotations
+
+import random
+
+import flint
+from baranov.planner import Plan
+
+from .characteristic import ExactMethodError, RadicalTower, eliminate_radicals, radical_tower
+from .resultant import resultant_modulo
+from .scene import Scene
+
+#: Primes are drawn from [2^61, 2^62): word-size for flint's nmod types.
+PRIME_BITS = 62
+
+
+def random_prime(rng: random.Random) -> int:
+    """A random prime of :data:`PRIME_BITS` bits.
+
+    >>> random_prime(random.Random(0)).bit_length()
+    62
+    """
+    while True:
+        candidate = rng.getrandbits(PRIME_BITS) | (1 << (PRIME_BITS - 1)) | 1
+        if flint.fmpz(candidate).is_prime():
+            return candidate
+
+
+def saturate(polynomial, by):
+    """``polynomial`` without every irreducible factor it shares with ``by``, whatever
+    its multiplicity (flint ``nmod_poly`` or ``nmod_mpoly``; repeated gcd and exact
+    division). Cost: one gcd per multiplicity level.
+
+    >>> p = flint.nmod_poly([0, 0, 1, 1], 101)   # t²(t + 1)
+    >>> saturate(p, flint.nmod_poly([0, 1], 101))   # by t
+    x + 1
+    """
+    common = polynomial.gcd(by)
+    while common.degree() > 0 if isinstance(common, flint.nmod_poly) else not common.is_constant():
+        polynomial = polynomial / common
+        common = polynomial.gcd(common)
+    return polynomial
+
+
+def _norm_factors(polynomial, tower: RadicalTower) -> list[tuple[object, int]]:
+    """The norm of ``polynomial`` over the radicals as (factor, multiplicity) pairs: the
+    eliminated polynomial and each content divided out on the way (multiplicity = the
+    power of 2 it would have had)."""
+    norm, contents = eliminate_radicals(polynomial, tower)
+    return [(norm, 1), *contents]
+
+
+def _square_free_parts(polynomials) -> list:
+    """The distinct non-constant square-free factors of ``polynomials`` (flint
+    ``factor_squarefree``): only their zeros matter here, and norms are often high powers
+    of small polynomials — the denominators' norms on an 11-link coupling-2 truss have
+    degree (353, 329) in all, their parts (8, 12), (6, 4), (1, 0), (0, 1)."""
+    parts = []
+    for polynomial in polynomials:
+        for part, _ in polynomial.factor_squarefree()[1]:
+            if not part.is_constant() and part not in parts:
+                parts.append(part)
+    return parts
+
+
+def _product(polynomials: list, one):
+    result = one
+    for polynomial in polynomials:
+        result = result * polynomial
+    return result
+
+
+def _leading_coefficient_in_v(polynomial):
+    """The coefficient of the highest power of the last generator, as a polynomial."""
+    top = polynomial.degrees()[-1]
+    return polynomial.context().from_dict({exponents: coefficient for exponents, coefficient in polynomial.to_dict().items()
+                                           if exponents[-1] == top})
+
+
+def _saturated_norm(polynomial, tower: RadicalTower, denominators) -> list[tuple[object, int]]:
+    """:func:`_norm_factors` of ``polynomial``, each saturated by ``denominators`` (the
+    product of the norms of the closure distances' denominators)."""
+    return [(saturate(factor, denominators), multiplicity)
+            for factor, multiplicity in _norm_factors(polynomial, tower)]
+
+
+def _univariate(polynomial, prime: int, generator: int = -1) -> flint.nmod_poly:
+    """An ``nmod_mpoly`` in one generator only (default: the last), as an ``nmod_poly``."""
+    coefficients = [0] * (polynomial.degrees()[generator] + 1)
+    for exponents, coefficient in zip(polynomial.monoms(), polynomial.coeffs(), strict=True):
+        coefficients[exponents[generator]] = int(coefficient)
+    return flint.nmod_poly(coefficients, prime)
+
+
+def _plane_columns(polynomial) -> list[dict[int, int]]:
+    """An ``nmod_mpoly`` in the last two generators (u, v) as its coefficients in v:
+    {power of u: residue}."""
+    columns: dict[int, dict[int, int]] = {}
+    for exponents, coefficient in zip(polynomial.monoms(), polynomial.coeffs(), strict=True):
+        columns.setdefault(exponents[-1], {})[exponents[-2]] = int(coefficient)
+    return [columns.get(k, {}) for k in range(max(columns) + 1)]
+
+
+def characteristic_degree_modulo(scene: Scene, plan: Plan, prime: int, seed: int = 0) -> int:
+    """The degree of the characteristic polynomial of ``scene`` (in the plan's first
+    parameter; coupling degree 1 or 2) modulo ``prime``: the number of assembly modes
+    over C, or fewer for an unlucky prime (see the module docstring). ``seed`` draws the
+    constant c and the evaluation points of the coupling-2 resultants.
+
+    >>> from baranov.solvers import load_scene
+    >>> from baranov.solvers.coincidence import solvable_plan
+    >>> from pathlib import Path
+    >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
+    >>> characteristic_degree_modulo(scene, solvable_plan(scene), random_prime(random.Random(1)))
+    14
+    """
+    try:
+        tower = radical_tower(scene, plan, prime)
+    except ZeroDivisionError:
+        raise ExactMethodError(f"the prime {prime} divides a denominator of the dimensions") from None
+    parts = _square_free_parts(factor for denominator in tower.denominators
+                               for factor, _ in _norm_factors(denominator, tower))
+    one = tower.context.constant(1)
+    denominators = _product(parts, one)
+    if plan.number_of_parameters == 1:
+        return sum(multiplicity * _univariate(factor, prime).degree()
+                   for factor, multiplicity in _saturated_norm(tower.conditions[0], tower, denominators))
+    if plan.number_of_parameters != 2:
+        raise ExactMethodError(f"coupling degree {plan.number_of_parameters}: counts are derived for 1 and 2")
+    rng = random.Random(seed)
+    first, second = tower.conditions
+    combined = first + rng.randrange(1, prime) * second
+    curves = [_product(_square_free_parts(factor for factor, _ in _saturated_norm(condition, tower, denominators)), one)
+              for condition in (first, second, combined)]
+    common = _resultant_in_v(curves[0], curves[1], prime, rng).gcd(_resultant_in_v(curves[0], curves[2], prime, rng))
+    for part in parts:
+        common = saturate(common, _resultant_in_v(curves[0], part, prime, rng))
+    at_infinity = _univariate(_leading_coefficient_in_v(curves[0]), prime, -2)
+    common = saturate(common, at_infinity)
+    return common.degree() - common.gcd(common.derivative()).degree()  # distinct roots
+
+
+def _resultant_in_v(first, second, prime: int, rng: random.Random) -> flint.nmod_poly:
+    """Res_v(first, second) modulo ``prime`` for ``nmod_mpoly`` polynomials in the last
+    two generators (u, v); a polynomial in u only stands for itself raised to deg_v of
+    ``first``, which has the same roots."""
+    (first_u, first_v), (second_u, second_v) = first.degrees()[-2:], second.degrees()[-2:]
+    if second_v == 0:
+        return _univariate(second, prime, -2)
+    columns = _plane_columns(first), _plane_columns(second)
+    bound = first_u * second_v + first_v * second_u
+    while (image := resultant_modulo(*columns, bound, prime, rng)) is None:
+        pass  # a leading coefficient vanished at an evaluation point: draw other points
+    return flint.nmod_poly(image, prime)
