@@ -74,14 +74,27 @@ def _interpolate(points: list, values: list, context: flint.fmpz_mod_poly_ctx):
 def resultant_modulo(columns_f, columns_g, degree: int, prime: int, rng: random.Random) -> list[int] | None:
     """Coefficients of Res_v(F, G) modulo ``prime`` (degree ≤ ``degree`` in u) from its
     values at degree + 1 random points, or None if a leading coefficient in v vanishes at
-    one of them (the resultant there is not the image of R).
+    one of them (the resultant there is not the image of R): :func:`resultants_modulo`
+    with one G."""
+    images = resultants_modulo(columns_f, [columns_g], [degree], prime, rng)
+    return None if images is None else images[0]
 
-    All coefficients in v are evaluated at all points by one matrix product
-    (Vandermonde · coefficients, flint ``nmod_mat``): 12 times faster on 9/B28 than a
-    multipoint evaluation per coefficient."""
+
+def resultants_modulo(columns_f, columns_others: list, degrees: list[int], prime: int,
+                      rng: random.Random) -> list[list[int]] | None:
+    """Coefficients of Res_v(F, G_k) modulo ``prime`` for several G_k (columns: the
+    coefficients in v as {power of u: integer}), Res_v(F, G_k) of degree ≤ ``degrees[k]``
+    in u, from their values at max(degrees) + 1 random points (each interpolated from
+    the first degrees[k] + 1); None if a leading coefficient in v vanishes at one of them.
+
+    Every coefficient in v of every polynomial is evaluated at all points by one matrix
+    product (Vandermonde · coefficients, flint ``nmod_mat``): 12 times faster on 9/B28
+    than a multipoint evaluation per coefficient, and the Vandermonde matrix — built in
+    Python, the costliest part — is shared by all the resultants."""
     context = flint.fmpz_mod_poly_ctx(prime)
-    points = rng.sample(range(1, prime), degree + 1)
-    columns = columns_f + columns_g
+    points = rng.sample(range(1, prime), max(degrees) + 1)
+    groups = [columns_f, *columns_others]
+    columns = [column for group in groups for column in group]
     powers = 1 + max(max(column, default=0) for column in columns)
     vandermonde = []
     for a in points:
@@ -93,18 +106,25 @@ def resultant_modulo(columns_f, columns_g, degree: int, prime: int, rng: random.
     coefficients = [column.get(k, 0) % prime for k in range(powers) for column in columns]
     values_at = (flint.nmod_mat(len(points), powers, vandermonde, prime)
                  * flint.nmod_mat(powers, len(columns), coefficients, prime)).entries()
-    width, split = len(columns), len(columns_f)
-    values = []
+    width = len(columns)
+    bounds = [0]
+    for group in groups:
+        bounds.append(bounds[-1] + len(group))
+    values: list[list[int]] = [[] for _ in columns_others]
     for index in range(len(points)):
         row = values_at[index * width:(index + 1) * width]
-        f = flint.nmod_poly([int(c) for c in row[:split]], prime)
-        g = flint.nmod_poly([int(c) for c in row[split:]], prime)
-        if f.degree() != split - 1 or g.degree() != width - split - 1:
-            return None  # the leading coefficient vanishes at this point: take another prime
-        values.append(int(f.resultant(g)))
-    interpolated = _interpolate(points, values, context)
-    coefficients = [int(c) for c in interpolated.coeffs()]
-    return coefficients + [0] * (degree + 1 - len(coefficients))
+        polynomials = [flint.nmod_poly([int(c) for c in row[start:stop]], prime)
+                       for start, stop in zip(bounds, bounds[1:])]
+        if any(p.degree() != len(group) - 1 for p, group in zip(polynomials, groups)):
+            return None  # a leading coefficient vanishes at this point: take other points
+        for k, other in enumerate(polynomials[1:]):
+            if index <= degrees[k]:
+                values[k].append(int(polynomials[0].resultant(other)))
+    images = []
+    for degree, image_values in zip(degrees, values):
+        coefficients = [int(c) for c in _interpolate(points[:degree + 1], image_values, context).coeffs()]
+        images.append(coefficients + [0] * (degree + 1 - len(coefficients)))
+    return images
 
 
 def resultant_by_primes(f: flint.fmpz_mpoly, g: flint.fmpz_mpoly, degree: int,

@@ -186,11 +186,11 @@ def test_coupling_two_characteristic_polynomial_on_a_random_instance():
     assert same_modes(scene, exact.assembly_modes, numeric.assembly_modes)
 
 
-@pytest.mark.slow
 def test_nine_link_b28_example_by_the_exact_method():
     """Thesis §3.4.1.4: 9/B28 has a characteristic polynomial of degree 58 (the factor of
-    a resultant of degree 1826 in the thesis; 1728 here, with this plan's curves) and the
-    example 14 real roots; the exact modes are the numeric backend's."""
+    a resultant of degree 1826 in the thesis; 1728 by the fallback route here, with this
+    plan's curves; lifted from primes without the resultant by default) and the example
+    14 real roots; the exact modes are the numeric backend's (about 20 s)."""
     scene = load_scene(EXAMPLES / "9-B28.json")
     exact, numeric = solve(scene, method="exact"), solve(scene)
     assert exact.characteristic_polynomial.degree == 58
