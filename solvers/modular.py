@@ -1,5 +1,5 @@
-"""The degree of the characteristic polynomial modulo a prime: assembly-mode counts at the
-cost of word-size arithmetic.
+"""The characteristic polynomial modulo primes: assembly-mode counts at the cost of
+word-size arithmetic, and the polynomial over Q lifted from its images.
 
 Over Q (:mod:`baranov.solvers.characteristic`) the norm of a closure condition of an
 11-link truss has degree ~2000 and coefficients of ~340 000 bits, and separating its
@@ -19,14 +19,23 @@ Coupling degree 2 (thesis §3.4.1.3): the saturated norms N_1(u, v), N_2(u, v) o
 conditions meet at the assembly modes but also where condition 1 holds on one sign branch
 and condition 2 on another. Those mismatches are removed without factoring: with c a
 random constant, the norm N_c of F_1 + c·F_2 vanishes at a point where F_1 and F_2 vanish on
-one branch, and generically not at a mismatch. The count is the degree of
-gcd(Res_v(N_1, N_2), Res_v(N_1, N_c)), the resultants mod p by evaluation and
-interpolation (:mod:`baranov.solvers.resultant`).
+one branch, and generically not at a mismatch. So gcd(Res_v(N_1, N_2), Res_v(N_1, N_c))
+is taken (resultants mod p by evaluation and interpolation,
+:mod:`baranov.solvers.resultant`), saturated by Res_v(N_1, D_k) for each square-free part
+D_k of the denominators' norms (common points where a distance is 0/0) and by the
+leading coefficient of N_1 in v (common points at infinity); its distinct roots are
+counted.
 
-A prime can only *lower* the count, never raise it: by dividing a leading coefficient, by
-a gcd mod p larger than over Q, or by a genuine factor meeting M mod p — each with
-probability about (degree / p) ≈ 10^-15. Callers take the largest count over instances
-drawn with different primes (:func:`baranov.solvers.mode_counts.characteristic_degree`).
+For coupling degree 1 a prime can only *lower* the count, never raise it: by dividing a
+leading coefficient, by a gcd mod p larger than over Q, or by a genuine factor meeting M
+mod p. For coupling degree 2 an accidental common root of the two resultants mod p could
+also raise it. Each has probability about (degree / p) ≈ 10^-15. Callers take the
+largest count over instances drawn with different primes
+(:func:`baranov.solvers.mode_counts.characteristic_degree`).
+
+:func:`lifted_characteristic_polynomial` recovers the polynomial over Q from its monic
+images (Chinese remainder theorem, rational reconstruction); the exact coupling-2 method
+uses it and certifies each factor (:mod:`baranov.solvers.coupling_two`).
 The counts equal the degrees over Q for every truss up to 9 links and the realization
 counts for every truss of 11 links (tests/test_modular.py, the catalog's summary).
 """
@@ -98,6 +107,7 @@ def _square_free_parts(polynomials) -> list:
 
 
 def _product(polynomials: list, one):
+    """The product of ``polynomials`` (``one`` if there are none)."""
     result = one
     for polynomial in polynomials:
         result = result * polynomial
@@ -113,7 +123,7 @@ def _leading_coefficient_in_v(polynomial):
 
 def _saturated_norm(polynomial, tower: RadicalTower, denominators) -> list[tuple[object, int]]:
     """:func:`_norm_factors` of ``polynomial``, each saturated by ``denominators`` (the
-    product of the norms of the closure distances' denominators)."""
+    product of the square-free parts of the denominators' norms)."""
     return [(saturate(factor, denominators), multiplicity)
             for factor, multiplicity in _norm_factors(polynomial, tower)]
 
