@@ -75,9 +75,10 @@ ENTRY_FIELDS = (
 )
 
 #: Assembly modes are counted up to this many links (coupling degrees 1 and 2), as the
-#: degree of the characteristic polynomial modulo a prime (:mod:`baranov.solvers.modular`):
-#: about 0.01-3 s per 11-link coupling-1 instance and 1-10 s per coupling-2 one. 13 links
-#: (thousands of trusses) are left to a separate run.
+#: degree of the characteristic polynomial modulo a prime (:mod:`baranov.solvers.modular`).
+#: Per 11-link truss (two instances; bench/sweep_assembly_modes.py): coupling 1 median
+#: 0.21 s, max 0.76 s; coupling 2 median 5.0 s, max 70 s. 13 links (thousands of trusses)
+#: are left to a separate run.
 ASSEMBLY_MODES_MAX_LINKS = 11
 
 Progress = Callable[[str], None]

@@ -23,6 +23,7 @@ Cost: O(deg_u(R) · (deg_v F + deg_v G)²) word operations per prime, and about
 from __future__ import annotations
 
 import random
+from itertools import accumulate
 
 import flint
 
@@ -38,12 +39,23 @@ def _primes():
             yield candidate
 
 
-def coefficients_in_v(polynomial: flint.fmpz_mpoly) -> list[dict[int, int]]:
-    """``polynomial`` (variables u, v) as its coefficients in v: {power of u: integer}."""
+def coefficients_in_v(polynomial) -> list[dict[int, int]]:
+    """``polynomial`` (flint ``fmpz_mpoly`` or ``nmod_mpoly`` in its last two generators
+    u, v) as its coefficients in v: {power of u: integer or residue}."""
     columns: dict[int, dict[int, int]] = {}
-    for (power_u, power_v), coefficient in zip(polynomial.monoms(), polynomial.coeffs(), strict=True):
-        columns.setdefault(power_v, {})[power_u] = int(coefficient)
+    for exponents, coefficient in zip(polynomial.monoms(), polynomial.coeffs(), strict=True):
+        columns.setdefault(exponents[-1], {})[exponents[-2]] = int(coefficient)
     return [columns.get(k, {}) for k in range(max(columns) + 1)]
+
+
+def chinese_remainder(residues: list[int], modulus: int, image: list[int], prime: int) -> list[int]:
+    """x ≡ residues[k] (mod modulus) and x ≡ image[k] (mod prime), in [0, modulus·prime).
+
+    >>> chinese_remainder([2], 3, [3], 5)
+    [8]
+    """
+    inverse = pow(modulus, -1, prime)
+    return [r + modulus * (((value - r) * inverse) % prime) for r, value in zip(residues, image, strict=True)]
 
 
 def _subproduct_tree(points: list, context: flint.fmpz_mod_poly_ctx) -> list[list]:
@@ -71,15 +83,6 @@ def _interpolate(points: list, values: list, context: flint.fmpz_mod_poly_ctx):
     return level[0]
 
 
-def resultant_modulo(columns_f, columns_g, degree: int, prime: int, rng: random.Random) -> list[int] | None:
-    """Coefficients of Res_v(F, G) modulo ``prime`` (degree ≤ ``degree`` in u) from its
-    values at degree + 1 random points, or None if a leading coefficient in v vanishes at
-    one of them (the resultant there is not the image of R): :func:`resultants_modulo`
-    with one G."""
-    images = resultants_modulo(columns_f, [columns_g], [degree], prime, rng)
-    return None if images is None else images[0]
-
-
 def resultants_modulo(columns_f, columns_others: list, degrees: list[int], prime: int,
                       rng: random.Random) -> list[list[int]] | None:
     """Coefficients of Res_v(F, G_k) modulo ``prime`` for several G_k (columns: the
@@ -89,8 +92,8 @@ def resultants_modulo(columns_f, columns_others: list, degrees: list[int], prime
 
     Every coefficient in v of every polynomial is evaluated at all points by one matrix
     product (Vandermonde · coefficients, flint ``nmod_mat``): 12 times faster on 9/B28
-    than a multipoint evaluation per coefficient, and the Vandermonde matrix — built in
-    Python, the costliest part — is shared by all the resultants."""
+    than a multipoint evaluation per coefficient; the points, the Vandermonde matrix and
+    F's values are shared by all the resultants."""
     context = flint.fmpz_mod_poly_ctx(prime)
     points = rng.sample(range(1, prime), max(degrees) + 1)
     groups = [columns_f, *columns_others]
@@ -107,9 +110,7 @@ def resultants_modulo(columns_f, columns_others: list, degrees: list[int], prime
     values_at = (flint.nmod_mat(len(points), powers, vandermonde, prime)
                  * flint.nmod_mat(powers, len(columns), coefficients, prime)).entries()
     width = len(columns)
-    bounds = [0]
-    for group in groups:
-        bounds.append(bounds[-1] + len(group))
+    bounds = [0, *accumulate(len(group) for group in groups)]
     values: list[list[int]] = [[] for _ in columns_others]
     for index in range(len(points)):
         row = values_at[index * width:(index + 1) * width]
@@ -143,16 +144,15 @@ def resultant_by_primes(f: flint.fmpz_mpoly, g: flint.fmpz_mpoly, degree: int,
     residues = [0] * (degree + 1)
     modulus, stable, previous = 1, 0, None
     for prime in _primes():
-        image = resultant_modulo(columns_f, columns_g, degree, prime, rng)
-        if image is None:
+        images = resultants_modulo(columns_f, [columns_g], [degree], prime, rng)
+        if images is None:
             continue
+        image = images[0]
         if modulus == 1:  # the first image's degree (R's, unless p divides its leading
             # coefficient, which the check over Z below would catch) saves points
             degree = max((k for k, c in enumerate(image) if c), default=0)
             residues, image = residues[:degree + 1], image[:degree + 1]
-        inverse = pow(modulus, -1, prime)
-        # Chinese remainder: x ≡ residues[k] (mod modulus), x ≡ image[k] (mod prime)
-        residues = [r + modulus * (((value - r) * inverse) % prime) for r, value in zip(residues, image, strict=True)]
+        residues = chinese_remainder(residues, modulus, image, prime)
         modulus *= prime
         half = modulus // 2
         symmetric = [r - modulus if r > half else r for r in residues]
