@@ -78,7 +78,8 @@ class CompiledSystem:
         values failing at the same step shows as a local maximum of that radicand; an
         undefined gap between two defined values, as a local minimum of one free-sign
         step's radicand."""
-        _, _, failures, radicands, margins = self._evaluate(parameter_values, signs, profile=True)
+        _, _, failures, radicands, steps = self._evaluate(parameter_values, signs, profile=True)
+        margins = [radicand for step, radicand in zip(self.plan.steps, steps, strict=True) if step.free_sign]
         return failures, radicands, np.stack(margins, axis=-1) if margins else np.zeros((*failures.shape, 0))
 
     def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> dict[str, np.ndarray]:
@@ -93,6 +94,23 @@ class CompiledSystem:
         matrices, s_ref, *_ = self._evaluate(parameter_values, signs, paired=True)
         return self._closure_residuals(matrices, s_ref)[0]
 
+    def paired_residuals_and_failures(self, parameter_values: np.ndarray,
+                                      signs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """In one evaluation, for point n on branch ``signs[n]``: :meth:`paired_residuals`,
+        shape (N, c), and :meth:`first_failures`, shape (N,)."""
+        matrices, s_ref, failures, *_ = self._evaluate(parameter_values, signs, paired=True)
+        return self._closure_residuals(matrices, s_ref)[0], failures[0]
+
+    def paired_profile(self, parameter_values: np.ndarray,
+                       signs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """In one evaluation, for point n on branch ``signs[n]``: :meth:`paired_residuals`,
+        shape (N, c); :meth:`first_failures`, shape (N,); and the radicand of every step
+        relative to its squared largest side, shape (N, steps), NaN from the first failure
+        on (the later triangles are not built)."""
+        matrices, s_ref, failures, _, steps = self._evaluate(parameter_values, signs, profile=True, paired=True)
+        radicands = np.stack(steps, axis=-1)[0] if steps else np.zeros((failures.shape[1], 0))
+        return self._closure_residuals(matrices, s_ref)[0], failures[0], radicands
+
     def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool = False,
                   paired: bool = False):
         values = np.asarray(parameter_values, dtype=float)
@@ -106,7 +124,7 @@ class CompiledSystem:
         matrices: dict[str, np.ndarray] = {a: np.zeros(shape, complex), b: np.ones(shape, complex)}
         failures = np.full(shape, len(self.plan.steps))
         radicands = np.full(shape, np.nan)
-        margins = []
+        steps = []
         free = 0
         for index, step in enumerate(self.plan.steps):
             i, j = step.base
@@ -129,9 +147,8 @@ class CompiledSystem:
                     scale = np.maximum(np.maximum(s_ij, s_ik), s_jk) ** 2
                     radicand = ((s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)) / scale
                 radicands = np.where(newly, radicand, radicands)
-                if step.free_sign:
-                    margins.append(radicand)
-        return matrices, s_ref, failures, radicands, margins
+                steps.append(np.broadcast_to(radicand, shape))
+        return matrices, s_ref, failures, radicands, steps
 
     def _distance(self, u: str, v: str, parameter, s_ref, matrices) -> np.ndarray:
         pair = frozenset((u, v))

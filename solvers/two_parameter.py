@@ -82,16 +82,17 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
     low = np.array([math.sqrt(bound) * 1e-6 for bound in upper])
     high = np.array([math.sqrt(bound) for bound in upper])
     whole = Cells(np.arange(len(branches)), np.tile(low, (len(branches), 1)), np.tile(high, (len(branches), 1)))
-    interior, boundary, starts = _examine(compiled, branches, whole, GRID - 1, last=False)
+    interior, boundary, windows, starts = _examine(compiled, branches, whole, GRID - 1, last=False)
     all_starts, to_polish = [starts], []
     for depth in range(DEPTH):
         if depth >= BOUNDARY_DEPTH:
             to_polish.append(boundary)
+            interior = Cells.concatenate([interior, windows])
         else:
-            interior = Cells.concatenate([interior, boundary[1]])
+            interior = Cells.concatenate([interior, windows, boundary[1]])
         if len(interior) == 0:
             break
-        interior, boundary, starts = _examine(compiled, branches, interior, SPLIT, last=depth == DEPTH - 1)
+        interior, boundary, windows, starts = _examine(compiled, branches, interior, SPLIT, last=depth == DEPTH - 1)
         all_starts.append(starts)
     to_polish.append(boundary)
     roots, stalled = _newton(compiled, branches, *(np.concatenate(parts) for parts in zip(*all_starts, strict=True)))
@@ -103,9 +104,11 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
 def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: bool):
     """Split every cell into split × split sub-cells and sample them. Returns the suspect
     sub-cells inside the domain; the suspect sub-cells on its boundary as ``(best sample
-    (u, v), cells)``; and the Newton starts ``(points, branch indices)``: the
-    centre and the best sample of each interior sub-cell where both conditions change
-    sign (of every interior suspect at the ``last`` level)."""
+    (u, v), cells)``; the windows: sub-cells whose four corners are undefined but not all
+    at the same step of the plan (a feasible strip narrower than the cell may cross it);
+    and the Newton starts ``(points, branch indices)``: the centre and the best sample of
+    each interior sub-cell where both conditions change sign (of every interior suspect at
+    the ``last`` level)."""
     count, side = len(cells), split + 1
     fractions = np.linspace(0.0, 1.0, side)
     axis = [cells.low[:, a, None] + (cells.high - cells.low)[:, a, None] * fractions for a in range(2)]
@@ -113,9 +116,13 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     t2 = np.broadcast_to(axis[1][:, None, :], (count, side, side))
     grid = np.stack([t1, t2], axis=-1)  # (C, side, side, 2) in the √ plane
     signs = branches[cells.branch]
-    values = _paired(compiled, grid.reshape(-1, 2), np.repeat(signs, side * side, axis=0)).reshape(count, side, side, 2)
-    along_first = _boundary(compiled, signs, grid[:, :-1, :, :], grid[:, 1:, :, :], values[:, :-1], values[:, 1:])
-    along_second = _boundary(compiled, signs, grid[:, :, :-1, :], grid[:, :, 1:, :], values[:, :, :-1], values[:, :, 1:])
+    values, failures = compiled.paired_residuals_and_failures(grid.reshape(-1, 2) ** 2,
+                                                             np.repeat(signs, side * side, axis=0))
+    values, failures = values.reshape(count, side, side, 2), failures.reshape(count, side, side)
+    feasible = len(compiled.plan.steps)
+    along_first = _boundary(compiled, signs, grid[:, :-1, :, :], grid[:, 1:, :, :], failures[:, :-1], failures[:, 1:])
+    along_second = _boundary(compiled, signs, grid[:, :, :-1, :], grid[:, :, 1:, :], failures[:, :, :-1],
+                             failures[:, :, 1:])
     # the values seen by cell (i, j): four corners and the boundary points on its four edges
     points = np.stack([grid[:, :-1, :-1], grid[:, 1:, :-1], grid[:, :-1, 1:], grid[:, 1:, 1:],
                        along_first[0][:, :, :-1], along_first[0][:, :, 1:],
@@ -132,12 +139,34 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
         c, i, j = np.nonzero(mask)
         return Cells(cells.branch[c], grid[c, i, j], grid[c, i + 1, j + 1]), best[c, i, j]
 
+    window = (failures[:, :-1, :-1] < feasible) & (failures[:, 1:, :-1] < feasible) \
+        & (failures[:, :-1, 1:] < feasible) & (failures[:, 1:, 1:] < feasible) & np.isfinite(seen[:, :, :, 4:]).all(-1).any(-1)
+    strip = np.stack([along_first[0][:, :, :-1], along_first[0][:, :, 1:], along_second[0][:, :-1, :],
+                      along_second[0][:, 1:, :], along_first[2][:, :, :-1], along_first[2][:, :, 1:],
+                      along_second[2][:, :-1, :], along_second[2][:, 1:, :]], axis=3)
     interior, _ = cells_of(suspect & inside)
-    edge_cells, edge_best = cells_of(suspect & ~inside)
+    edge_cells, edge_best = cells_of(suspect & ~inside & ~window)
     started, started_best = cells_of((suspect if last else changes) & inside)
     centre = (started.low + started.high) / 2
     starts = (np.concatenate([centre, started_best]) ** 2, np.concatenate([started.branch] * 2))
-    return interior, (edge_best**2, edge_cells), starts
+    return interior, (edge_best**2, edge_cells), _strip_cells(cells, grid, window, strip), starts
+
+
+def _strip_cells(cells: Cells, grid: np.ndarray, window: np.ndarray, strip: np.ndarray) -> Cells:
+    """The windows shrunk to the strip crossing them: the bounding box of the strip's
+    ends found on the window's edges (``strip``, shape (C, n, n, 8, 2), NaN where none),
+    the window's whole extent along an axis where those ends do not spread. Shrinking,
+    rather than splitting the window like other cells, keeps one cell per window and
+    level: split SPLIT × SPLIT, a strip narrower than a sub-cell crosses SPLIT of them
+    (measured on tests/regressions/9-B25-narrow-strip.json: 1024 windows, then 4088,
+    16352, and 39152 suspect cells inside the strip; Newton from them took 6.5 s)."""
+    c, i, j = np.nonzero(window)
+    low, high = grid[c, i, j], grid[c, i + 1, j + 1]
+    ends = strip[c, i, j]
+    with np.errstate(invalid="ignore"):
+        end_low, end_high = np.nanmin(ends, axis=1), np.nanmax(ends, axis=1)
+    spread = end_high > end_low
+    return Cells(cells.branch[c], np.where(spread, end_low, low), np.where(spread, end_high, high))
 
 
 def _paired(compiled: CompiledSystem, roots_of_parameters: np.ndarray, signs: np.ndarray) -> np.ndarray:
@@ -145,29 +174,46 @@ def _paired(compiled: CompiledSystem, roots_of_parameters: np.ndarray, signs: np
     return compiled.paired_residuals(roots_of_parameters**2, signs)
 
 
-def _boundary(compiled, signs, first, second, first_values, second_values):
-    """Where each grid edge (first → second) leaves the feasible domain: the defined end
-    of a bisection (BOUNDARY_STEPS steps), with its values; NaN for edges whose two ends
-    are both defined or both undefined."""
-    defined_first = np.isfinite(first_values).all(axis=-1)
-    defined_second = np.isfinite(second_values).all(axis=-1)
-    crossing = defined_first != defined_second
-    points = np.full(first.shape, np.nan)
-    values = np.full(first_values.shape, np.nan)
+def _boundary(compiled, signs, first, second, first_failures, second_failures):
+    """Where the first failing step changes along each grid edge (first → second), found
+    by bisection (BOUNDARY_STEPS steps) and kept on the side that fails later, with the
+    values there: where the feasible domain begins on an edge with one end defined, and
+    on an edge whose two ends fail at different steps, a point of a strip of the domain
+    between them if there is one (values NaN if not). For such a strip, also where it ends
+    (a second bisection towards the later-failing end). NaN for edges whose ends fail at
+    the same step, or are both defined, and for ends of strips not found."""
+    crossing = first_failures != second_failures
+    points, far = np.full(first.shape, np.nan), np.full(first.shape, np.nan)
+    values = np.full((*first.shape[:-1], 2), np.nan)
     index = np.nonzero(crossing)
     if len(index[0]) == 0:
-        return points, values
-    inside = np.where(defined_first[index][:, None], first[index], second[index])
-    outside = np.where(defined_first[index][:, None], second[index], first[index])
+        return points, values, far
+    first_later = (first_failures[index] > second_failures[index])[:, None]
+    beyond = np.where(first_later, first[index], second[index])
+    earlier = np.where(first_later, second[index], first[index])
+    later_failure = np.maximum(first_failures[index], second_failures[index])
     edge_signs = signs[index[0]]
+    later = _bisection(compiled, edge_signs, beyond, earlier, lambda failure: failure >= later_failure)
+    points[index] = later
+    values[index] = _paired(compiled, later, edge_signs)
+    feasible = len(compiled.plan.steps)
+    in_strip = np.flatnonzero((later_failure < feasible) & np.isfinite(values[index]).all(axis=-1))
+    if len(in_strip):
+        end = _bisection(compiled, edge_signs[in_strip], later[in_strip], beyond[in_strip],
+                         lambda failure: failure == feasible)
+        far[tuple(axis[in_strip] for axis in index)] = end
+    return points, values, far
+
+
+def _bisection(compiled, signs, good, bad, is_good):
+    """BOUNDARY_STEPS bisection steps on segments from ``good`` to ``bad`` (points of the
+    √ plane, shape (K, 2)), ``is_good`` deciding on first failing steps; the good ends."""
     for _ in range(BOUNDARY_STEPS):
-        middle = (inside + outside) / 2
-        ok = np.isfinite(_paired(compiled, middle, edge_signs)).all(axis=-1)
-        inside = np.where(ok[:, None], middle, inside)
-        outside = np.where(ok[:, None], outside, middle)
-    points[index] = inside
-    values[index] = _paired(compiled, inside, edge_signs)
-    return points, values
+        middle = (good + bad) / 2
+        ok = is_good(compiled.paired_residuals_and_failures(middle**2, signs)[1])[:, None]
+        good = np.where(ok, middle, good)
+        bad = np.where(ok, bad, middle)
+    return good
 
 
 def _classify(seen: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
