@@ -101,16 +101,6 @@ class CompiledSystem:
         matrices, s_ref, failures, *_ = self._evaluate(parameter_values, signs, paired=True)
         return self._closure_residuals(matrices, s_ref)[0], failures[0]
 
-    def paired_profile(self, parameter_values: np.ndarray,
-                       signs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """In one evaluation, for point n on branch ``signs[n]``: :meth:`paired_residuals`,
-        shape (N, c); :meth:`first_failures`, shape (N,); and the radicand of every step
-        relative to its squared largest side, shape (N, steps), NaN from the first failure
-        on (the later triangles are not built)."""
-        matrices, s_ref, failures, _, steps = self._evaluate(parameter_values, signs, profile=True, paired=True)
-        radicands = np.stack(steps, axis=-1)[0] if steps else np.zeros((failures.shape[1], 0))
-        return self._closure_residuals(matrices, s_ref)[0], failures[0], radicands
-
     def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool = False,
                   paired: bool = False):
         values = np.asarray(parameter_values, dtype=float)

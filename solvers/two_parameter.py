@@ -104,9 +104,8 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
 def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: bool):
     """Split every cell into split × split sub-cells and sample them. Returns the suspect
     sub-cells inside the domain; the suspect sub-cells on its boundary as ``(best sample
-    (u, v), cells)``; the windows: sub-cells whose four corners are undefined but not all
-    at the same step of the plan (a feasible strip narrower than the cell may cross it);
-    and the Newton starts ``(points, branch indices)``: the centre and the best sample of
+    (u, v), cells)``; the sub-cells with no defined corner that a strip of the domain
+    crosses, shrunk to it (:func:`_strip_cells`); and the Newton starts ``(points, branch indices)``: the centre and the best sample of
     each interior sub-cell where both conditions change sign (of every interior suspect at
     the ``last`` level)."""
     count, side = len(cells), split + 1
