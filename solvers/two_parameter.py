@@ -152,9 +152,11 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
 
 
 def _strip_cells(cells: Cells, grid: np.ndarray, window: np.ndarray, strip: np.ndarray) -> Cells:
-    """The windows shrunk to the strip crossing them: the bounding box of the strip's
-    ends found on the window's edges (``strip``, shape (C, n, n, 8, 2), NaN where none),
-    the window's whole extent along an axis where those ends do not spread. Shrinking,
+    """The windows shrunk to the strip crossing them: the bounding box of the points found
+    on the window's edges (``strip``, shape (C, n, n, 8, 2), NaN where none: the strip's
+    two ends, and where the failing step changes on an edge no strip crosses, which can
+    only widen the box), the window's whole extent along an axis where those points do
+    not spread. Shrinking,
     rather than splitting the window like other cells, keeps one cell per window and
     level: split SPLIT × SPLIT, a strip narrower than a sub-cell crosses SPLIT of them
     (measured on tests/regressions/9-B25-narrow-strip.json: 1024 windows, then 4088,
