@@ -23,7 +23,7 @@ catalog-13: $(STAMP)  ## the 13-link class too, with plans (22 min measured on 2
 test: $(STAMP)  ## default test suite (a few minutes)
 	$(BIN)/pytest -q
 
-test-slow: $(STAMP)  ## long checks (about 1 h 20 min, the sum of separately measured parts): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 200 coupling-2 random instances), whole catalog
+test-slow: $(STAMP)  ## long checks (about 2 h 40 min, the sum of separately measured parts): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 800 coupling-2 random instances), whole catalog
 	$(BIN)/pytest -q -m slow
 
 bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (19 min 49 s measured, 2 cores)

@@ -2,8 +2,8 @@
 generic instances of every 7- and 9-link truss, the numeric method finds exactly the
 assembly modes whose parameter values the exact method certifies as real roots. The four
 9-link trusses of coupling degree 2 (9/B25-B28) cost 5-21 s per exact solve (the
-polynomial lifted from primes, then certified): their test is separate and takes about
-2.5 h on 2 cores, the coupling-1 one about 14 min.
+polynomial lifted from primes, then certified): their tests, one per truss, took 12 to
+48 min each on 2 cores (1 h 53 min in all), the coupling-1 one about 14 min.
 
 Slow (`make test-slow`): two worker processes; a miss prints the instance's coordinates,
 to be saved under tests/regressions/.
@@ -77,10 +77,10 @@ COUPLING_TWO = {1: "9/B25", 17: "9/B26", 26: "9/B27", 27: "9/B28"}
 @pytest.mark.slow
 @pytest.mark.parametrize("index", list(COUPLING_TWO), ids=lambda index: COUPLING_TWO[index].replace("/", "-"))
 def test_numeric_modes_are_the_certified_ones_coupling_two(index):
-    """One truss per test (about 40 min each on 2 cores). A first run on 50 instances each
-    found two misses, a mode in a strip of the feasible domain narrower than the sampling
-    grid (tests/regressions/9-B25-narrow-strip and 9-B26-narrow-strip, fixed in
-    solvers/two_parameter.py)."""
+    """One truss per test (measured: 9/B25 705 s, 9/B26 1977 s, 9/B27 1207 s, 9/B28
+    2903 s). A first run on 50 instances each found two misses, a mode in a strip of the
+    feasible domain narrower than the sampling grid (tests/regressions/9-B25-narrow-strip
+    and 9-B26-narrow-strip, fixed in solvers/two_parameter.py)."""
     assert {task[1] for task in _trusses(2)} == set(COUPLING_TWO)
     disagreements = _all_disagreements([task for task in _trusses(2) if task[1] == index])
     assert not disagreements, "\n".join(message for message, _ in disagreements)
