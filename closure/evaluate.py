@@ -78,8 +78,7 @@ class CompiledSystem:
         values failing at the same step shows as a local maximum of that radicand; an
         undefined gap between two defined values, as a local minimum of one free-sign
         step's radicand."""
-        _, _, failures, radicands, steps = self._evaluate(parameter_values, signs, profile=True)
-        margins = [radicand for step, radicand in zip(self.plan.steps, steps, strict=True) if step.free_sign]
+        _, _, failures, radicands, margins = self._evaluate(parameter_values, signs, profile=True)
         return failures, radicands, np.stack(margins, axis=-1) if margins else np.zeros((*failures.shape, 0))
 
     def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> dict[str, np.ndarray]:
@@ -114,7 +113,7 @@ class CompiledSystem:
         matrices: dict[str, np.ndarray] = {a: np.zeros(shape, complex), b: np.ones(shape, complex)}
         failures = np.full(shape, len(self.plan.steps))
         radicands = np.full(shape, np.nan)
-        steps = []
+        margins = []
         free = 0
         for index, step in enumerate(self.plan.steps):
             i, j = step.base
@@ -137,8 +136,9 @@ class CompiledSystem:
                     scale = np.maximum(np.maximum(s_ij, s_ik), s_jk) ** 2
                     radicand = ((s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)) / scale
                 radicands = np.where(newly, radicand, radicands)
-                steps.append(np.broadcast_to(radicand, shape))
-        return matrices, s_ref, failures, radicands, steps
+                if step.free_sign:
+                    margins.append(radicand)
+        return matrices, s_ref, failures, radicands, margins
 
     def _distance(self, u: str, v: str, parameter, s_ref, matrices) -> np.ndarray:
         pair = frozenset((u, v))

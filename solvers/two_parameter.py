@@ -105,9 +105,9 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     """Split every cell into split × split sub-cells and sample them. Returns the suspect
     sub-cells inside the domain; the suspect sub-cells on its boundary as ``(best sample
     (u, v), cells)``; the sub-cells with no defined corner that a strip of the domain
-    crosses, shrunk to it (:func:`_strip_cells`); and the Newton starts ``(points, branch indices)``: the centre and the best sample of
-    each interior sub-cell where both conditions change sign (of every interior suspect at
-    the ``last`` level)."""
+    crosses, shrunk to it (:func:`_strip_cells`); and the Newton starts ``(points, branch
+    indices)``: the centre and the best sample of each interior sub-cell where both
+    conditions change sign (of every interior suspect at the ``last`` level)."""
     count, side = len(cells), split + 1
     fractions = np.linspace(0.0, 1.0, side)
     axis = [cells.low[:, a, None] + (cells.high - cells.low)[:, a, None] * fractions for a in range(2)]
@@ -118,7 +118,6 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     values, failures = compiled.paired_residuals_and_failures(grid.reshape(-1, 2) ** 2,
                                                              np.repeat(signs, side * side, axis=0))
     values, failures = values.reshape(count, side, side, 2), failures.reshape(count, side, side)
-    feasible = len(compiled.plan.steps)
     along_first = _boundary(compiled, signs, grid[:, :-1, :, :], grid[:, 1:, :, :], failures[:, :-1], failures[:, 1:])
     along_second = _boundary(compiled, signs, grid[:, :, :-1, :], grid[:, :, 1:, :], failures[:, :, :-1],
                              failures[:, :, 1:])
@@ -138,8 +137,9 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
         c, i, j = np.nonzero(mask)
         return Cells(cells.branch[c], grid[c, i, j], grid[c, i + 1, j + 1]), best[c, i, j]
 
-    window = (failures[:, :-1, :-1] < feasible) & (failures[:, 1:, :-1] < feasible) \
-        & (failures[:, :-1, 1:] < feasible) & (failures[:, 1:, 1:] < feasible) & np.isfinite(seen[:, :, :, 4:]).all(-1).any(-1)
+    undefined = failures < len(compiled.plan.steps)
+    window = (undefined[:, :-1, :-1] & undefined[:, 1:, :-1] & undefined[:, :-1, 1:] & undefined[:, 1:, 1:]
+              & np.isfinite(seen[:, :, :, 4:]).all(axis=-1).any(axis=-1))
     strip = np.stack([along_first[0][:, :, :-1], along_first[0][:, :, 1:], along_second[0][:, :-1, :],
                       along_second[0][:, 1:, :], along_first[2][:, :, :-1], along_first[2][:, :, 1:],
                       along_second[2][:, :-1, :], along_second[2][:, 1:, :]], axis=3)
@@ -156,11 +156,11 @@ def _strip_cells(cells: Cells, grid: np.ndarray, window: np.ndarray, strip: np.n
     on the window's edges (``strip``, shape (C, n, n, 8, 2), NaN where none: the strip's
     two ends, and where the failing step changes on an edge no strip crosses, which can
     only widen the box), the window's whole extent along an axis where those points do
-    not spread. Shrinking,
-    rather than splitting the window like other cells, keeps one cell per window and
-    level: split SPLIT × SPLIT, a strip narrower than a sub-cell crosses SPLIT of them
-    (measured on tests/regressions/9-B25-narrow-strip.json: 1024 windows, then 4088,
-    16352, and 39152 suspect cells inside the strip; Newton from them took 6.5 s)."""
+    not spread. Shrinking, rather than splitting the window like other cells, keeps one
+    cell per window and level: split SPLIT × SPLIT, a strip narrower than a sub-cell
+    crosses SPLIT of them (measured on tests/regressions/9-B25-narrow-strip.json: 1024
+    windows, then 4088, 16352, and 39152 suspect cells inside the strip; Newton from them
+    took 6.5 s)."""
     c, i, j = np.nonzero(window)
     low, high = grid[c, i, j], grid[c, i + 1, j + 1]
     ends = strip[c, i, j]

@@ -217,14 +217,10 @@ def test_unassemblable_linkage_has_zero_modes():
     assert solve(scene_from_dict(data)).assembly_modes == ()
 
 
-REGRESSIONS = [
-    pytest.param(path, id=path.stem, marks=pytest.mark.xfail(strict=True, reason="known miss: see the file's comment"))
-    if json.loads(path.read_text()).get("known_failure") else pytest.param(path, id=path.stem)
-    for path in sorted((Path(__file__).resolve().parent / "regressions").glob("*.json"))
-]
+REGRESSIONS = sorted((Path(__file__).resolve().parent / "regressions").glob("*.json"))
 
 
-@pytest.mark.parametrize("path", REGRESSIONS)
+@pytest.mark.parametrize("path", REGRESSIONS, ids=lambda p: p.stem)
 def test_saved_misses_are_found(path):
     """Every instance the numeric backend once missed: the configuration it was built from
     (the coordinates in the file) must be among the modes."""
