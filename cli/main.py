@@ -101,7 +101,9 @@ def run_solve(args: argparse.Namespace) -> int:
     if solution.characteristic_polynomial is not None:
         polynomial = solution.characteristic_polynomial
         print(f"characteristic polynomial in {polynomial.variable}: degree {polynomial.degree}, "
-              f"{len(polynomial.real_roots())} real roots (certified)")
+              f"{len(polynomial.real_roots())} real roots (isolated in certified enclosures)")
+    if solution.certificate is not None:
+        print(f"assembly modes: {solution.certificate.summary()}")
     if not modes:
         print("the linkage cannot be assembled with these dimensions")
         return 0

@@ -427,7 +427,7 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
             if not still:
                 return False
             undecided = still
-        return frozenset(coincident) if coincident else False
+        return frozenset(coincident)  # empty: undecided at every precision (reported, never silently dropped)
     finally:
         flint.ctx.prec = previous
 

@@ -73,27 +73,36 @@ def solvable_plan(scene: Scene) -> Plan:
 
 def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[str]], values: list[float],
                           modes: tuple[AssemblyMode, ...],
-                          solver: Callable[[Plan], Solution]) -> tuple[AssemblyMode, ...]:
-    """``modes`` and the modes at which ``plan``'s parameter (coupling degree 1) takes one
-    of ``values`` and the joints of ``pairs`` coincide, found by ``solver`` with an
-    alternative plan. The added modes carry ``plan``'s parameter and the orientation of
-    its free-sign triangles (0 where flat)."""
+                          solver: Callable[[Plan], Solution]) -> tuple[tuple[AssemblyMode, ...], bool]:
+    """``modes`` and the modes at which ``plan``'s first parameter takes one of ``values``
+    and the joints of ``pairs`` coincide, found by ``solver`` with an alternative plan;
+    and whether that settles them: True if no pair can coincide, or if the alternative
+    plan exists and its solve is complete (an exact solve's certificate; a numeric solve
+    counts as settling). The added modes carry every parameter of ``plan`` (measured on
+    the configuration) and the orientation of its free-sign triangles (0 where flat)."""
     pairs = set(pairs)
-    if not all(coincidence_possible(scene, pair) for pair in pairs):
-        return modes
+    if not any(coincidence_possible(scene, pair) for pair in pairs):
+        return modes, True
     alternative = alternative_plan(scene, pairs)
     if alternative is None:
-        return modes
+        return modes, False
     found = list(modes)
-    (u, v), name = plan.parameters[0], parameter_name(plan.parameters[0])
+    names = [parameter_name(pair) for pair in plan.parameters]
     scale = max(1.0, distance_bound(scene)) ** 2
-    for mode in solver(alternative).assembly_modes:
-        (xu, yu), (xv, yv) = mode.joints[u], mode.joints[v]
-        value = (xu - xv) ** 2 + (yu - yv) ** 2
-        closest = min(values, key=lambda r: abs(value - r))
-        if abs(value - closest) <= 1e-9 * scale and not any(same_mode(mode, other, scene) for other in found):
-            found.append(AssemblyMode({name: closest}, _branch_signs(mode, plan, scale), mode.joints, mode.max_residual))
-    return sorted_modes(found)
+    solution = solver(alternative)
+    for mode in solution.assembly_modes:
+        measured = [_squared_distance(mode, *pair) for pair in plan.parameters]
+        closest = min(values, key=lambda r: abs(measured[0] - r))
+        if abs(measured[0] - closest) <= 1e-9 * scale and not any(same_mode(mode, other, scene) for other in found):
+            parameters = dict(zip(names, [closest, *measured[1:]], strict=True))
+            found.append(AssemblyMode(parameters, _branch_signs(mode, plan, scale), mode.joints, mode.max_residual))
+    certificate = getattr(solution, "certificate", None)
+    return sorted_modes(found), certificate is None or certificate.complete
+
+
+def _squared_distance(mode: AssemblyMode, u: str, v: str) -> float:
+    (xu, yu), (xv, yv) = mode.joints[u], mode.joints[v]
+    return (xu - xv) ** 2 + (yu - yv) ** 2
 
 
 def _branch_signs(mode: AssemblyMode, plan: Plan, scale: float) -> tuple[int, ...]:

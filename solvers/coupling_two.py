@@ -40,6 +40,7 @@ from .characteristic import (
     residual_verdict,
 )
 from .configuration import parameter_name
+from .fibers import Fiber, common_fiber
 from .modular import lifted_characteristic_polynomial
 from .resultant import coefficients_in_v, resultant_by_primes
 from .scene import Scene
@@ -77,35 +78,50 @@ def column(polynomial: flint.fmpz_mpoly, u: flint.acb) -> flint.acb_poly:
 
 
 def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditions: Sequence[int],
-                  bits: int) -> bool | None:
+                  bits: int, coincident: set | None = None) -> bool | None:
     """Whether on some sign branch every closure condition in ``conditions`` holds at the
     parameter values ``values`` (:func:`~baranov.solvers.characteristic.residual_verdict`
     with tolerance 2^(-bits/8)): True if one branch confirms, False if every branch rules
-    itself out, None (undecided) otherwise."""
+    itself out, None (undecided) otherwise. A branch on which the plan is undefined (a
+    base distance's ball contains 0) is undecided, and its joint pair is added to
+    ``coincident``."""
     undecided = False
     for signs in product((1, -1), repeat=len(plan.free_sign_triangles)):
-        residuals, _, _ = closure_residuals(scene, plan, values, signs)
-        verdict = residual_verdict(residuals and [residuals[i] for i in conditions], flint.arb(2) ** (-bits // 8))
+        residuals, _, pair = closure_residuals(scene, plan, values, signs)
+        if residuals is None:
+            if coincident is not None:
+                coincident.add(pair)
+            undecided = True
+            continue
+        verdict = residual_verdict([residuals[i] for i in conditions], flint.arb(2) ** (-bits // 8))
         if verdict:
             return True
         undecided |= verdict is None
     return None if undecided else False
 
 
-def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan, conditions: Sequence[int]) -> bool:
+def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan,
+                       conditions: Sequence[int]) -> bool | frozenset:
     """Whether one of the parameter points ``points_at()`` (computed afresh at each
-    precision of TEST_BITS) solves ``conditions`` on some branch; False once every point
-    rules itself out, or when no precision decides."""
+    precision of TEST_BITS; None where they cannot be isolated at that precision) solves ``conditions`` on some branch: True once one does,
+    False once every point rules itself out on every branch; otherwise (no precision
+    decides, or the plan is undefined at a point) the set of joint pairs found
+    coincident, possibly empty."""
     previous = flint.ctx.prec
+    coincident: set = set()
     try:
         for bits in TEST_BITS:
             flint.ctx.prec = bits
-            verdicts = [branch_solves(scene, plan, point, conditions, bits) for point in points_at()]
+            coincident.clear()
+            points = points_at()
+            if points is None:  # not isolated at this precision
+                continue
+            verdicts = [branch_solves(scene, plan, point, conditions, bits, coincident) for point in points]
             if True in verdicts:
                 return True
-            if verdicts and None not in verdicts:
+            if None not in verdicts:
                 return False
-        return False
+        return frozenset(coincident)
     finally:
         flint.ctx.prec = previous
 
@@ -113,89 +129,113 @@ def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan, 
 def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, condition: int, seed: int = 0) -> bool:
     """Whether the irreducible ``curve`` of N_condition solves that condition on some
     branch: tested at the points of the curve above a random rational u (or, for a
-    vertical line, at a random rational v on it)."""
+    vertical line, at a random rational v on it).
+
+    An irreducible curve over Q either lies in the closure of the condition's solutions
+    or meets them in finitely many points, so one generic line decides. A line whose
+    points cannot be isolated (a multiple root or a vanishing leading coefficient above
+    that u: non-generic) is replaced by another, up to ten times; then the curve is kept
+    (keeping a curve never loses a mode: its common points are tested again). A curve
+    along which the plan is undefined (two joints of a bilateration base coincide, or the
+    parameter u or v is 0) holds no mode the plan can express and is dropped; modes with
+    coincident joints are the business of :mod:`baranov.solvers.coincidence`."""
     rng = random.Random(seed)
-    value = flint.fmpq(rng.randrange(1, 10**6), rng.randrange(1, 10**3))
+    for _ in range(10):
+        value = flint.fmpq(rng.randrange(1, 10**6), rng.randrange(1, 10**3))
 
-    def points() -> list:
-        if curve.degrees()[1] > 0:
-            return [(flint.acb(value), v) for v in roots_in_v(curve, flint.acb(value)) or []]
-        terms = coefficients_in_v(curve)[0]  # a vertical line: a polynomial in u only
-        line = flint.fmpz_poly([terms.get(k, 0) for k in range(max(terms) + 1)])
-        return [(root, flint.acb(value)) for root, _ in line.complex_roots()]
+        def points() -> list | None:
+            if curve.degrees()[1] > 0:
+                roots = roots_in_v(curve, flint.acb(value))
+                return None if roots is None else [(flint.acb(value), v) for v in roots]
+            terms = coefficients_in_v(curve)[0]  # a vertical line: a polynomial in u only
+            line = flint.fmpz_poly([terms.get(k, 0) for k in range(max(terms) + 1)])
+            return [(root, flint.acb(value)) for root, _ in line.complex_roots()]
 
-    return _some_point_solves(points, scene, plan, (condition,))
-
-
-def common_points(curves: Sequence[flint.fmpz_mpoly], u: flint.acb) -> list[tuple[flint.acb, flint.acb]] | None:
-    """The points (u, v) with v a root of the first curve's column at u at which the
-    second curve's value ball contains 0; None if the roots cannot be isolated at the
-    current precision."""
-    roots = roots_in_v(curves[0], u)
-    if roots is None:
-        return None
-    second = column(curves[1], u)
-    return [(u, v) for v in roots if second(v).contains(0)]
+        verdict = _some_point_solves(points, scene, plan, (condition,))
+        if verdict is True or verdict is False:
+            return verdict
+        if verdict:  # the plan is undefined along the curve (a base distance vanishes)
+            return False
+    return True
 
 
-def _factor_is_genuine(factor: flint.fmpz_poly, curves: Sequence[flint.fmpz_mpoly], scene: Scene,
-                       plan: Plan) -> bool:
-    """Whether at one root u of the irreducible ``factor`` some common point of the curves
-    solves both closure conditions on one branch."""
-    if factor.degree() < 1:
+def _factor_is_genuine(fiber: Fiber, scene: Scene, plan: Plan) -> bool | frozenset:
+    """Whether at one root u of the irreducible factor ``fiber.field`` some common point of
+    the curves (:mod:`baranov.solvers.fibers`, exact above every root) solves both
+    closure conditions on one branch. One root suffices: the modes form a set defined
+    over Q, so the Galois conjugates of a mode are modes (on other branches). Where no
+    precision decides or the plan is undefined at a common point, the joint pairs found
+    coincident are returned instead (as :func:`~baranov.solvers.characteristic._is_genuine`
+    does for coupling degree 1)."""
+    if fiber.field.degree() < 1:
         return False
-    return _some_point_solves(lambda: common_points(curves, factor.complex_roots()[0][0]) or [], scene, plan, (0, 1))
+
+    def points() -> list | None:
+        return common_points(fiber, fiber.field.complex_roots()[0][0])
+
+    return _some_point_solves(points, scene, plan, (0, 1))
 
 
-def characteristic_polynomial_two(scene: Scene, plan: Plan) -> tuple[CharacteristicPolynomial,
-                                                                     tuple[flint.fmpz_mpoly, flint.fmpz_mpoly]]:
-    """The characteristic polynomial of a coupling-2 plan in its first parameter, and the
-    two genuine curves G_1, G_2 (for the second parameter's back-substitution).
+def common_points(fiber: Fiber, u: flint.acb) -> list[tuple[flint.acb, flint.acb]] | None:
+    """The common points (u, v) of the two curves above the root of ``fiber.field``
+    enclosed by ``u``; None if they cannot be isolated at the current precision."""
+    roots = fiber.points(u)
+    return None if roots is None else [(u, v) for v in roots]
 
-    The polynomial is first lifted from its images modulo primes
+
+def characteristic_polynomial_two(scene: Scene, plan: Plan, route: str = "lifted") -> tuple[
+        CharacteristicPolynomial, tuple[Fiber, ...]]:
+    """The characteristic polynomial of a coupling-2 plan in its first parameter, and for
+    each of its irreducible factors the :class:`~baranov.solvers.fibers.Fiber` of the
+    genuine curves G_1, G_2 above its roots (for the second parameter).
+
+    ``route="lifted"`` (default): the candidate polynomial — every u at which the curves
+    meet on one branch, *including* the u that share a point at infinity or an undefined
+    point (``saturated=False``) — is lifted from its images modulo primes
     (:func:`~baranov.solvers.modular.lifted_characteristic_polynomial`, which never forms
-    the resultant over Q) and each of its irreducible factors is certified at a root like
-    a factor of the resultant; if one fails, the resultant route is taken: Res_v(G_1, G_2)
-    by primes, factored, every factor tested (9/B28 example: 174 s, against 19 s lifted)."""
+    the resultant over Q) and each irreducible factor is kept if it passes
+    :func:`_factor_is_genuine`. ``route="resultant"``: Res_v(G_1, G_2) by primes,
+    factored, every factor tested (9/B28 example: 174 s, against about 20 s lifted)."""
     curves = genuine_curves(scene, plan)
-    _, factors = lifted_characteristic_polynomial(scene, plan).factor()
-    if all(_factor_is_genuine(factor, curves, scene, plan) for factor, _ in factors):
-        kept, dropped = list(factors), []
+    if route == "lifted":
+        _, factors = lifted_characteristic_polynomial(scene, plan, saturated=False).factor()
+    elif route == "resultant":
+        (du1, dv1), (du2, dv2) = curves[0].degrees(), curves[1].degrees()
+        _, factors = resultant_by_primes(curves[0], curves[1], du1 * dv2 + dv1 * du2).factor()
     else:
-        kept, dropped = genuine_factors_of_the_resultant(curves, scene, plan)
-    polynomial = flint.fmpz_poly([1])
-    for factor, _ in kept:
-        polynomial *= factor
+        raise ValueError(f"route {route!r}: 'lifted' or 'resultant'")
+    kept, dropped, degenerate, fibers = [], [], [], []
+    for factor, _ in factors:
+        fiber = common_fiber(curves, factor) if factor.degree() > 0 else None
+        verdict = _factor_is_genuine(fiber, scene, plan) if fiber is not None else False
+        if verdict is True:
+            kept.append((factor, 1))
+            fibers.append(fiber)
+        else:
+            dropped.append((factor, 1))
+            if verdict is not False:
+                degenerate.append((factor, verdict))
+    polynomial = math.prod((factor for factor, _ in kept), start=flint.fmpz_poly([1]))
     if polynomial.degree() > 0 and polynomial.coeffs()[-1] < 0:
         polynomial = -polynomial
-    return (CharacteristicPolynomial(parameter_name(plan.parameters[0]), polynomial,
-                                     tuple((f, 1) for f, _ in kept), tuple(dropped)), tuple(curves))
+    return (CharacteristicPolynomial(parameter_name(plan.parameters[0]), polynomial, tuple(kept), tuple(dropped),
+                                     tuple(degenerate)), tuple(fibers))
 
 
 def genuine_curves(scene: Scene, plan: Plan) -> tuple[flint.fmpz_mpoly, flint.fmpz_mpoly]:
-    """G_1, G_2: the product of the irreducible curves of each condition's norm that
-    solve it on some branch (:func:`_curve_is_genuine`)."""
+    """G_1, G_2: the product of the distinct irreducible curves of each condition's norm,
+    and of the contents divided out on the way (:func:`~baranov.solvers.characteristic.eliminate_radicals`),
+    that solve the condition on some branch (:func:`_curve_is_genuine`)."""
     tower = radical_tower(scene, plan)
     curves = []
     for index, condition in enumerate(tower.conditions):
-        norm, _ = eliminate_radicals(condition, tower)
-        _, factors = plane_polynomial(norm).factor()
-        genuine = PLANE.constant(1)
-        for factor, _ in factors:
-            if _curve_is_genuine(factor, scene, plan, index):
-                genuine *= factor
+        norm, contents = eliminate_radicals(condition, tower)
+        genuine, seen = PLANE.constant(1), set()
+        for part in [norm, *(content for content, _ in contents)]:  # a content's curve can hold modes too
+            for factor, _ in plane_polynomial(part).factor()[1]:
+                if factor.degrees()[0] + factor.degrees()[1] > 0 and str(factor) not in seen \
+                        and _curve_is_genuine(factor, scene, plan, index):
+                    seen.add(str(factor))
+                    genuine *= factor
         curves.append(genuine)
     return curves[0], curves[1]
-
-
-def genuine_factors_of_the_resultant(curves: Sequence[flint.fmpz_mpoly], scene: Scene,
-                                      plan: Plan) -> tuple[list, list]:
-    """The irreducible factors of Res_v(G_1, G_2) that pass :func:`_factor_is_genuine`,
-    and the others (thesis §3.4.1.3: 1826 and 58 for 9/B28)."""
-    (du1, dv1), (du2, dv2) = curves[0].degrees(), curves[1].degrees()
-    resultant = resultant_by_primes(curves[0], curves[1], du1 * dv2 + dv1 * du2)
-    _, factors = resultant.factor()
-    kept, dropped = [], []
-    for factor, multiplicity in factors:
-        (kept if _factor_is_genuine(factor, curves, scene, plan) else dropped).append((factor, multiplicity))
-    return kept, dropped

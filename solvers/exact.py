@@ -24,6 +24,7 @@ root of the two genuine curves above the first.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import flint
 import numpy as np
@@ -31,13 +32,14 @@ from baranov.closure import sign_branches
 from baranov.planner import Plan
 
 from .characteristic import (
+    TEST_BITS,
     CharacteristicPolynomial,
     ExactMethodError,
     characteristic_polynomial,
     closure_residuals,
     residual_verdict,
 )
-from .coincidence import solvable_plan, with_coincident_modes
+from .coincidence import coincidence_possible, solvable_plan, with_coincident_modes
 from .coupling_two import characteristic_polynomial_two, common_points
 from .configuration import (
     RESIDUAL_TOLERANCE,
@@ -49,7 +51,8 @@ from .configuration import (
     same_mode,
     sorted_modes,
 )
-from .modes import AssemblyMode, Solution
+from .fibers import Fiber
+from .modes import AssemblyMode, Certificate, Solution
 from .scene import Scene
 
 #: A branch is a candidate at a real root when its closure residual's ball there contains
@@ -71,36 +74,76 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     plan = plan or solvable_plan(scene)
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None
+    gaps: tuple[str, ...] = ()
+    probabilistic = None
     if plan.number_of_parameters == 0:
         modes = assembly_modes(scene, compile_scene(scene, plan), [(np.zeros(0), branch) for branch in branches])
     elif plan.number_of_parameters == 1:
         polynomial = characteristic_polynomial(scene, plan)
-        modes = modes_at_real_roots(scene, plan, polynomial, branches)
+        modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches)
     elif plan.number_of_parameters == 2:
-        polynomial, curves = characteristic_polynomial_two(scene, plan)
-        modes = modes_at_real_roots(scene, plan, polynomial, branches, curves)
+        polynomial, fibers = characteristic_polynomial_two(scene, plan)
+        modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches, fibers)
+        probabilistic = LIFTING_NOTE
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
-    if polynomial is not None and coincidences and plan.number_of_parameters == 1:
-        pairs, roots = set(), []
-        for factor, coincident in polynomial.degenerate:
-            real = [float(root.real.mid()) for root, _ in factor.complex_roots() if root.imag == 0 and root.real >= 0]
-            if real:
-                pairs |= coincident
-                roots += real
-        if roots:
-            modes = with_coincident_modes(scene, plan, pairs, roots, modes,
-                                          lambda other: solve_exact(scene, other, coincidences=False))
+    if polynomial is not None:
+        modes, more = _modes_where_undefined(scene, plan, polynomial, undefined, modes, coincidences)
+        gaps += more
     return Solution("exact", plan.number_of_parameters, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, modes, polynomial)
+                    plan.free_sign_triangles, modes, polynomial,
+                    Certificate(not gaps, probabilistic, gaps))
+
+
+#: What the coupling-2 certificate says of its one Monte Carlo step.
+LIFTING_NOTE = "the polynomial is lifted from its images modulo random 62-bit primes"
+
+
+def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
+                           undefined: list[tuple[float, frozenset]], modes: tuple[AssemblyMode, ...], coincidences: bool) -> tuple[tuple[AssemblyMode, ...],
+                                                                                       tuple[str, ...]]:
+    """Step 4: the dropped factors that the plan could not decide (``polynomial.degenerate``)
+    and that have a positive real root, and the real roots of kept factors at which the
+    plan is undefined on some branch (``undefined``). Where every joint pair found coincident there
+    cannot coincide (:func:`~baranov.solvers.coincidence.coincidence_possible`) no real
+    mode is lost; otherwise the scene is solved again with a plan that avoids those pairs
+    and its modes at those roots are added (thesis §5.1.3.2). What remains undecided is
+    returned as gaps."""
+    name = parameter_name(plan.parameters[0])
+    pairs, roots, gaps = set(), [], []
+    for factor, coincident in polynomial.degenerate:
+        real = [float(root.real.mid()) for root, _ in factor.complex_roots() if root.imag == 0 and root.real >= 0]
+        if not real:
+            continue
+        if not coincident:
+            gaps.append(f"a factor of degree {factor.degree()} with real roots near "
+                        f"{name} = {real[0]:.6g} could not be decided at {TEST_BITS[-1]} bits")
+        elif any(coincidence_possible(scene, pair) for pair in coincident):
+            pairs |= coincident
+            roots += real
+    for value, coincident in undefined:
+        pairs |= coincident
+        roots.append(value)
+    if roots:
+        if not coincidences:
+            gaps.append(f"{name} ≈ {', '.join(f'{r:.6g}' for r in roots)}: the plan is undefined there "
+                        f"(joints {_pair_names(pairs)} may coincide)")
+        else:
+            modes, covered = with_coincident_modes(scene, plan, pairs, roots, modes,
+                                                   lambda other: solve_exact(scene, other, coincidences=False))
+            if not covered:
+                gaps.append(f"{name} ≈ {', '.join(f'{r:.6g}' for r in roots)}: the plan is undefined there "
+                            f"(joints {_pair_names(pairs)} may coincide) and no other plan decides")
+    return modes, tuple(gaps)
 
 
 def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial, branches: np.ndarray,
-                        curves: tuple | None = None) -> tuple[AssemblyMode, ...]:
+                        fibers: Sequence[Fiber] | None = None) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...],
+                                                                        list[tuple[float, frozenset]]]:
     """The verified assembly modes at the positive real roots of ``polynomial``; for
-    coupling degree 2, at the real common points (u, v > 0) of the two ``curves`` above
-    each root u (:func:`~baranov.solvers.coupling_two.common_points`).
+    coupling degree 2, at the real common points (u, v > 0) of the two genuine curves
+    above each root u, one :class:`~baranov.solvers.fibers.Fiber` per factor (exact).
 
     Each root is enclosed at ROOT_BITS[0] bits (ROOT_BITS_TWO for coupling 2) and every
     branch's closure residuals are evaluated over the enclosure in ball arithmetic from
@@ -114,32 +157,44 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
     close; at one root, branches that place every joint alike (a flat free-sign triangle)
     are one mode.
 
+    Returns the modes, the *gaps* (roots at which some branch stayed undecided at the
+    highest precision) and the roots at which the plan is undefined on some branch for a
+    joint pair that can coincide (:func:`~baranov.solvers.coincidence.coincidence_possible`),
+    with those pairs.
+
     Cost: O(real roots × 2^m × steps) ball operations (m free-sign triangles), plus a
     root isolation per precision used."""
     names = tuple(parameter_name(pair) for pair in plan.parameters)
     every_branch = [tuple(int(s) for s in b) for b in branches]
     modes: list[AssemblyMode] = []
+    gaps: list[str] = []
+    undefined: dict[tuple[int, int], set] = {}
+    root_values: dict[tuple[int, int], float] = {}
     previous = flint.ctx.prec
     try:
-        for factor, _ in polynomial.factors:
+        for number, (factor, _) in enumerate(polynomial.factors):
+            fiber = None if fibers is None else fibers[number]
             undecided: dict[int, list[tuple[int, ...]]] | None = None
             found: dict[int, list[AssemblyMode]] = {}
-            for bits in ROOT_BITS if curves is None else ROOT_BITS_TWO:
+            for bits in ROOT_BITS if fibers is None else ROOT_BITS_TWO:
                 flint.ctx.prec = bits
                 roots = sorted((root.real for root, _ in factor.complex_roots() if root.imag == 0),
                                key=lambda r: float(r.mid()))
                 if undecided is None:
                     undecided = {index: every_branch for index in range(len(roots))}
                     found = {index: [] for index in undecided}
+                    root_values.update({(number, index): float(root.mid()) for index, root in enumerate(roots)})
                 for index, signs_list in list(undecided.items()):
                     still = set()
-                    points = _parameter_points(roots[index], curves)
+                    points = _parameter_points(roots[index], fiber)
                     if points is None:  # the second parameter could not be isolated: more bits
                         still.update(signs_list)
                         points = []
                     for point in points:
                         for signs in signs_list:
-                            residuals, placed, _ = closure_residuals(scene, plan, point, signs)
+                            residuals, placed, pair = closure_residuals(scene, plan, point, signs)
+                            if residuals is None and coincidence_possible(scene, pair):
+                                undefined.setdefault((number, index), set()).add(pair)
                             verdict = residual_verdict(residuals, BRANCH_TOLERANCE)
                             if verdict is False:
                                 continue
@@ -155,21 +210,30 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
                 if not undecided:
                     break
             modes += [mode for at_root in found.values() for mode in at_root]
+            gaps += [f"{names[0]} ≈ {float(roots[index].mid()):.6g}: sign branches undecided at {bits} bits"
+                     for index in undecided or {}]
     finally:
         flint.ctx.prec = previous
-    return sorted_modes(modes)
+    return sorted_modes(modes), tuple(gaps), [(root_values[key], frozenset(pairs)) for key, pairs in undefined.items()]
 
 
-def _parameter_points(root: flint.arb, curves: tuple | None) -> list[tuple[flint.acb, ...]]:
+def _pair_names(pairs) -> str:
+    return ", ".join(sorted("=".join(sorted(pair)) for pair in pairs))
+
+
+def _parameter_points(root: flint.arb, fiber: Fiber | None) -> list[tuple[flint.acb, ...]] | None:
     """The parameter values to try at a real root: (root,) for coupling 1; the real common
-    points (root, v), v > 0, of the two curves for coupling 2 (None if they cannot be
-    isolated at this precision); [] where root ≤ 0."""
+    points (root, v), v > 0, of the two curves for coupling 2; None if they cannot be
+    decided at this precision (a ball straddling 0, or roots not isolated); [] where
+    root ≤ 0 (a squared distance)."""
     if not root > 0:
-        return []
-    if curves is None:
+        return None if root.contains(0) and not root.is_exact() else []
+    if fiber is None:
         return [(flint.acb(root),)]
-    common = common_points(curves, flint.acb(root))
+    common = common_points(fiber, flint.acb(root))
     if common is None:
+        return None
+    if any(v.imag.contains(0) and v.real.contains(0) and not v.real.is_exact() for _, v in common):
         return None
     return [(u, flint.acb(v.real)) for u, v in common if v.imag.contains(0) and v.real > 0]
 

@@ -9,6 +9,7 @@ from fractions import Fraction
 
 import numpy as np
 from baranov.enumerate import baranov_trusses
+from baranov.topology.graphs import joints_of_links
 
 from .coincidence import solvable_plan
 from .instances import generic_integer_configuration, scene_of
@@ -86,3 +87,54 @@ def perturbed_scene(scene_links: list[tuple[str, dict]], epsilon: float, rng: np
                      for c in xy] for j, xy in joints.items()}
         links.append({"name": name, "joints": moved})
     return scene_from_dict({"links": links, "ground": scene_links[0][0]})
+
+
+#: Directions of the line through the collinear joints of :func:`collinear_joints_configuration`.
+LINE_DIRECTIONS = {"vertical": (0, 1), "horizontal": (1, 0), "diagonal": (1, 1), "antidiagonal": (1, -1)}
+
+
+def collinear_joints_configuration(truss, rng: np.random.Generator, on_line: int = 3, box: int = 4,
+                                   direction: str = "vertical") -> dict[str, tuple[Fraction, Fraction]]:
+    """Random integer joint coordinates in [−box, box]² with ``on_line`` randomly chosen
+    joints on one line (``direction``: a key of LINE_DIRECTIONS) — the kind of instance a
+    user types, where a free-sign triangle of the plan is flat in the generating mode and
+    the characteristic polynomial's curves meet at a singular point (docs/exact.md,
+    "Flat triangles in a mode"). No two joints coincide and every link of three or more
+    joints keeps a non-zero area; the configuration is a mode of its scene
+    (:func:`~baranov.solvers.instances.scene_of`).
+
+    >>> from baranov.enumerate import baranov_trusses
+from baranov.topology.graphs import joints_of_links
+    >>> truss = baranov_trusses(7)[0]
+    >>> points = collinear_joints_configuration(truss, np.random.default_rng(1), on_line=4)
+    >>> xs = [x for x, _ in points.values()]
+    >>> max(xs.count(x) for x in xs) >= 4
+    True
+    """
+    if direction not in LINE_DIRECTIONS:
+        raise ValueError(f"direction {direction!r}: one of {', '.join(LINE_DIRECTIONS)}")
+    names = [joint.name for joint in truss.joints]
+    if not 2 <= on_line <= min(len(names), 2 * box + 1):
+        raise ValueError(f"on_line {on_line}: between 2 and {min(len(names), 2 * box + 1)} joints")
+    links = [joints for joints in joints_of_links(truss) if len(joints) >= 3]
+    dx, dy = LINE_DIRECTIONS[direction]
+    while True:
+        chosen = [names[i] for i in rng.choice(len(names), size=on_line, replace=False)]
+        start = rng.integers(-box, box + 1, size=2)
+        steps = rng.choice(np.arange(-box, box + 1), size=on_line, replace=False)
+        points = {n: (int(start[0] + s * dx), int(start[1] + s * dy)) for n, s in zip(chosen, steps, strict=True)}
+        if any(abs(x) > box or abs(y) > box for x, y in points.values()):
+            continue
+        for name in names:
+            if name not in points:
+                points[name] = tuple(int(c) for c in rng.integers(-box, box + 1, size=2))
+        if len(set(points.values())) < len(names):
+            continue
+        if all(_spans_a_plane([points[j] for j in link]) for link in links):
+            return {n: (Fraction(x), Fraction(y)) for n, (x, y) in points.items()}
+
+
+def _spans_a_plane(points: list[tuple[int, int]]) -> bool:
+    """Whether the points are not all on one line."""
+    (x0, y0), (x1, y1) = points[0], points[1]
+    return any((x1 - x0) * (y - y0) - (y1 - y0) * (x - x0) != 0 for x, y in points[2:])

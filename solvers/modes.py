@@ -29,6 +29,35 @@ class AssemblyMode:
 
 
 @dataclass(frozen=True)
+class Certificate:
+    """What an exact solve proves about its list of assembly modes (docs/exact.md, "What
+    the exact backend guarantees").
+
+    Attributes:
+        complete: every real assembly mode is in the list: each step from the closure
+            conditions to the configurations was exact or checked at run time on this
+            instance (``gaps`` is empty).
+        probabilistic: a step whose result is correct with overwhelming probability but
+            not proved (coupling degree 2: the polynomial lifted from its images modulo
+            random primes), or None.
+        gaps: what could not be certified on this instance, one sentence each (e.g. a
+            real root where the plan is undefined and no other plan could decide).
+    """
+
+    complete: bool
+    probabilistic: str | None = None
+    gaps: tuple[str, ...] = ()
+
+    def summary(self) -> str:
+        """One line for the command line."""
+        if not self.complete:
+            return "NOT certified complete: " + "; ".join(self.gaps)
+        if self.probabilistic:
+            return f"certified complete (one Monte Carlo step: {self.probabilistic})"
+        return "certified complete"
+
+
+@dataclass(frozen=True)
 class Solution:
     """All assembly modes of a scene found by one method."""
 
@@ -38,6 +67,7 @@ class Solution:
     free_sign_triangles: tuple[tuple[str, str, str], ...]
     assembly_modes: tuple[AssemblyMode, ...]
     characteristic_polynomial: Any = None  # a CharacteristicPolynomial (exact method)
+    certificate: Certificate | None = None  # exact method
 
     def to_dict(self) -> dict:
         """The JSON form printed by ``baranov solve --json``."""
@@ -53,4 +83,8 @@ class Solution:
         }
         if self.characteristic_polynomial is not None:
             result["characteristic_polynomial"] = self.characteristic_polynomial.to_dict()
+        if self.certificate is not None:
+            result["certificate"] = {"complete": self.certificate.complete,
+                                     "probabilistic": self.certificate.probabilistic,
+                                     "gaps": list(self.certificate.gaps)}
         return result

@@ -128,13 +128,21 @@ def _univariate(polynomial, prime: int, generator: int = -1) -> flint.nmod_poly:
     return flint.nmod_poly(coefficients, prime)
 
 
-def characteristic_polynomial_modulo(scene: Scene, plan: Plan, prime: int, seed: int = 0) -> flint.nmod_poly:
+def characteristic_polynomial_modulo(scene: Scene, plan: Plan, prime: int, seed: int = 0,
+                                    saturated: bool = True) -> flint.nmod_poly:
     """The characteristic polynomial of ``scene`` in the plan's first parameter (coupling
     degree 1 or 2) modulo ``prime``, monic: for coupling degree 1 with the multiplicities
     of the exact method, for 2 square-free (each genuine factor once, as in
     :func:`~baranov.solvers.coupling_two.characteristic_polynomial_two`). ``seed`` draws
     the constant c and the evaluation points of the coupling-2 resultants. Raises
     :class:`ExactMethodError` if ``prime`` divides a denominator of the dimensions.
+
+    ``saturated=False`` (coupling degree 2) keeps the roots u that the saturations by
+    undefined points and points at infinity would remove: those saturations remove a
+    whole u, so they would also remove an assembly mode that shares its u with such a
+    point (a coincidence of special instances). The exact method lifts this larger
+    polynomial and tests every factor (docs/exact.md, "What the exact backend
+    guarantees").
     """
     if plan.number_of_parameters not in (1, 2):
         raise ExactMethodError(f"coupling degree {plan.number_of_parameters}: counts are derived for 1 and 2")
@@ -156,13 +164,14 @@ def characteristic_polynomial_modulo(scene: Scene, plan: Plan, prime: int, seed:
     combined = first + rng.randrange(1, prime) * second
     curves = [math.prod(_square_free_parts(factor for factor, _ in _saturated_norm(condition, tower, denominators)),
                         start=one) for condition in (first, second, combined)]
-    in_plane = [part for part in parts if part.degrees()[-1] > 0]
+    in_plane = [part for part in parts if part.degrees()[-1] > 0] if saturated else []
     every_branch_pair, same_branch, *undefined = _resultants_in_v(curves[0], [curves[1], curves[2], *in_plane],
                                                                   prime, rng)
     common = every_branch_pair.gcd(same_branch)
-    for part in [*undefined, *(_univariate(part, prime, -2) for part in parts if part.degrees()[-1] == 0)]:
-        common = saturate(common, part)
-    common = saturate(common, _univariate(_leading_coefficient_in_v(curves[0]), prime, -2))
+    if saturated:
+        for part in [*undefined, *(_univariate(part, prime, -2) for part in parts if part.degrees()[-1] == 0)]:
+            common = saturate(common, part)
+        common = saturate(common, _univariate(_leading_coefficient_in_v(curves[0]), prime, -2))
     return _monic(common / common.gcd(common.derivative()))  # distinct roots
 
 
@@ -201,12 +210,13 @@ def rational_reconstruction(residue: int, modulus: int) -> Fraction | None:
     return Fraction(r1, s1)
 
 
-def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0) -> flint.fmpz_poly:
+def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0, saturated: bool = True) -> flint.fmpz_poly:
     """The characteristic polynomial over Q from its images modulo random 62-bit primes
     (:func:`characteristic_polynomial_modulo`): the monic coefficients are combined by the
     Chinese remainder theorem and recovered by :func:`rational_reconstruction` until two
     more primes change nothing; returned primitive over Z, leading coefficient positive.
     An image of lower degree than another comes from an unlucky prime and is skipped.
+    ``saturated`` as in :func:`characteristic_polynomial_modulo`.
 
     Nothing here proves the result; callers certify its factors (the coupling-2 exact
     method tests each at a root in ball arithmetic). On the 9/B28 example: degree 58,
@@ -225,7 +235,7 @@ def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0) ->
     while stable < 2:
         prime = random_prime(rng)
         try:
-            image = [int(c) for c in characteristic_polynomial_modulo(scene, plan, prime, seed).coeffs()]
+            image = [int(c) for c in characteristic_polynomial_modulo(scene, plan, prime, seed, saturated).coeffs()]
         except ExactMethodError:
             continue
         if len(image) < len(residues):

@@ -75,8 +75,8 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
     modes = assembly_modes(scene, compiled, candidates)
     if degree == 1 and coincidences:  # the sampled interval starts above 0: the parameter's joints coincident
-        modes = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], modes,
-                                      lambda other: solve_numeric(scene, other, samples, coincidences=False))
+        modes, _ = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], modes,
+                                         lambda other: solve_numeric(scene, other, samples, coincidences=False))
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
                     plan.free_sign_triangles, modes)
 

@@ -11,7 +11,7 @@ from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES
 from baranov.planner import best_plan
 from baranov.solvers import ExactMethodError, characteristic_polynomial, load_scene
 from baranov.solvers.coincidence import solvable_plan
-from baranov.solvers.coupling_two import genuine_curves, genuine_factors_of_the_resultant
+from baranov.solvers.coupling_two import characteristic_polynomial_two
 from baranov.solvers.instances import generic_integer_configuration, scene_of
 from baranov.solvers.modular import (
     characteristic_degree_modulo,
@@ -87,10 +87,7 @@ def test_coupling_two_modular_counts_equal_the_degrees_over_q():
         plan = best_plan(truss)
         if plan.number_of_parameters == 2:
             scene = scene_of(truss, generic_integer_configuration(truss, rng))
-            kept, _ = genuine_factors_of_the_resultant(genuine_curves(scene, plan), scene, plan)
-            product = flint.fmpz_poly([1])
-            for factor, _ in kept:
-                product *= factor
+            product = characteristic_polynomial_two(scene, plan, route="resultant")[0].polynomial
             assert characteristic_degree_modulo(scene, plan, random_prime(random.Random(5))) == product.degree()
             lifted = lifted_characteristic_polynomial(scene, plan)
             assert lifted == product or lifted == -product

@@ -225,7 +225,7 @@ def test_saved_misses_are_found(path):
     """Every instance the numeric backend once missed: the configuration it was built from
     (the coordinates in the file) must be among the modes."""
     scene = load_scene(path)
-    generating = {}
+    generating = {n: tuple(map(float, p)) for n, p in json.loads(path.read_text()).get("generating_configuration", {}).items()}
     for link in json.loads(path.read_text())["links"]:
         if isinstance(link["joints"], dict):
             generating.update({n: tuple(map(float, p)) for n, p in link["joints"].items()})
