@@ -19,8 +19,10 @@ import numpy as np
 
 def oriented_area(s_ij, s_ik, s_jk, sign):
     """A_{i,j,k} from the three squared distances and the orientation sign (±1), thesis
-    eq. (2.7). NaN where the radicand is negative (the triangle does not exist).
-    Vectorised over numpy arrays.
+    eq. (2.7). NaN where the radicand is negative (the triangle does not exist). Sign 0
+    takes the triangle as flat (area 0) whatever the radicand: a candidate at a fold of
+    the domain, where rounding leaves the radicand a few ulps below 0 (solvers/numeric.py,
+    ``_roots_at_folds``). Vectorised over numpy arrays.
 
     >>> float(oriented_area(25.0, 9.0, 16.0, 1))  # 3-4-5 right triangle: area 6
     6.0
@@ -28,7 +30,10 @@ def oriented_area(s_ij, s_ik, s_jk, sign):
     s_ij, s_ik, s_jk = (np.asarray(x, dtype=float) for x in (s_ij, s_ik, s_jk))
     radicand = (s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)
     with np.errstate(invalid="ignore"):
-        return sign * np.sqrt(np.where(radicand >= 0, radicand, np.nan)) / 4
+        area = sign * np.sqrt(np.where(radicand >= 0, radicand, np.nan)) / 4
+    if np.ndim(sign) == 0 and sign != 0:
+        return area
+    return np.where(np.asarray(sign) == 0, 0.0, area)
 
 
 def bilateration_matrix(s_ij, s_ik, s_jk, sign):

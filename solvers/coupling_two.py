@@ -2,22 +2,22 @@
 
 A plan with two parameters u, v has two closure conditions. Each is cleared of radicals
 like a one-parameter condition (:func:`~baranov.solvers.characteristic.eliminate_radicals`),
-giving a polynomial N_i(u, v) that vanishes on the solutions of every sign branch; N_i is
-factored over Q (flint) and its *curves* are kept whose points solve condition i on some
-branch (tested at one point of each irreducible curve, in ball arithmetic). With G_i the
-product of the kept curves, the resultant Res_v(G_1, G_2) (by primes:
-:mod:`baranov.solvers.resultant`) vanishes at the u of every common point — the assembly
-modes, but also points where G_1 and G_2 meet on *different* branches (thesis §3.4.1.3:
-"a resultant of degree 1826" of which "a factor of degree 58" is characteristic). Its
-irreducible factors are tested at one root each: kept when some common root v of
-G_1(u, ·) and G_2(u, ·) solves both conditions on one branch. The product of the kept
-factors is the characteristic polynomial in u; its degree is the number of assembly
-modes over C for generic dimensions.
+giving a polynomial N_i(u, v) that vanishes on the solutions of every sign branch; N_i and
+the contents divided out on the way are factored over Q (flint) and their *curves* are
+kept whose points solve condition i on some branch (tested on one generic line, in ball
+arithmetic): G_i, the product of the kept curves.
 
-That resultant route is the fallback. First, the characteristic polynomial is lifted from
-its images modulo primes (:mod:`baranov.solvers.modular`, where mismatched branches are
-removed by a gcd instead of by factoring), and each of its irreducible factors is tested
-the same way; it is used when every factor passes.
+The u of every assembly mode is a root of the *candidate polynomial*: the gcd of
+Res_v(N_1, N_2) and Res_v(N_1, N_c), N_c the norm of F_1 + c·F_2, which keeps every
+common point on one branch and drops most mismatched ones (thesis §3.4.1.3: "a resultant
+of degree 1826" of which "a factor of degree 58" is characteristic). It is lifted from
+its images modulo primes (:mod:`baranov.solvers.modular`), without the saturations that
+the mode *count* uses, since they remove whole values of u. Each irreducible factor is
+kept when at one of its roots a common point of G_1 and G_2 — computed exactly above that
+root (:mod:`baranov.solvers.fibers`) — solves both conditions on one branch. The product
+of the kept factors is the characteristic polynomial in u; its degree is the number of
+assembly modes over C for generic dimensions. ``route="resultant"`` takes the factors of
+Res_v(G_1, G_2) over Q instead (slower; independent of the modular code).
 """
 
 from __future__ import annotations

@@ -16,9 +16,13 @@ arithmetic").
    (:mod:`baranov.solvers.coincidence`).
 
 Coupling degree 0 needs no polynomial: every branch is a candidate. Coupling degree 2
-(thesis §3.4.1.3) eliminates the second parameter by a resultant
-(:mod:`baranov.solvers.coupling_two`); the second parameter of a mode is the real common
-root of the two genuine curves above the first.
+(thesis §3.4.1.3) eliminates the second parameter (:mod:`baranov.solvers.coupling_two`);
+the second parameter of a mode is a real common root of the two genuine curves above the
+first, computed exactly (:mod:`baranov.solvers.fibers`).
+
+Every solve carries a :class:`~baranov.solvers.modes.Certificate`: complete when each step
+above was exact or checked on the instance, with the gaps listed otherwise (docs/exact.md,
+"What the exact backend guarantees").
 """
 
 from __future__ import annotations
@@ -84,6 +88,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     elif plan.number_of_parameters == 2:
         polynomial, fibers = characteristic_polynomial_two(scene, plan)
         modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches, fibers)
+        gaps += unexamined_coincidences(scene, plan)
         probabilistic = LIFTING_NOTE
     else:
         raise ExactMethodError(
@@ -98,6 +103,19 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
 
 #: What the coupling-2 certificate says of its one Monte Carlo step.
 LIFTING_NOTE = "the polynomial is lifted from its images modulo random 62-bit primes"
+
+
+def unexamined_coincidences(scene: Scene, plan: Plan) -> tuple[str, ...]:
+    """Coupling degree 2: the bilateration bases (and the reference) of ``plan`` whose two
+    joints can coincide (:func:`~baranov.solvers.coincidence.coincidence_possible`). Where
+    they coincide the plan is undefined along a whole curve, which the genuine curves
+    leave out, so modes there are not examined: a gap to report, not a proof. With a
+    ternary link on each side of the pair, as in every nine-link truss's plans seen so
+    far, the known distances usually rule the coincidence out."""
+    pairs = {frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps}
+    possible = sorted(sorted(pair) for pair in pairs if pair not in scene.known and coincidence_possible(scene, pair))
+    return tuple(f"joints {'='.join(pair)} (a bilateration base) may coincide: modes where they do are not "
+                 "examined for coupling degree 2" for pair in possible)
 
 
 def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,

@@ -163,7 +163,81 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
             roots += _scan(f, fine, sampled(fine), sampled)
         for root in roots:
             candidates.append((np.array([root]), branch))
+        candidates += _roots_at_folds(compiled, branch, edges)
+        candidates += _roots_at_touching_radicands(compiled, branch, grid, failures[b], radicands[b])
     return candidates
+
+
+#: A failing radicand whose coarse-grid local maximum is below −this (relative to the
+#: squared largest side) is not searched for a touching point.
+TOUCH_SEARCH = 1e-2
+#: A radicand maximum above −this (relative) counts as touching 0: its triangle is flat.
+TOUCH_TOLERANCE = 1e-12
+
+
+def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, grid: np.ndarray,
+                                 failures: np.ndarray, radicands: np.ndarray):
+    """Candidates where a free-sign radicand touches 0 from below: the branch's feasible
+    domain there is a single point, which no sample can hit (joints in line: on 9/N6 the
+    triangle P11 P1 P2 is flat only at s10,3 = 26 and its radicand ≈ −c(s − 26)² around,
+    docs/stability.md; thesis §5.1.3.1's T = 49 is the case with known sides, handled by
+    :func:`_critical_values`). At every local maximum of a failing free-sign radicand
+    among the coarse samples (above −TOUCH_SEARCH), the radicand is maximised (bounded
+    Brent); where the maximum reaches −TOUCH_TOLERANCE the point is a candidate with that
+    triangle flat (sign 0), verified like every other."""
+    free_index = {}
+    for index, step in enumerate(compiled.plan.steps):
+        if step.free_sign:
+            free_index[index] = len(free_index)
+    found = []
+    for i in _radicand_bumps(failures, radicands, len(compiled.plan.steps)):
+        step = int(failures[i])
+        if step not in free_index or radicands[i] < -TOUCH_SEARCH:
+            continue
+        k = free_index[step]
+
+        def negative_margin(s: float, k=k) -> float:
+            margin = compiled.failure_profile(np.array([[s]]), branch[None, :])[2][0, 0, k]
+            return -margin if np.isfinite(margin) else np.inf
+
+        low, high = float(grid[i - 1]), float(grid[i + 1])
+        best = minimize_scalar(negative_margin, bounds=(low, high), method="bounded", options={"xatol": 1e-14 * high})
+        if best.success and best.fun <= TOUCH_TOLERANCE:
+            flat = branch.copy()
+            flat[k] = 0
+            found.append((np.array([float(best.x)]), flat))
+    return found
+
+
+#: A free-sign triangle counts as flat at a domain edge when its radicand, relative to its
+#: squared largest side, is below this: the triangle that ends the domain (~1e-15 there)
+#: and any whose radicand vanishes with it like √δ (two joints in line with a third).
+FLAT_MARGIN = 1e-4
+
+
+def _roots_at_folds(compiled: CompiledSystem, branch: np.ndarray, edges: list[tuple[float, float]]):
+    """Candidates at domain edges where free-sign triangles are flat and the residual has
+    opposite signs on branches that differ only in those triangles' signs. Across the
+    fold those branches are one curve, f(e ± δ) ≈ V ± W√δ, so opposite signs at the edge
+    found (δ ≈ 1e-14 of the cell) mean V ≈ 0: a mode with those triangles flat, where no
+    branch changes sign and none reaches |f| < 1e-7 at δ (joints in line: docs/stability.md;
+    on 9/N1 two triangles were flat at once). The candidate is placed with the flat
+    triangles' signs 0 (their joints on the line) and polished like every other."""
+    found = []
+    for edge, value in edges:
+        _, _, margins = compiled.failure_profile(np.array([[edge]]), branch[None, :])
+        flat = np.flatnonzero(np.abs(margins[0, 0]) < FLAT_MARGIN) if margins.size else []
+        if not len(flat) or not np.isfinite(value):
+            continue
+        variants = np.repeat(branch[None, :], 2 ** len(flat), axis=0)
+        variants[:, flat] = sign_branches(len(flat))
+        others = compiled.residuals(np.array([[edge]]), variants)[:, 0, 0]
+        others = others[np.isfinite(others)]
+        if (others > 0).any() and (others < 0).any():
+            folded = branch.copy()
+            folded[flat] = 0
+            found.append((np.array([edge]), folded))
+    return found
 
 
 def _window_cells(codes: np.ndarray, feasible: int) -> np.ndarray:
