@@ -198,7 +198,7 @@ def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, g
 
         def negative_margin(s: float, k=k) -> float:
             margin = compiled.failure_profile(np.array([[s]]), branch[None, :])[2][0, 0, k]
-            return -margin if np.isfinite(margin) else np.inf
+            return -margin if np.isfinite(margin) else 10.0  # |relative radicand| ≤ 3: 10 is "undefined"
 
         low, high = float(grid[i - 1]), float(grid[i + 1])
         best = minimize_scalar(negative_margin, bounds=(low, high), method="bounded", options={"xatol": 1e-14 * high})
