@@ -432,7 +432,7 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
         flint.ctx.prec = previous
 
 
-def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs) -> tuple[
+def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs, real_only: bool = False) -> tuple[
         dict[str, tuple[flint.acb, flint.acb]] | None, flint.acb, frozenset[str] | None]:
     """The plan's points at complex parameter values (one per plan parameter) on one sign
     branch, in complex ball arithmetic at the current precision: (x, y) per joint in the
@@ -440,6 +440,11 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
     since a complex parameter gives complex coordinates), and the reference distance
     s_{a,b}. Where a bilateration is
     undefined (its base distance's ball contains 0), None and the base's joint pair.
+    ``real_only=True`` (real parameter values, real modes wanted): where a radicand is
+    certainly negative the triangle does not exist, and (None, reference, None) is
+    returned; without it, a radicand on the negative real axis is a square root taken
+    across flint's branch cut, a ball as wide as the root itself at every precision
+    (9/N24 of the collinear-joints sweep: undecided at 1024 bits).
 
     Cost: O(steps) ball operations."""
     known = {pair: flint.acb(flint.fmpq(Fraction(v).numerator, Fraction(v).denominator))
@@ -466,7 +471,10 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
         s_ij, s_ik, s_jk = distance(i, j), distance(i, step.joint), distance(j, step.joint)
         if s_ij.contains(0):
             return None, reference, frozenset((i, j))
-        area = ((s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)).sqrt()
+        radicand = (s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)
+        if real_only and radicand.real < 0:
+            return None, reference, None
+        area = radicand.sqrt()
         sign = next(free) if step.free_sign else scene.orientation(step.triangle)
         real, imaginary = (s_ij + s_ik - s_jk) / (2 * s_ij), sign * area / (2 * s_ij)
         (xi, yi), (xj, yj) = points[i], points[j]
@@ -483,13 +491,14 @@ def computed_distance(points: dict[str, tuple[flint.acb, flint.acb]], u: str, v:
     return ((xv - xu) ** 2 + (yv - yu) ** 2) * reference
 
 
-def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs) -> tuple[
+def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs, real_only: bool = False) -> tuple[
         list[tuple[flint.acb, flint.arb]] | None, dict[str, tuple[flint.acb, flint.acb]] | None, frozenset[str] | None]:
     """(s_{u,v}(computed) - s_{u,v}(known), s_{u,v}(known)) for every closure pair of the
     plan on one branch at complex parameter values, and the placed points they come from
     (:func:`placed_points`, done once for all pairs); where a bilateration is undefined,
-    (None, None, the base's joint pair)."""
-    points, reference, pair = placed_points(scene, plan, parameters, signs)
+    (None, None, the base's joint pair), and with ``real_only`` where a triangle does not
+    exist, (None, None, None)."""
+    points, reference, pair = placed_points(scene, plan, parameters, signs, real_only)
     if points is None:
         return None, None, pair
     residuals = []

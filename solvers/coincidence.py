@@ -100,6 +100,41 @@ def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[st
     return sorted_modes(found), certificate is None or certificate.complete
 
 
+def computed_base_pairs(scene: Scene, plan: Plan) -> set[frozenset[str]]:
+    """The joint pairs that ``plan`` uses as a bilateration base (or reference) whose
+    distance is neither a known dimension nor a parameter, and that can coincide
+    (:func:`coincidence_possible`): where they do, the plan divides by 0."""
+    parameters = {frozenset(pair) for pair in plan.parameters}
+    pairs = {frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps}
+    return {pair for pair in pairs - parameters if pair not in scene.known and coincidence_possible(scene, pair)}
+
+
+def with_modes_of_coincident_joints(scene: Scene, plan: Plan, pairs: set[frozenset[str]],
+                                    modes: tuple[AssemblyMode, ...],
+                                    solver: Callable[[Plan], Solution]) -> tuple[tuple[AssemblyMode, ...], bool]:
+    """``modes`` and the modes of another plan's solve (``solver``, with the best plan
+    that avoids ``pairs`` as bases) in which the joints of one of ``pairs`` coincide
+    (within 1e-6 of the linkage's size): the modes ``plan`` cannot reach. The added modes
+    carry ``plan``'s parameters measured on the configuration and its free-sign
+    orientations (0 where flat). Found by the collinear-joints sweep (9/N19: P3 = P11 at
+    s10,1 = 34.6 in four modes). Also returns whether that settles them (the alternative
+    plan exists and its solve is complete, as in :func:`with_coincident_modes`)."""
+    alternative = alternative_plan(scene, pairs)
+    if alternative is None:
+        return modes, False
+    scale = max(1.0, distance_bound(scene))
+    names = [parameter_name(pair) for pair in plan.parameters]
+    found = list(modes)
+    solution = solver(alternative)
+    for mode in solution.assembly_modes:
+        coincident = any(_squared_distance(mode, *sorted(pair)) < (1e-6 * scale) ** 2 for pair in pairs)
+        if coincident and not any(same_mode(mode, other, scene) for other in found):
+            parameters = {name: _squared_distance(mode, *pair) for name, pair in zip(names, plan.parameters, strict=True)}
+            found.append(AssemblyMode(parameters, _branch_signs(mode, plan, scale ** 2), mode.joints, mode.max_residual))
+    certificate = getattr(solution, "certificate", None)
+    return sorted_modes(found), certificate is None or certificate.complete
+
+
 def _squared_distance(mode: AssemblyMode, u: str, v: str) -> float:
     (xu, yu), (xv, yv) = mode.joints[u], mode.joints[v]
     return (xu - xv) ** 2 + (yu - yv) ** 2

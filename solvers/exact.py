@@ -43,7 +43,12 @@ from .characteristic import (
     closure_residuals,
     residual_verdict,
 )
-from .coincidence import coincidence_possible, solvable_plan, with_coincident_modes
+from .coincidence import (
+    coincidence_possible,
+    solvable_plan,
+    with_coincident_modes,
+    with_modes_of_coincident_joints,
+)
 from .coupling_two import characteristic_polynomial_two, common_points
 from .configuration import (
     RESIDUAL_TOLERANCE,
@@ -88,8 +93,14 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     elif plan.number_of_parameters == 2:
         polynomial, fibers = characteristic_polynomial_two(scene, plan)
         modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches, fibers)
-        gaps += unexamined_coincidences(scene, plan)
         probabilistic = LIFTING_NOTE
+        if coincidences and (pairs := base_pairs_that_may_coincide(scene, plan)):
+            modes, covered = with_modes_of_coincident_joints(
+                scene, plan, pairs, modes, lambda other: solve_exact(scene, other, coincidences=False))
+            if not covered:
+                gaps += unexamined_coincidences(pairs)
+        elif pairs := base_pairs_that_may_coincide(scene, plan):
+            gaps += unexamined_coincidences(pairs)
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
@@ -105,17 +116,20 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
 LIFTING_NOTE = "the polynomial is lifted from its images modulo random 62-bit primes"
 
 
-def unexamined_coincidences(scene: Scene, plan: Plan) -> tuple[str, ...]:
-    """Coupling degree 2: the bilateration bases (and the reference) of ``plan`` whose two
-    joints can coincide (:func:`~baranov.solvers.coincidence.coincidence_possible`). Where
-    they coincide the plan is undefined along a whole curve, which the genuine curves
-    leave out, so modes there are not examined: a gap to report, not a proof. With a
-    ternary link on each side of the pair, as in every nine-link truss's plans seen so
-    far, the known distances usually rule the coincidence out."""
+def base_pairs_that_may_coincide(scene: Scene, plan: Plan) -> set[frozenset[str]]:
+    """Coupling degree 2: the bilateration bases (and the reference) of ``plan``, the
+    parameters' pairs included, whose two joints can coincide
+    (:func:`~baranov.solvers.coincidence.coincidence_possible`). Where they coincide the
+    plan is undefined along a whole curve, which the genuine curves leave out; with a
+    ternary link on each side of the pair the known distances usually rule it out."""
     pairs = {frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps}
-    possible = sorted(sorted(pair) for pair in pairs if pair not in scene.known and coincidence_possible(scene, pair))
-    return tuple(f"joints {'='.join(pair)} (a bilateration base) may coincide: modes where they do are not "
-                 "examined for coupling degree 2" for pair in possible)
+    return {pair for pair in pairs if pair not in scene.known and coincidence_possible(scene, pair)}
+
+
+def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:
+    """The gaps for ``pairs`` whose coincidences no other plan could settle."""
+    return tuple(f"joints {'='.join(sorted(pair))} (a bilateration base) may coincide: modes where they do "
+                 "are not examined" for pair in sorted(pairs, key=sorted))
 
 
 def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
@@ -210,8 +224,8 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
                         points = []
                     for point in points:
                         for signs in signs_list:
-                            residuals, placed, pair = closure_residuals(scene, plan, point, signs)
-                            if residuals is None and coincidence_possible(scene, pair):
+                            residuals, placed, pair = closure_residuals(scene, plan, point, signs, real_only=True)
+                            if residuals is None and pair is not None and coincidence_possible(scene, pair):
                                 undefined.setdefault((number, index), set()).add(pair)
                             verdict = residual_verdict(residuals, BRANCH_TOLERANCE)
                             if verdict is False:

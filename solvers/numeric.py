@@ -36,7 +36,12 @@ from baranov.closure import CompiledSystem, sign_branches
 from baranov.planner import Plan
 from scipy.optimize import brentq, minimize_scalar
 
-from .coincidence import solvable_plan, with_coincident_modes
+from .coincidence import (
+    computed_base_pairs,
+    solvable_plan,
+    with_coincident_modes,
+    with_modes_of_coincident_joints,
+)
 from .configuration import (
     RESIDUAL_TOLERANCE,
     assembly_modes,
@@ -77,6 +82,9 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     if degree == 1 and coincidences:  # the sampled interval starts above 0: the parameter's joints coincident
         modes, _ = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], modes,
                                          lambda other: solve_numeric(scene, other, samples, coincidences=False))
+    if degree > 0 and coincidences and (pairs := computed_base_pairs(scene, plan)):
+        modes, _ = with_modes_of_coincident_joints(scene, plan, pairs, modes,
+                                                lambda other: solve_numeric(scene, other, samples, coincidences=False))
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
                     plan.free_sign_triangles, modes)
 
