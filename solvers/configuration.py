@@ -23,6 +23,8 @@ RESIDUAL_TOLERANCE = 1e-8
 #: the float radicand loses digits to cancellation (joints 1e-4 apart among sides ~10:
 #: residual ~1e-6, docs/stability.md) although the candidate is next to a true mode.
 POLISH_LIMIT = 1e-3
+#: Relative doubled area below which :func:`read_back` calls a triangle flat (sign 0).
+FLAT_AREA = 1e-10
 
 
 def parameter_name(pair: tuple[str, str]) -> str:
@@ -110,15 +112,23 @@ def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, br
 def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """The plan's parameter values and free-sign branch of configurations given as joint
     positions (complex arrays of one shape S): arrays of shape S + (parameters,) and
-    S + (free-sign triangles,)."""
+    S + (free-sign triangles,). A triangle whose doubled area is below FLAT_AREA of the
+    product of its two sides from P_i gets sign 0 (flat): placed with ±1 at parameters
+    read back to rounding, its radicand can come out a few ulps negative, and the mode
+    would be lost (9/N28 of the collinear-joints sweep)."""
     shape = np.shape(next(iter(at.values())))
 
     def stacked(columns: list) -> np.ndarray:
         return np.stack(columns, axis=-1) if columns else np.zeros((*shape, 0))
 
+    def orientation(i: str, j: str, k: str) -> np.ndarray:
+        first, second = at[j] - at[i], at[k] - at[i]
+        cross = (first.conjugate() * second).imag
+        flat = np.abs(cross) <= FLAT_AREA * np.abs(first) * np.abs(second)
+        return np.where(flat, 0, np.where(cross > 0, 1, -1))
+
     parameters = stacked([np.abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters])
-    branch = stacked([np.where(((at[j] - at[i]).conjugate() * (at[k] - at[i])).imag > 0, 1, -1)
-                      for i, j, k in compiled.free_triangles])
+    branch = stacked([orientation(*triangle) for triangle in compiled.free_triangles])
     return parameters, branch
 
 
