@@ -66,9 +66,38 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates) -> tuple[
         mode = configuration(scene, compiled, np.asarray(values, float), np.asarray(branch))
         if RESIDUAL_TOLERANCE <= mode.max_residual < POLISH_LIMIT:
             mode = polished_mode(scene, compiled, mode)
-        if mode.max_residual < RESIDUAL_TOLERANCE and not any(same_mode(mode, other, scene) for other in modes):
-            modes.append(mode)
+        if mode.max_residual < RESIDUAL_TOLERANCE:
+            mode = flattened_mode(scene, compiled, mode)
+            if not any(same_mode(mode, other, scene) for other in modes):
+                modes.append(mode)
     return sorted_modes(modes)
+
+
+#: A free-sign triangle of a verified mode whose doubled area is below this (relative to
+#: the product of its sides from P_i) is tried flat by :func:`flattened_mode`.
+NEARLY_FLAT = 1e-4
+
+
+def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -> AssemblyMode:
+    """``mode`` rebuilt with its nearly flat free-sign triangles flat (sign 0), if that
+    configuration verifies too. Next to a mode with a flat triangle the two branches meet
+    like ±√δ, so candidates from either side verify to 1e-8 while their joints differ by
+    ~√(1e-10) — at a double root of the characteristic polynomial the same mode was
+    reported twice, 5e-5 apart (9/N20 of the collinear-joints sweep). Snapped flat, they
+    are one; two genuinely distinct modes this close keep a triangle area whose removal
+    breaks the verification (the merging pair of docs/stability.md)."""
+    flat = []
+    for index, (i, j, k) in enumerate(compiled.free_triangles):
+        first = complex(*mode.joints[j]) - complex(*mode.joints[i])
+        second = complex(*mode.joints[k]) - complex(*mode.joints[i])
+        if abs((first.conjugate() * second).imag) < NEARLY_FLAT * abs(first) * abs(second):
+            flat.append(index)
+    if not flat or not mode.parameters:
+        return mode
+    branch = np.array(mode.signs)
+    branch[flat] = 0
+    snapped = configuration(scene, compiled, np.array(list(mode.parameters.values())), branch)
+    return snapped if snapped.max_residual < RESIDUAL_TOLERANCE else mode
 
 
 def sorted_modes(modes) -> tuple[AssemblyMode, ...]:
