@@ -153,6 +153,9 @@ def main() -> None:
     start = time.perf_counter()
     sections = {"rpr": three_rpr(args.time_limit), "merging": merging(args.time_limit),
                 "families": families(args.time_limit), "conditioning": conditioning(args.time_limit)}
+    collinear = ROOT / "docs" / "bench" / "collinear-joints.md"
+    sections["collinear"] = [collinear.read_text(encoding="utf-8").strip() if collinear.exists()
+                             else "(not run: see the command above)"]
     text = TEMPLATE.format(limit=args.time_limit, elapsed=time.perf_counter() - start,
                            **{k: "\n".join(v) for k, v in sections.items()})
     (ROOT / "docs" / "stability.md.tmp").write_text(text, encoding="utf-8")
@@ -190,6 +193,22 @@ the drawn configuration (2 = both resolved).
 ## Branch boundary, nearly collinear links, nearly coincident joints
 
 {families}
+
+## Joints in line (issue 28)
+
+Random integer configurations of every nine-link truss with three or four joints on one
+line (vertical, horizontal, diagonal, antidiagonal in turn; coordinates in [−4, 4]²;
+`baranov.solvers.hard_instances.collinear_joints_configuration`), both backends: does each
+return the generating configuration, do they agree mode for mode, is the exact solve
+certified complete. The report below is written by `bench/sweep_collinear.py --out
+docs/bench/collinear-joints.md` (not rerun by this script: about half an hour) and copied
+here. The first runs found 11 instances where a mode was lost or doubled, each caused by a
+flat triangle or coincident joints in the generating mode; each is saved in
+tests/regressions/ (`9-B28-joints-in-line*.json`, `9-joints-in-line-*.json`) with what was
+lost and why, and fixed (docs/exact.md, "What the exact backend guarantees";
+docs/numeric.md, "Flat triangles").
+
+{collinear}
 
 ## Conditioning
 

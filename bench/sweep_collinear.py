@@ -5,15 +5,20 @@ return the generating configuration, do the two agree mode for mode, is the exac
 certified complete. Prints one line per disagreement and a summary; the numbers in
 docs/stability.md come from
 
-    python bench/sweep_collinear.py --links 9 --on-line 3,4 --instances 5 --box 4 --workers 2
+    python bench/sweep_collinear.py --links 9 --on-line 3,4 --instances 5 --box 4 --workers 2 \
+        --out docs/bench/collinear-joints.md
+
+which writes the report that ``bench/stability.py`` includes in docs/stability.md.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import shlex
 import sys
 import time
+from pathlib import Path
 from concurrent.futures import ProcessPoolExecutor, as_completed
 
 import numpy as np
@@ -70,6 +75,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--box", type=int, default=4, help="coordinates in [-box, box] (default 4)")
     parser.add_argument("--seed", type=int, default=28)
     parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--out", type=Path, help="write the report (Markdown) here")
     args = parser.parse_args(argv)
     tasks = [(links, index, on_line, instance, args.box, args.seed)
              for links in map(int, args.links.split(",")) for index in range(len(baranov_trusses(links)))
@@ -86,20 +92,46 @@ def main(argv: list[str] | None = None) -> int:
             if bad:
                 print("DISAGREE", row, flush=True)
     wall = time.perf_counter() - start
+    report = summary(rows, wall, args.workers)
+    print("\n".join(report))
+    if args.out is not None:
+        command = "python bench/sweep_collinear.py " + shlex.join(argv if argv is not None else sys.argv[1:])
+        text = "\n".join([f"Command: `{command}` ({len(rows)} instances).", "", *report, "", *table(rows)]) + "\n"
+        args.out.with_suffix(".tmp").write_text(text, encoding="utf-8")
+        args.out.with_suffix(".tmp").replace(args.out)
+    return 0
+
+
+def summary(rows: list[dict], wall: float, workers: int) -> list[str]:
+    lines = []
     for method in ("numeric", "exact"):
         missed = sum(1 for r in rows if not r[f"{method}_has_generating"])
         times = sorted(r[f"{method}_seconds"] for r in rows)
-        print(f"{method}: {missed} missed generating configurations in {len(rows)} instances; "
-              f"solve time median {np.median(times):.2f} s, max {times[-1]:.1f} s")
+        lines.append(f"- {method}: {missed} missed generating configurations in {len(rows)} instances; "
+                     f"solve time median {np.median(times):.2f} s, max {times[-1]:.1f} s")
     disagreements = sum(1 for r in rows if r["only_numeric"] or r["only_exact"])
-    print(f"{disagreements} instances where the backends disagree "
-          f"({sum(r['only_exact'] for r in rows)} modes found only by the exact backend, "
-          f"{sum(r['only_numeric'] for r in rows)} only by the numeric one)")
-    print(f"{sum(1 for r in rows if not r['certified'])} exact solves not certified complete")
-    for degree in sorted({r["coupling_degree"] for r in rows}):
-        print(f"coupling degree {degree}: {sum(1 for r in rows if r['coupling_degree'] == degree)} instances")
-    print(f"wall time {wall:.1f} s on {args.workers} workers")
-    return 0
+    lines.append(f"- {disagreements} instances where the backends disagree "
+                 f"({sum(r['only_exact'] for r in rows)} modes found only by the exact backend, "
+                 f"{sum(r['only_numeric'] for r in rows)} only by the numeric one)")
+    lines.append(f"- {sum(1 for r in rows if not r['certified'])} exact solves not certified complete")
+    lines.append(f"- wall time {wall:.0f} s on {workers} workers")
+    return lines
+
+
+def table(rows: list[dict]) -> list[str]:
+    """Per truss: instances, coupling degree, real modes (exact), median times, misses."""
+    lines = ["| truss | coupling degree | instances | real modes (min–max) | numeric median s | exact median s "
+             "| missed (numeric / exact) | disagreements |", "|---|---:|---:|---|---:|---:|---|---:|"]
+    for truss in sorted({r["truss"] for r in rows}, key=lambda t: int(t.split("N")[1])):
+        mine = [r for r in rows if r["truss"] == truss]
+        modes = [r["exact_modes"] for r in mine]
+        lines.append(f"| {truss} | {mine[0]['coupling_degree']} | {len(mine)} | {min(modes)}–{max(modes)} | "
+                     f"{np.median([r['numeric_seconds'] for r in mine]):.2f} | "
+                     f"{np.median([r['exact_seconds'] for r in mine]):.2f} | "
+                     f"{sum(not r['numeric_has_generating'] for r in mine)} / "
+                     f"{sum(not r['exact_has_generating'] for r in mine)} | "
+                     f"{sum(bool(r['only_numeric'] or r['only_exact']) for r in mine)} |")
+    return lines
 
 
 if __name__ == "__main__":
