@@ -204,11 +204,11 @@ certified complete. The report below is written by `bench/sweep_collinear.py --o
 docs/bench/collinear-joints.md` (not rerun by this script: about half an hour) and copied
 here. Before it, issue 28's instance (`tests/regressions/9-B28-joints-in-line.json`) lost
 a mode in the exact backend; the first runs of the sweep then found ten instances where a
-backend lost or doubled a mode, in six ways (five numeric, one exact), each caused by a flat triangle or coincident
-joints in a mode; one instance of each is saved in tests/regressions/
-(`9-B28-joints-in-line-fold.json`, `9-joints-in-line-*.json`) with what was lost and why,
-and all are fixed (docs/exact.md, "What the exact backend guarantees"; docs/numeric.md,
-"Flat triangles").
+backend lost or doubled a mode, in six ways (five numeric, one exact), each caused by a
+flat triangle or coincident joints in a mode; one instance of each is saved in
+tests/regressions/ (`9-B28-joints-in-line-fold.json`, `9-joints-in-line-*.json`) with
+what was lost and why, and all are fixed (docs/exact.md, "What the exact backend
+guarantees"; docs/numeric.md, "Flat triangles").
 
 {collinear}
 
