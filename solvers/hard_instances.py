@@ -104,7 +104,6 @@ def collinear_joints_configuration(truss, rng: np.random.Generator, on_line: int
     (:func:`~baranov.solvers.instances.scene_of`).
 
     >>> from baranov.enumerate import baranov_trusses
-from baranov.topology.graphs import joints_of_links
     >>> truss = baranov_trusses(7)[0]
     >>> points = collinear_joints_configuration(truss, np.random.default_rng(1), on_line=4)
     >>> xs = [x for x, _ in points.values()]
