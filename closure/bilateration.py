@@ -31,9 +31,10 @@ def oriented_area(s_ij, s_ik, s_jk, sign):
     radicand = (s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)
     with np.errstate(invalid="ignore"):
         area = sign * np.sqrt(np.where(radicand >= 0, radicand, np.nan)) / 4
-    if np.ndim(sign) == 0 and sign != 0:
+    flat = np.asarray(sign) == 0
+    if not flat.any():  # the usual case: no flat triangle asked for
         return area
-    return np.where(np.asarray(sign) == 0, 0.0, area)
+    return np.where(flat, 0.0, area)
 
 
 def bilateration_matrix(s_ij, s_ik, s_jk, sign):
