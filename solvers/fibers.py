@@ -84,18 +84,18 @@ def _monic(polynomial: FieldPolynomial, modulus: flint.fmpq_poly) -> FieldPolyno
 def _remainder(dividend: FieldPolynomial, divisor: FieldPolynomial, modulus: flint.fmpq_poly,
                quotient: list | None = None) -> FieldPolynomial:
     """``dividend`` mod the monic ``divisor`` over K; the quotient's coefficients are put in
-    ``quotient`` (highest first) if given."""
+    ``quotient`` (highest first, zeros included) if given."""
     remainder = list(dividend)
     shift = len(divisor) - 1
-    while len(remainder) > shift and remainder:
-        lead = remainder[-1]
-        offset = len(remainder) - 1 - shift
+    for top in range(len(remainder) - 1, shift - 1, -1):
+        lead = remainder[top]
         if quotient is not None:
             quotient.append(lead)
-        for k in range(shift):
-            remainder[offset + k] = _reduce(remainder[offset + k] - lead * divisor[k], modulus)
-        remainder = _trimmed(remainder[:-1])
-    return remainder
+        if not lead.is_zero():
+            for k in range(shift):
+                remainder[top - shift + k] = _reduce(remainder[top - shift + k] - lead * divisor[k], modulus)
+        remainder[top] = flint.fmpq_poly([0])
+    return _trimmed(remainder[:shift])
 
 
 def gcd_over_field(first: FieldPolynomial, second: FieldPolynomial, field: flint.fmpz_poly) -> FieldPolynomial:
