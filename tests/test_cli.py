@@ -217,3 +217,14 @@ def test_solve_plot_writes_a_png(tmp_path):
     assert not list(tmp_path.glob(".*.tmp"))
     missing = run("solve", str(REPO / "examples" / "5-B1.json"), "--plot", str(tmp_path / "no" / "x.png"))
     assert missing.returncode == 2 and "does not exist" in missing.stderr
+
+
+def test_exact_solve_says_what_it_certifies():
+    """The exact backend prints its certificate (docs/exact.md, "What the exact backend
+    guarantees") and puts it in the JSON."""
+    example = Path(__file__).resolve().parents[1] / "examples" / "7-B1.json"
+    result = run("solve", str(example), "--method", "exact")
+    assert result.returncode == 0, result.stderr
+    assert "assembly modes: certified complete" in result.stdout
+    data = json.loads(run("solve", str(example), "--method", "exact", "--json").stdout)
+    assert data["certificate"] == {"complete": True, "probabilistic": None, "gaps": []}
