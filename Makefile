@@ -6,7 +6,7 @@ STAMP  := $(VENV)/.installed
 # nauty's geng for the brute-force cross-check; --no-deps keeps it to one ~40 MB wheel.
 GENG_WHEEL := passagemath-nauty==10.8.13
 
-.PHONY: catalog catalog-13 test test-slow bench bench-quick bench-timing clean
+.PHONY: catalog catalog-13 test test-slow bench bench-quick bench-timing bench-collinear clean
 
 $(STAMP): pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -38,6 +38,9 @@ bench-timing: $(STAMP)  ## timing and memory medians of each stage
 	$(BIN)/python bench/bench_planner.py
 	$(BIN)/python bench/bench_numeric.py
 	$(BIN)/python bench/bench_exact.py --coupling-two
+
+bench-collinear: $(STAMP)  ## both backends on every 9-link truss drawn with joints in line (issue 28): docs/bench/collinear-joints.md, included in docs/stability.md by `make bench` (about 18 min, 2 cores)
+	$(BIN)/python bench/sweep_collinear.py --links 9 --on-line 3,4 --instances 5 --box 4 --workers 2 --out docs/bench/collinear-joints.md
 
 clean:
 	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis
