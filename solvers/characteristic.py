@@ -432,7 +432,8 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
         flint.ctx.prec = previous
 
 
-def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs, real_only: bool = False) -> tuple[
+def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs,
+                  real_only: bool = False) -> tuple[
         dict[str, tuple[flint.acb, flint.acb]] | None, flint.acb, frozenset[str] | None]:
     """The plan's points at complex parameter values (one per plan parameter) on one sign
     branch, in complex ball arithmetic at the current precision: (x, y) per joint in the
@@ -491,7 +492,8 @@ def computed_distance(points: dict[str, tuple[flint.acb, flint.acb]], u: str, v:
     return ((xv - xu) ** 2 + (yv - yu) ** 2) * reference
 
 
-def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs, real_only: bool = False) -> tuple[
+def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs,
+                      real_only: bool = False) -> tuple[
         list[tuple[flint.acb, flint.arb]] | None, dict[str, tuple[flint.acb, flint.acb]] | None, frozenset[str] | None]:
     """(s_{u,v}(computed) - s_{u,v}(known), s_{u,v}(known)) for every closure pair of the
     plan on one branch at complex parameter values, and the placed points they come from

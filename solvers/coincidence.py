@@ -129,8 +129,10 @@ def with_modes_of_coincident_joints(scene: Scene, plan: Plan, pairs: set[frozens
     for mode in solution.assembly_modes:
         coincident = any(_squared_distance(mode, *sorted(pair)) < (1e-6 * scale) ** 2 for pair in pairs)
         if coincident and not any(same_mode(mode, other, scene) for other in found):
-            parameters = {name: _squared_distance(mode, *pair) for name, pair in zip(names, plan.parameters, strict=True)}
-            found.append(AssemblyMode(parameters, _branch_signs(mode, plan, scale ** 2), mode.joints, mode.max_residual))
+            parameters = {name: _squared_distance(mode, *pair)
+                          for name, pair in zip(names, plan.parameters, strict=True)}
+            signs = _branch_signs(mode, plan, scale**2)
+            found.append(AssemblyMode(parameters, signs, mode.joints, mode.max_residual))
     certificate = getattr(solution, "certificate", None)
     return sorted_modes(found), certificate is None or certificate.complete
 

@@ -103,7 +103,8 @@ def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditi
 def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan,
                        conditions: Sequence[int]) -> bool | frozenset:
     """Whether one of the parameter points ``points_at()`` (computed afresh at each
-    precision of TEST_BITS; None where they cannot be isolated at that precision) solves ``conditions`` on some branch: True once one does,
+    precision of TEST_BITS; None where they cannot be isolated at that precision) solves
+    ``conditions`` on some branch: True once one does,
     False once every point rules itself out on every branch; otherwise (no precision
     decides, or the plan is undefined at a point) the set of joint pairs found
     coincident, possibly empty."""

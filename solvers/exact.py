@@ -94,12 +94,11 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         polynomial, fibers = characteristic_polynomial_two(scene, plan)
         modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches, fibers)
         probabilistic = LIFTING_NOTE
-        if coincidences and (pairs := base_pairs_that_may_coincide(scene, plan)):
+        pairs, covered = base_pairs_that_may_coincide(scene, plan), False
+        if pairs and coincidences:
             modes, covered = with_modes_of_coincident_joints(
                 scene, plan, pairs, modes, lambda other: solve_exact(scene, other, coincidences=False))
-            if not covered:
-                gaps += unexamined_coincidences(pairs)
-        elif pairs := base_pairs_that_may_coincide(scene, plan):
+        if pairs and not covered:
             gaps += unexamined_coincidences(pairs)
     else:
         raise ExactMethodError(
@@ -133,12 +132,12 @@ def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:
 
 
 def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
-                           undefined: list[tuple[float, frozenset]], modes: tuple[AssemblyMode, ...], coincidences: bool) -> tuple[tuple[AssemblyMode, ...],
-                                                                                       tuple[str, ...]]:
+                           undefined: list[tuple[float, frozenset]], modes: tuple[AssemblyMode, ...],
+                           coincidences: bool) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...]]:
     """Step 4: the dropped factors that the plan could not decide (``polynomial.degenerate``)
     and that have a positive real root, and the real roots of kept factors at which the
-    plan is undefined on some branch (``undefined``). Where every joint pair found coincident there
-    cannot coincide (:func:`~baranov.solvers.coincidence.coincidence_possible`) no real
+    plan is undefined on some branch (``undefined``). Where no joint pair found coincident
+    there can coincide (:func:`~baranov.solvers.coincidence.coincidence_possible`) no real
     mode is lost; otherwise the scene is solved again with a plan that avoids those pairs
     and its modes at those roots are added (thesis §5.1.3.2). What remains undecided is
     returned as gaps."""
@@ -200,14 +199,14 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
     every_branch = [tuple(int(s) for s in b) for b in branches]
     modes: list[AssemblyMode] = []
     gaps: list[str] = []
-    undefined: dict[tuple[int, int], set] = {}
-    root_values: dict[tuple[int, int], float] = {}
+    undefined: list[tuple[float, frozenset]] = []
     previous = flint.ctx.prec
     try:
         for number, (factor, _) in enumerate(polynomial.factors):
             fiber = None if fibers is None else fibers[number]
             undecided: dict[int, list[tuple[int, ...]]] | None = None
             found: dict[int, list[AssemblyMode]] = {}
+            coincident: dict[int, set] = {}
             for bits in ROOT_BITS if fibers is None else ROOT_BITS_TWO:
                 flint.ctx.prec = bits
                 roots = sorted((root.real for root, _ in factor.complex_roots() if root.imag == 0),
@@ -215,26 +214,9 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
                 if undecided is None:
                     undecided = {index: every_branch for index in range(len(roots))}
                     found = {index: [] for index in undecided}
-                    root_values.update({(number, index): float(root.mid()) for index, root in enumerate(roots)})
                 for index, signs_list in list(undecided.items()):
-                    still = set()
-                    points = _parameter_points(roots[index], fiber)
-                    if points is None:  # the second parameter could not be isolated: more bits
-                        still.update(signs_list)
-                        points = []
-                    for point in points:
-                        for signs in signs_list:
-                            residuals, placed, pair = closure_residuals(scene, plan, point, signs, real_only=True)
-                            if residuals is None and pair is not None and coincidence_possible(scene, pair):
-                                undefined.setdefault((number, index), set()).add(pair)
-                            verdict = residual_verdict(residuals, BRANCH_TOLERANCE)
-                            if verdict is False:
-                                continue
-                            mode = _ball_configuration(scene, placed, point, signs, names) if verdict else None
-                            if mode is None or mode.max_residual >= RESIDUAL_TOLERANCE:
-                                still.add(signs)  # too wide, or placed too coarsely: more bits
-                            elif not any(same_mode(mode, other, scene) for other in found[index]):
-                                found[index].append(mode)
+                    still = _modes_at_root(scene, plan, _parameter_points(roots[index], fiber), signs_list, names,
+                                           found[index], coincident.setdefault(index, set()))
                     if still:
                         undecided[index] = sorted(still)
                     else:
@@ -244,9 +226,35 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
             modes += [mode for at_root in found.values() for mode in at_root]
             gaps += [f"{names[0]} ≈ {float(roots[index].mid()):.6g}: sign branches undecided at {bits} bits"
                      for index in undecided or {}]
+            undefined += [(float(roots[index].mid()), frozenset(pairs)) for index, pairs in coincident.items() if pairs]
     finally:
         flint.ctx.prec = previous
-    return sorted_modes(modes), tuple(gaps), [(root_values[key], frozenset(pairs)) for key, pairs in undefined.items()]
+    return sorted_modes(modes), tuple(gaps), undefined
+
+
+def _modes_at_root(scene: Scene, plan: Plan, points: list | None, signs_list: list[tuple[int, ...]],
+                   names: tuple[str, ...], found: list[AssemblyMode], coincident: set) -> set[tuple[int, ...]]:
+    """One round of :func:`modes_at_real_roots` at one root: every branch of
+    ``signs_list`` at every parameter point (None: not isolated at this precision). New
+    verified modes are appended to ``found``, joint pairs that can coincide where the plan
+    is undefined are added to ``coincident``; returns the branches still undecided."""
+    if points is None:  # the second parameter could not be isolated: more bits
+        return set(signs_list)
+    still = set()
+    for point in points:
+        for signs in signs_list:
+            residuals, placed, pair = closure_residuals(scene, plan, point, signs, real_only=True)
+            if residuals is None and pair is not None and coincidence_possible(scene, pair):
+                coincident.add(pair)
+            verdict = residual_verdict(residuals, BRANCH_TOLERANCE)
+            if verdict is False:
+                continue
+            mode = _ball_configuration(scene, placed, point, signs, names) if verdict else None
+            if mode is None or mode.max_residual >= RESIDUAL_TOLERANCE:
+                still.add(signs)  # too wide, or placed too coarsely: more bits
+            elif not any(same_mode(mode, other, scene) for other in found):
+                found.append(mode)
+    return still
 
 
 def _pair_names(pairs) -> str:

@@ -210,7 +210,8 @@ def rational_reconstruction(residue: int, modulus: int) -> Fraction | None:
     return Fraction(r1, s1)
 
 
-def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0, saturated: bool = True) -> flint.fmpz_poly:
+def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0,
+                                     saturated: bool = True) -> flint.fmpz_poly:
     """The characteristic polynomial over Q from its images modulo random 62-bit primes
     (:func:`characteristic_polynomial_modulo`): the monic coefficients are combined by the
     Chinese remainder theorem and recovered by :func:`rational_reconstruction` until two
