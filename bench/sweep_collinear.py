@@ -1,6 +1,7 @@
 """Both backends on random trusses drawn with joints in line (issue 28): every truss of
 the chosen link counts, ``--on-line`` joints on one line (vertical, horizontal, diagonal,
-antidiagonal in turn), small integer coordinates. For each instance: does each backend
+antidiagonal in turn), small integer coordinates; with ``--kind coincident``, two joints
+of different links at one point instead (issue 25). For each instance: does each backend
 return the generating configuration, do the two agree mode for mode, is the exact solve
 certified complete. Prints one line per disagreement and a summary; the numbers in
 docs/stability.md come from
@@ -25,7 +26,11 @@ import numpy as np
 from baranov.enumerate import baranov_trusses
 from baranov.solvers import solve
 from baranov.solvers.configuration import distance_bound, same_mode
-from baranov.solvers.hard_instances import LINE_DIRECTIONS, collinear_joints_configuration
+from baranov.solvers.hard_instances import (
+    LINE_DIRECTIONS,
+    coincident_joints_configuration,
+    collinear_joints_configuration,
+)
 from baranov.solvers.instances import scene_of
 
 
@@ -42,12 +47,15 @@ def unmatched(scene, first, second) -> int:
     return sum(1 for m in first if not any(same_mode(m, n, scene) for n in second))
 
 
-def run(links: int, index: int, on_line: int, instance: int, box: int, seed: int) -> dict:
+def run(links: int, index: int, on_line: int, instance: int, box: int, seed: int, kind: str = "collinear") -> dict:
     truss = baranov_trusses(links)[index]
     directions = list(LINE_DIRECTIONS)
-    direction = directions[instance % len(directions)]
+    direction = directions[instance % len(directions)] if kind == "collinear" else "coincident"
     rng = np.random.default_rng([seed, links, index, on_line, instance])
-    coordinates = collinear_joints_configuration(truss, rng, on_line, box, direction)
+    if kind == "collinear":
+        coordinates = collinear_joints_configuration(truss, rng, on_line, box, direction)
+    else:
+        coordinates = coincident_joints_configuration(truss, rng, box)
     scene = scene_of(truss, coordinates)
     row = {"links": links, "truss": f"{links}/N{index + 1}", "on_line": on_line, "instance": instance,
            "direction": direction}
@@ -76,10 +84,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=28)
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--out", type=Path, help="write the report (Markdown) here")
+    parser.add_argument("--kind", choices=["collinear", "coincident"], default="collinear")
     args = parser.parse_args(argv)
-    tasks = [(links, index, on_line, instance, args.box, args.seed)
+    counts = [int(n) for n in args.on_line.split(",")] if args.kind == "collinear" else [0]
+    tasks = [(links, index, on_line, instance, args.box, args.seed, args.kind)
              for links in map(int, args.links.split(",")) for index in range(len(baranov_trusses(links)))
-             for on_line in map(int, args.on_line.split(",")) for instance in range(args.instances)]
+             for on_line in counts for instance in range(args.instances)]
     start = time.perf_counter()
     rows = []
     with ProcessPoolExecutor(args.workers) as pool:

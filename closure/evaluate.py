@@ -127,7 +127,8 @@ class CompiledSystem:
             else:
                 sign = self.fixed_signs[step.triangle]
             z = bilateration_matrix(s_ij, s_ik, s_jk, sign)
-            matrices[k] = matrices[i] + z * (matrices[j] - matrices[i])
+            with np.errstate(invalid="ignore"):  # an undefined step (inf · 0) is NaN: marked failed below
+                matrices[k] = matrices[i] + z * (matrices[j] - matrices[i])
             failed = ~np.isfinite(matrices[k])
             newly = (failures == len(self.plan.steps)) & failed
             failures = np.where(newly, index, failures)

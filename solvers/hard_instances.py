@@ -6,6 +6,7 @@ Exact (rational) wherever the input is."""
 from __future__ import annotations
 
 from fractions import Fraction
+from itertools import combinations
 
 import numpy as np
 from baranov.enumerate import baranov_trusses
@@ -137,3 +138,30 @@ def _spans_a_plane(points: list[tuple[int, int]]) -> bool:
     """Whether the points are not all on one line."""
     (x0, y0), (x1, y1) = points[0], points[1]
     return any((x1 - x0) * (y - y0) - (y1 - y0) * (x - x0) != 0 for x, y in points[2:])
+
+
+def coincident_joints_configuration(truss, rng: np.random.Generator, box: int = 4) -> dict[str, tuple[Fraction, Fraction]]:
+    """Random integer joint coordinates in [−box, box]² in which two joints of different
+    links, chosen at random, coincide (issue 25: "where two joints of a nine-link truss
+    coincide in a mode"); otherwise as :func:`collinear_joints_configuration` (every link
+    of three or more joints keeps a non-zero area, no other joints coincide). Where the
+    pair is a bilateration base of the plan, the plan divides by 0 at the generating mode
+    (:mod:`baranov.solvers.coincidence`).
+
+    >>> from baranov.enumerate import baranov_trusses
+    >>> points = coincident_joints_configuration(baranov_trusses(9)[0], np.random.default_rng(2))
+    >>> len(set(points.values())) == len(points) - 1
+    True
+    """
+    names = [joint.name for joint in truss.joints]
+    links = joints_of_links(truss)
+    together = {frozenset(pair) for joints in links for pair in combinations(joints, 2)}
+    apart = [pair for pair in combinations(names, 2) if frozenset(pair) not in together]
+    rich = [joints for joints in links if len(joints) >= 3]
+    while True:
+        first, second = apart[rng.integers(len(apart))]
+        points = {name: tuple(int(c) for c in rng.integers(-box, box + 1, size=2)) for name in names}
+        points[second] = points[first]
+        if len(set(points.values())) == len(names) - 1 and all(_spans_a_plane([points[j] for j in link])
+                                                                for link in rich):
+            return {n: (Fraction(x), Fraction(y)) for n, (x, y) in points.items()}
