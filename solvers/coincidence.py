@@ -100,11 +100,12 @@ def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[st
     return sorted_modes(found), certificate is None or certificate.complete
 
 
-def computed_base_pairs(scene: Scene, plan: Plan) -> set[frozenset[str]]:
+def computed_base_pairs(scene: Scene, plan: Plan, with_parameters: bool = False) -> set[frozenset[str]]:
     """The joint pairs that ``plan`` uses as a bilateration base (or reference) whose
-    distance is neither a known dimension nor a parameter, and that can coincide
-    (:func:`coincidence_possible`): where they do, the plan divides by 0."""
-    parameters = {frozenset(pair) for pair in plan.parameters}
+    distance is not a known dimension — nor a parameter, unless ``with_parameters`` —
+    and that can coincide (:func:`coincidence_possible`): where they do, the plan divides
+    by 0."""
+    parameters = set() if with_parameters else {frozenset(pair) for pair in plan.parameters}
     pairs = {frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps}
     return {pair for pair in pairs - parameters if pair not in scene.known and coincidence_possible(scene, pair)}
 

@@ -82,7 +82,8 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     if degree == 1 and coincidences:  # the sampled interval starts above 0: the parameter's joints coincident
         modes, _ = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], modes,
                                          lambda other: solve_numeric(scene, other, samples, coincidences=False))
-    if degree > 0 and coincidences and (pairs := computed_base_pairs(scene, plan)):
+    # coupling 1 samples its parameter from above 0 and handles 0 above; coupling 2 does not
+    if degree > 0 and coincidences and (pairs := computed_base_pairs(scene, plan, with_parameters=degree == 2)):
         modes, _ = with_modes_of_coincident_joints(scene, plan, pairs, modes,
                                                 lambda other: solve_numeric(scene, other, samples, coincidences=False))
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
