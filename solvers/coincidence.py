@@ -76,28 +76,18 @@ def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[st
                           solver: Callable[[Plan], Solution]) -> tuple[tuple[AssemblyMode, ...], bool]:
     """``modes`` and the modes at which ``plan``'s first parameter takes one of ``values``
     and the joints of ``pairs`` coincide, found by ``solver`` with an alternative plan;
-    and whether that settles them: True if no pair can coincide, or if the alternative
-    plan exists and its solve is complete (an exact solve's certificate; a numeric solve
-    counts as settling). The added modes carry every parameter of ``plan`` (measured on
-    the configuration) and the orientation of its free-sign triangles (0 where flat)."""
+    and whether that settles them: True if no pair can coincide, else as
+    :func:`_with_alternative_modes`."""
     pairs = set(pairs)
     if not any(coincidence_possible(scene, pair) for pair in pairs):
         return modes, True
-    alternative = alternative_plan(scene, pairs)
-    if alternative is None:
-        return modes, False
-    found = list(modes)
-    names = [parameter_name(pair) for pair in plan.parameters]
     scale = max(1.0, distance_bound(scene)) ** 2
-    solution = solver(alternative)
-    for mode in solution.assembly_modes:
-        measured = [_squared_distance(mode, *pair) for pair in plan.parameters]
+
+    def at_values(measured: list[float], mode: AssemblyMode) -> list[float] | None:
         closest = min(values, key=lambda r: abs(measured[0] - r))
-        if abs(measured[0] - closest) <= 1e-9 * scale and not any(same_mode(mode, other, scene) for other in found):
-            parameters = dict(zip(names, [closest, *measured[1:]], strict=True))
-            found.append(AssemblyMode(parameters, _branch_signs(mode, plan, scale), mode.joints, mode.max_residual))
-    certificate = getattr(solution, "certificate", None)
-    return sorted_modes(found), certificate is None or certificate.complete
+        return [closest, *measured[1:]] if abs(measured[0] - closest) <= 1e-9 * scale else None
+
+    return _with_alternative_modes(scene, plan, pairs, modes, solver, at_values)
 
 
 def computed_base_pairs(scene: Scene, plan: Plan, with_parameters: bool = False) -> set[frozenset[str]]:
@@ -113,27 +103,40 @@ def computed_base_pairs(scene: Scene, plan: Plan, with_parameters: bool = False)
 def with_modes_of_coincident_joints(scene: Scene, plan: Plan, pairs: set[frozenset[str]],
                                     modes: tuple[AssemblyMode, ...],
                                     solver: Callable[[Plan], Solution]) -> tuple[tuple[AssemblyMode, ...], bool]:
-    """``modes`` and the modes of another plan's solve (``solver``, with the best plan
-    that avoids ``pairs`` as bases) in which the joints of one of ``pairs`` coincide
-    (within 1e-6 of the linkage's size): the modes ``plan`` cannot reach. The added modes
-    carry ``plan``'s parameters measured on the configuration and its free-sign
-    orientations (0 where flat). Found by the collinear-joints sweep (9/N19: P3 = P11 at
-    s10,1 = 34.6 in four modes). Also returns whether that settles them (the alternative
-    plan exists and its solve is complete, as in :func:`with_coincident_modes`)."""
+    """``modes`` and the modes of another plan's solve in which the joints of one of
+    ``pairs`` coincide (within 1e-6 of the linkage's size): the modes ``plan`` cannot
+    reach, wherever they are (found by the collinear-joints sweep, 9/N19: P3 = P11 at
+    s10,1 = 34.6 in four modes); settled as :func:`_with_alternative_modes` says."""
+    scale = max(1.0, distance_bound(scene))
+
+    def coincident(measured: list[float], mode: AssemblyMode) -> list[float] | None:
+        near = any(_squared_distance(mode, *sorted(pair)) < (1e-6 * scale) ** 2 for pair in pairs)
+        return measured if near else None
+
+    return _with_alternative_modes(scene, plan, pairs, modes, solver, coincident)
+
+
+def _with_alternative_modes(scene: Scene, plan: Plan, pairs: set[frozenset[str]], modes: tuple[AssemblyMode, ...],
+                            solver: Callable[[Plan], Solution],
+                            accept: Callable[[list[float], AssemblyMode], list[float] | None]) -> tuple[tuple[AssemblyMode, ...], bool]:
+    """``modes`` and the new modes of ``solver``'s solve with the best plan avoiding
+    ``pairs`` that ``accept`` takes: it gets ``plan``'s parameters measured on the
+    configuration and the mode, and returns the parameter values to report, or None. Added modes carry ``plan``'s free-sign orientations (0
+    where flat). Also whether that settles the coincidences: the alternative plan exists
+    and its solve is complete (an exact solve's certificate; a numeric solve counts)."""
     alternative = alternative_plan(scene, pairs)
     if alternative is None:
         return modes, False
-    scale = max(1.0, distance_bound(scene))
     names = [parameter_name(pair) for pair in plan.parameters]
+    scale = max(1.0, distance_bound(scene)) ** 2
     found = list(modes)
     solution = solver(alternative)
     for mode in solution.assembly_modes:
-        coincident = any(_squared_distance(mode, *sorted(pair)) < (1e-6 * scale) ** 2 for pair in pairs)
-        if coincident and not any(same_mode(mode, other, scene) for other in found):
-            parameters = {name: _squared_distance(mode, *pair)
-                          for name, pair in zip(names, plan.parameters, strict=True)}
-            signs = _branch_signs(mode, plan, scale**2)
-            found.append(AssemblyMode(parameters, signs, mode.joints, mode.max_residual))
+        measured = [_squared_distance(mode, *pair) for pair in plan.parameters]
+        values = accept(measured, mode)
+        if values is not None and not any(same_mode(mode, other, scene) for other in found):
+            parameters = dict(zip(names, values, strict=True))
+            found.append(AssemblyMode(parameters, _branch_signs(mode, plan, scale), mode.joints, mode.max_residual))
     certificate = getattr(solution, "certificate", None)
     return sorted_modes(found), certificate is None or certificate.complete
 

@@ -153,9 +153,9 @@ def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, conditi
             return [(root, flint.acb(value)) for root, _ in line.complex_roots()]
 
         verdict = _some_point_solves(points, scene, plan, (condition,))
-        if verdict is True or verdict is False:
-            return verdict
-        if verdict:  # the plan is undefined along the curve (a base distance vanishes)
+        if verdict is True:
+            return True
+        if verdict is False or verdict:  # ruled out, or the plan is undefined along the curve
             return False
     return True
 

@@ -45,6 +45,7 @@ from .characteristic import (
 )
 from .coincidence import (
     coincidence_possible,
+    computed_base_pairs,
     solvable_plan,
     with_coincident_modes,
     with_modes_of_coincident_joints,
@@ -94,7 +95,9 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         polynomial, fibers = characteristic_polynomial_two(scene, plan)
         modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches, fibers)
         probabilistic = LIFTING_NOTE
-        pairs, covered = base_pairs_that_may_coincide(scene, plan), False
+        # coupling 2: where a base pair (a parameter's included) coincides the plan is undefined
+        # along a whole curve, which the genuine curves leave out
+        pairs, covered = computed_base_pairs(scene, plan, with_parameters=True), False
         if pairs and coincidences:
             modes, covered = with_modes_of_coincident_joints(
                 scene, plan, pairs, modes, lambda other: solve_exact(scene, other, coincidences=False))
@@ -113,16 +116,6 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
 
 #: What the coupling-2 certificate says of its one Monte Carlo step.
 LIFTING_NOTE = "the polynomial is lifted from its images modulo random 62-bit primes"
-
-
-def base_pairs_that_may_coincide(scene: Scene, plan: Plan) -> set[frozenset[str]]:
-    """Coupling degree 2: the bilateration bases (and the reference) of ``plan``, the
-    parameters' pairs included, whose two joints can coincide
-    (:func:`~baranov.solvers.coincidence.coincidence_possible`). Where they coincide the
-    plan is undefined along a whole curve, which the genuine curves leave out; with a
-    ternary link on each side of the pair the known distances usually rule it out."""
-    pairs = {frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps}
-    return {pair for pair in pairs if pair not in scene.known and coincidence_possible(scene, pair)}
 
 
 def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:
@@ -156,16 +149,13 @@ def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicP
     for value, coincident in undefined:
         pairs |= coincident
         roots.append(value)
-    if roots:
-        if not coincidences:
-            gaps.append(f"{name} ≈ {', '.join(f'{r:.6g}' for r in roots)}: the plan is undefined there "
-                        f"(joints {_pair_names(pairs)} may coincide)")
-        else:
-            modes, covered = with_coincident_modes(scene, plan, pairs, roots, modes,
-                                                   lambda other: solve_exact(scene, other, coincidences=False))
-            if not covered:
-                gaps.append(f"{name} ≈ {', '.join(f'{r:.6g}' for r in roots)}: the plan is undefined there "
-                            f"(joints {_pair_names(pairs)} may coincide) and no other plan decides")
+    covered = False
+    if roots and coincidences:
+        modes, covered = with_coincident_modes(scene, plan, pairs, roots, modes,
+                                               lambda other: solve_exact(scene, other, coincidences=False))
+    if roots and not covered:
+        gaps.append(f"{name} ≈ {', '.join(f'{r:.6g}' for r in roots)}: the plan is undefined there "
+                    f"(joints {_pair_names(pairs)} may coincide) and no other plan decides")
     return modes, tuple(gaps)
 
 
