@@ -40,7 +40,7 @@ from .characteristic import (
     residual_verdict,
 )
 from .configuration import parameter_name
-from .fibers import Fiber, common_fiber
+from .fibers import Fiber, column_over_field, common_fiber, isolated_roots
 from .modular import lifted_characteristic_polynomial
 from .resultant import coefficients_in_v, resultant_by_primes
 from .scene import Scene
@@ -58,23 +58,6 @@ def plane_polynomial(norm: flint.fmpq_mpoly) -> flint.fmpz_mpoly:
     numerators = {k: int(value * denominator) for k, value in terms.items()}
     content = math.gcd(*numerators.values())
     return PLANE.from_dict({k: value // content for k, value in numerators.items()})
-
-
-def roots_in_v(polynomial: flint.fmpz_mpoly, u: flint.acb) -> list[flint.acb]:
-    """The roots v of ``polynomial``(u, v), refined to about half the working precision;
-    None where flint cannot isolate them at this precision (a ball too wide, or a
-    multiple root), which leaves the caller undecided."""
-    bits = flint.ctx.prec
-    try:
-        return column(polynomial, u).roots(tol=flint.arb(2) ** (-bits // 2), maxprec=4 * bits)
-    except ValueError:
-        return None
-
-
-def column(polynomial: flint.fmpz_mpoly, u: flint.acb) -> flint.acb_poly:
-    """``polynomial`` at u, as a polynomial in v with ball coefficients."""
-    return flint.acb_poly([sum((flint.acb(c) * u**k for k, c in terms.items()), flint.acb(0))
-                           for terms in coefficients_in_v(polynomial)])
 
 
 def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditions: Sequence[int],
@@ -146,7 +129,7 @@ def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, conditi
 
         def points() -> list | None:
             if curve.degrees()[1] > 0:
-                roots = roots_in_v(curve, flint.acb(value))
+                roots = isolated_roots(column_over_field(curve, flint.fmpz_poly([-value.p, value.q])), flint.acb(value))
                 return None if roots is None else [(flint.acb(value), v) for v in roots]
             terms = coefficients_in_v(curve)[0]  # a vertical line: a polynomial in u only
             line = flint.fmpz_poly([terms.get(k, 0) for k in range(max(terms) + 1)])

@@ -172,14 +172,14 @@ class Fiber:
         it). Raises ValueError where the curves share the line u = u*."""
         if self.common is None:
             first, second = self.columns
-            roots = _isolated_roots(first, u)
+            roots = isolated_roots(first, u)
             if roots is None:
                 return None
             at_second = _at(second, u)
             return [v for v in roots if at_second(v).contains(0)]
         if not self.common:
             raise ValueError("the two curves share the line above this root: infinitely many common points")
-        return _isolated_roots(self.common, u)
+        return isolated_roots(self.common, u)
 
 
 def _at(polynomial: FieldPolynomial, u: flint.acb) -> flint.acb_poly:
@@ -187,7 +187,10 @@ def _at(polynomial: FieldPolynomial, u: flint.acb) -> flint.acb_poly:
     return flint.acb_poly([flint.acb_poly(element)(u) for element in polynomial])
 
 
-def _isolated_roots(polynomial: FieldPolynomial, u: flint.acb) -> list[flint.acb] | None:
+def isolated_roots(polynomial: FieldPolynomial, u: flint.acb) -> list[flint.acb] | None:
+    """The roots in v of ``polynomial`` (coefficients in K) at the root of f enclosed by
+    ``u``, refined to about half the working precision; None where flint cannot isolate
+    them at this precision (a ball too wide, or a multiple root)."""
     if len(polynomial) <= 1:
         return []
     bits = flint.ctx.prec
@@ -220,7 +223,7 @@ def common_fiber(curves: Sequence[flint.fmpz_mpoly], field: flint.fmpz_poly) -> 
                 flint.ctx.prec = bits
                 root = field.complex_roots()[0][0]
                 for first, second in (columns, columns[::-1]):
-                    if _isolated_roots(first, root) is not None:
+                    if isolated_roots(first, root) is not None:
                         return Fiber(field, columns=(first, second))
         finally:
             flint.ctx.prec = previous
