@@ -86,12 +86,9 @@ def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -
     reported twice, 5e-5 apart (9/N20 of the collinear-joints sweep). Snapped flat, they
     are one; two genuinely distinct modes this close keep a triangle area whose removal
     breaks the verification (the merging pair of docs/stability.md)."""
-    flat = []
-    for index, (i, j, k) in enumerate(compiled.free_triangles):
-        first = complex(*mode.joints[j]) - complex(*mode.joints[i])
-        second = complex(*mode.joints[k]) - complex(*mode.joints[i])
-        if abs((first.conjugate() * second).imag) < NEARLY_FLAT * abs(first) * abs(second):
-            flat.append(index)
+    at = {joint: complex(*point) for joint, point in mode.joints.items()}
+    flat = [index for index, triangle in enumerate(compiled.free_triangles)
+            if orientation(at, *triangle, NEARLY_FLAT) == 0]
     if not flat or not mode.parameters:
         return mode
     branch = np.array(mode.signs)
@@ -138,6 +135,15 @@ def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, br
     )
 
 
+def orientation(at: dict, i: str, j: str, k: str, flat: float):
+    """The orientation of △P_i P_j P_k (joint positions as complex numbers or arrays):
+    ±1, or 0 where its doubled area is at most ``flat`` times the product of its two sides
+    from P_i."""
+    first, second = at[j] - at[i], at[k] - at[i]
+    cross = (first.conjugate() * second).imag
+    return np.where(np.abs(cross) <= flat * np.abs(first) * np.abs(second), 0, np.where(cross > 0, 1, -1))
+
+
 def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     """The plan's parameter values and free-sign branch of configurations given as joint
     positions (complex arrays of one shape S): arrays of shape S + (parameters,) and
@@ -150,14 +156,8 @@ def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray]) -> tuple[np.n
     def stacked(columns: list) -> np.ndarray:
         return np.stack(columns, axis=-1) if columns else np.zeros((*shape, 0))
 
-    def orientation(i: str, j: str, k: str) -> np.ndarray:
-        first, second = at[j] - at[i], at[k] - at[i]
-        cross = (first.conjugate() * second).imag
-        flat = np.abs(cross) <= FLAT_AREA * np.abs(first) * np.abs(second)
-        return np.where(flat, 0, np.where(cross > 0, 1, -1))
-
     parameters = stacked([np.abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters])
-    branch = stacked([orientation(*triangle) for triangle in compiled.free_triangles])
+    branch = stacked([orientation(at, *triangle, FLAT_AREA) for triangle in compiled.free_triangles])
     return parameters, branch
 
 
