@@ -17,10 +17,16 @@ from .scene import Scene, scene_from_dict
 def scene_of(truss: KinematicChain, coordinates, ground: int = 0) -> Scene:
     """A scene whose links carry the given joint coordinates (exact when they are), links
     named ``L0``, ``L1``, … in the truss's link order, link ``ground`` fixed."""
+    return scene_from_dict(instance_dict(truss, coordinates, ground))
+
+
+def instance_dict(truss: KinematicChain, coordinates, ground: int = 0) -> dict:
+    """The JSON form (``baranov solve``'s input) of :func:`scene_of`: every link given by
+    its joints' coordinates, as strings so that rationals stay exact."""
     links = []
     for index, names in enumerate(joints_of_links(truss)):
         links.append({"name": f"L{index}", "joints": {n: [str(coordinates[n][0]), str(coordinates[n][1])] for n in names}})
-    return scene_from_dict({"links": links, "ground": f"L{ground}"})
+    return {"links": links, "ground": f"L{ground}"}
 
 
 def generic_integer_configuration(truss: KinematicChain, rng: np.random.Generator) -> dict[str, tuple[Fraction, Fraction]]:

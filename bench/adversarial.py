@@ -1,0 +1,210 @@
+"""Adversarial completeness run (issue 25): random trusses drawn as a user would type them
+(solvers/adversarial.py: small boxes, joints in line, joints at one point, modes at a
+domain edge, double roots), solved by both backends and by msolve on the Cartesian system
+(baselines/msolve.py, which shares no code with the backends), compared mode for mode.
+
+Every finished instance is appended to ``--out`` (JSON lines), so an interrupted run
+resumes where it stopped; ``--report`` writes the Markdown summary that
+``bench/stability.py`` includes in docs/stability.md; ``--failures`` receives every
+instance a backend got wrong, as a scene file ready for tests/regressions/. The numbers in
+docs/stability.md come from
+
+    python bench/adversarial.py --links 7,9,11 --instances 40 --workers 2 \\
+        --out bench/results/adversarial.jsonl --report docs/bench/adversarial.md
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import shlex
+import signal
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+
+import numpy as np
+from baranov.baselines.msolve import match_configurations, msolve_modes
+from baranov.enumerate import baranov_trusses
+from baranov.planner import coupling_degree
+from baranov.solvers import solve
+from baranov.solvers.adversarial import ADVERSARIAL_KINDS, adversarial_scene
+from baranov.solvers.instances import instance_dict
+
+METHODS = ("numeric", "exact")
+
+
+class _Timeout(Exception):
+    pass
+
+
+def _alarm(signum, frame):
+    raise _Timeout
+
+
+def timed(function, seconds: float):
+    """(result, wall seconds) of ``function()``, or (None, seconds) if it ran over
+    (SIGALRM: the worker's main thread)."""
+    signal.signal(signal.SIGALRM, _alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    start = time.perf_counter()
+    try:
+        result = function()
+    except _Timeout:
+        result = None
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+    return result, time.perf_counter() - start
+
+
+def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tuple[str, ...],
+        timeout: float) -> dict:
+    """One instance: msolve's modes, each backend's, and what each backend missed or added."""
+    truss = baranov_trusses(links)[index]
+    rng = np.random.default_rng([seed, links, index, ADVERSARIAL_KINDS.index(kind), instance])
+    scene, coordinates = adversarial_scene(truss, kind, rng)
+    row = {"key": f"{links}/N{index + 1}/{kind}/{instance}", "links": links, "truss": f"{links}/N{index + 1}",
+           "kind": kind, "instance": instance, "coupling_degree": coupling_degree(scene.chain)}
+    oracle = msolve_modes(scene, timeout=timeout)
+    row.update(msolve_status=oracle.status, msolve_seconds=oracle.seconds, msolve_modes=len(oracle.configurations),
+               msolve_message=oracle.message)
+    generating = {j: (float(x), float(y)) for j, (x, y) in coordinates.items()}
+    if oracle.status == "finite":
+        row["msolve_has_generating"] = not match_configurations(list(oracle.configurations), [generating])[0]
+    for method in methods:
+        solution, seconds = timed(lambda method=method: solve(scene, method=method), timeout)
+        row[f"{method}_seconds"] = seconds
+        if solution is None:
+            row[f"{method}_status"] = "timeout"
+            continue
+        found = [mode.joints for mode in solution.assembly_modes]
+        row[f"{method}_status"] = "solved"
+        row[f"{method}_modes"] = len(found)
+        row[f"{method}_has_generating"] = not match_configurations(found, [generating])[0]
+        if oracle.status == "finite":
+            missed, spurious = match_configurations(found, list(oracle.configurations))
+            row[f"{method}_missed"], row[f"{method}_spurious"] = len(missed), len(spurious)
+        if solution.certificate is not None:
+            row[f"{method}_certified"] = solution.certificate.complete
+            row[f"{method}_gaps"] = list(solution.certificate.gaps)
+    if failed(row, methods):
+        row["scene"] = instance_dict(truss, coordinates)
+    return row
+
+
+def failed(row: dict, methods: tuple[str, ...]) -> bool:
+    """Whether a backend lost or added a mode, timed out, or the oracle could not decide."""
+    if row["msolve_status"] != "finite":
+        return True
+    return any(row.get(f"{m}_status") != "solved" or row.get(f"{m}_missed") or row.get(f"{m}_spurious")
+               or not row.get(f"{m}_has_generating") or row.get(f"{m}_certified") is False for m in methods)
+
+
+def save_failure(row: dict, folder: Path) -> None:
+    folder.mkdir(parents=True, exist_ok=True)
+    name = f"{row['truss'].replace('/', '-')}-{row['kind']}-{row['instance']}.json"
+    summary = {k: v for k, v in row.items() if k not in ("scene", "key")}
+    text = json.dumps({"comment": f"adversarial run (bench/adversarial.py): {json.dumps(summary)}",
+                       **row["scene"]}, indent=1)
+    (folder / name).write_text(text + "\n", encoding="utf-8")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--links", default="7,9", help="link counts, comma-separated (default 7,9)")
+    parser.add_argument("--kinds", default=",".join(ADVERSARIAL_KINDS))
+    parser.add_argument("--trusses", help="only these trusses (e.g. 9/N21,9/N7)")
+    parser.add_argument("--instances", type=int, default=10, help="instances per truss and kind (default 10)")
+    parser.add_argument("--methods", default=",".join(METHODS))
+    parser.add_argument("--seed", type=int, default=25)
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--timeout", type=float, default=600.0, help="seconds per solve (default 600)")
+    parser.add_argument("--out", type=Path, required=True, help="JSON lines, appended; a rerun resumes")
+    parser.add_argument("--report", type=Path, help="write the Markdown summary of --out here")
+    parser.add_argument("--failures", type=Path, help="save every failed instance here as a scene file")
+    args = parser.parse_args(argv)
+    methods = tuple(args.methods.split(","))
+    done = {json.loads(line)["key"] for line in args.out.read_text().splitlines()} if args.out.exists() else set()
+    wanted = set(args.trusses.split(",")) if args.trusses else None
+    tasks = [(links, index, kind, instance, args.seed, methods, args.timeout)
+             for links in map(int, args.links.split(",")) for index in range(len(baranov_trusses(links)))
+             if wanted is None or f"{links}/N{index + 1}" in wanted
+             for kind in args.kinds.split(",") for instance in range(args.instances)
+             if f"{links}/N{index + 1}/{kind}/{instance}" not in done]
+    print(f"{len(tasks)} instances to run ({len(done)} already in {args.out})", flush=True)
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    with ProcessPoolExecutor(args.workers) as pool, args.out.open("a", encoding="utf-8") as out:
+        futures = [pool.submit(run, *task) for task in tasks]
+        for n, future in enumerate(as_completed(futures), 1):
+            row = future.result()
+            out.write(json.dumps(row) + "\n")
+            out.flush()
+            if failed(row, methods):
+                print("FAILED", json.dumps({k: v for k, v in row.items() if k != "scene"}), flush=True)
+                if args.failures is not None:
+                    save_failure(row, args.failures)
+            if n % 50 == 0:
+                print(f"{n}/{len(tasks)} done", flush=True)
+    rows = [json.loads(line) for line in args.out.read_text().splitlines()]
+    report = summary(rows, methods)
+    print("\n".join(report))
+    if args.report is not None:
+        command = "python bench/adversarial.py " + shlex.join(argv if argv is not None else sys.argv[1:])
+        text = "\n".join([f"Command: `{command}` ({len(rows)} instances in {args.out}).", "", *report,
+                          "", *table(rows, methods)]) + "\n"
+        args.report.with_suffix(".tmp").write_text(text, encoding="utf-8")
+        args.report.with_suffix(".tmp").replace(args.report)
+    return 0
+
+
+def percentile_ratio(times: list[float]) -> float:
+    """p99 over median of solve times."""
+    return float(np.percentile(times, 99) / np.median(times)) if times else math.nan
+
+
+def summary(rows: list[dict], methods: tuple[str, ...]) -> list[str]:
+    finite = [r for r in rows if r["msolve_status"] == "finite"]
+    lines = [f"- msolve: {len(finite)} of {len(rows)} instances solved (finite); "
+             f"{sum(1 for r in finite if not r['msolve_has_generating'])} without the generating configuration; "
+             f"{sum(r['msolve_modes'] for r in finite)} real modes in all"]
+    for method in methods:
+        mine = [r for r in finite if r.get(f"{method}_status") == "solved"]
+        times = [r[f"{method}_seconds"] for r in rows if f"{method}_seconds" in r]
+        uncertified = sum(1 for r in mine if r.get(f"{method}_certified") is False)
+        ratios = [percentile_ratio([r[f"{method}_seconds"] for r in rows if r["truss"] == t and f"{method}_seconds" in r])
+                  for t in {r["truss"] for r in rows}]
+        lines.append(
+            f"- {method}: {sum(r[f'{method}_missed'] for r in mine)} missed and "
+            f"{sum(r[f'{method}_spurious'] for r in mine)} spurious modes on {len(mine)} instances "
+            f"({sum(1 for r in mine if r[f'{method}_missed'] or r[f'{method}_spurious'])} instances wrong, "
+            f"{sum(1 for r in rows if r.get(f'{method}_status') == 'timeout')} timeouts"
+            + (f", {uncertified} not certified complete" if method == "exact" else "")
+            + f"); solve time median {np.median(times):.2f} s, max {max(times):.1f} s; "
+            f"p99/median per truss at most {max(ratios):.1f}")
+    return lines
+
+
+def table(rows: list[dict], methods: tuple[str, ...]) -> list[str]:
+    """Per link count and kind: instances, real modes, misses, time quantiles."""
+    header = "| links | kind | instances | real modes (msolve) | " + " | ".join(
+        f"{m} missed / spurious | {m} median s | {m} p99 s" for m in methods) + " | msolve median s |"
+    lines = [header, "|" + "---|" * (4 + 3 * len(methods) + 1)]
+    for links in sorted({r["links"] for r in rows}):
+        for kind in ADVERSARIAL_KINDS:
+            mine = [r for r in rows if r["links"] == links and r["kind"] == kind]
+            if not mine:
+                continue
+            cells = [str(links), kind, str(len(mine)), str(sum(r["msolve_modes"] for r in mine))]
+            for m in methods:
+                times = [r[f"{m}_seconds"] for r in mine if f"{m}_seconds" in r]
+                cells += [f"{sum(r.get(f'{m}_missed', 0) for r in mine)} / {sum(r.get(f'{m}_spurious', 0) for r in mine)}",
+                          f"{np.median(times):.2f}", f"{np.percentile(times, 99):.2f}"]
+            cells.append(f"{np.median([r['msolve_seconds'] for r in mine]):.2f}")
+            lines.append("| " + " | ".join(cells) + " |")
+    return lines
+
+
+if __name__ == "__main__":
+    sys.exit(main())
