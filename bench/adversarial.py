@@ -26,7 +26,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 import numpy as np
-from baranov.baselines.msolve import match_configurations, msolve_modes
+from baranov.solvers.msolve import match_configurations, msolve_modes
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.solvers import solve

@@ -26,8 +26,16 @@ from collections.abc import Callable, Iterable
 
 from baranov.planner import Plan, best_plan, bilateration_plans
 
-from .configuration import distance_bound, parameter_name, same_mode, sorted_modes
+from .configuration import (
+    RESIDUAL_TOLERANCE,
+    distance_bound,
+    joint_residual,
+    parameter_name,
+    same_mode,
+    sorted_modes,
+)
 from .modes import AssemblyMode, Solution, SolverError
+from .msolve import find_msolve, msolve_modes
 from .scene import Scene
 
 #: How many of the best plans are searched for one defined where the joints coincide.
@@ -139,6 +147,51 @@ def _with_alternative_modes(scene: Scene, plan: Plan, pairs: set[frozenset[str]]
             found.append(AssemblyMode(parameters, _branch_signs(mode, plan, scale), mode.joints, mode.max_residual))
     certificate = getattr(solution, "certificate", None)
     return sorted_modes(found), certificate is None or certificate.complete
+
+
+#: What a certificate says of the modes :func:`with_modes_from_msolve` adds.
+MSOLVE_NOTE = ("msolve lists the modes where the plan's base joints coincide "
+               "(a multi-modular Gröbner basis over Q, correct with high probability)")
+
+
+def with_modes_from_msolve(scene: Scene, plan: Plan, pairs: Iterable[frozenset[str]],
+                           modes: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], bool, tuple[str, ...]]:
+    """``modes`` and every mode in which the joints of one of ``pairs`` coincide, solved
+    by msolve on the Cartesian system with P_u = P_v added (:mod:`baranov.solvers.msolve`,
+    which needs no plan); whether msolve ran (not without its binary, nor for a scene with
+    float dimensions); and what it could not settle, one sentence per pair: a
+    positive-dimensional solution set (the linkage moves while those joints coincide:
+    issue 25's 7/N2 instance, which rotates about P1 = P6 = P8 — no plan sees such a
+    continuum, and an alternative plan had reported it complete), or a failure.
+
+    Where no bilateration plan is defined at a coincidence, this is what decides it
+    (issue 25: 9/N10 with P11 = P7, whose only plan avoiding that base is undefined where
+    P8 = P9; none of the truss's 88 plans avoids both)."""
+    if find_msolve() is None or not scene.exact:
+        return modes, False, ()
+    names = [parameter_name(pair) for pair in plan.parameters]
+    scale = max(1.0, distance_bound(scene)) ** 2
+    found, gaps = list(modes), []
+    for pair in sorted(pairs, key=sorted):
+        if not coincidence_possible(scene, pair):
+            continue
+        result = msolve_modes(scene, coincident=[pair])
+        where = f"joints {'='.join(sorted(pair))}"
+        if result.status == "infinite":
+            gaps.append(f"the linkage is movable where {where} coincide (msolve: a positive-dimensional "
+                        "solution set); its configurations there are not isolated modes")
+        elif result.status != "finite":
+            gaps.append(f"{where} may coincide and msolve failed: {result.message}")
+        for configuration in result.configurations:
+            residual = joint_residual(scene, {j: complex(*p) for j, p in configuration.items()})
+            mode = AssemblyMode({}, (), configuration, residual)
+            if residual >= RESIDUAL_TOLERANCE:
+                gaps.append(f"msolve's mode with {where} does not verify (residual {residual:.1e})")
+            elif not any(same_mode(mode, other, scene) for other in found):
+                parameters = {name: _squared_distance(mode, *pair) for name, pair in zip(names, plan.parameters,
+                                                                                           strict=True)}
+                found.append(AssemblyMode(parameters, _branch_signs(mode, plan, scale), configuration, residual))
+    return sorted_modes(found), True, tuple(gaps)
 
 
 def _squared_distance(mode: AssemblyMode, u: str, v: str) -> float:

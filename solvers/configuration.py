@@ -144,20 +144,22 @@ def orientation(at: dict, i: str, j: str, k: str, flat: float):
     return np.where(np.abs(cross) <= flat * np.abs(first) * np.abs(second), 0, np.where(cross > 0, 1, -1))
 
 
-def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray],
+              flat: float = FLAT_AREA) -> tuple[np.ndarray, np.ndarray]:
     """The plan's parameter values and free-sign branch of configurations given as joint
     positions (complex arrays of one shape S): arrays of shape S + (parameters,) and
     S + (free-sign triangles,). A triangle whose doubled area is below FLAT_AREA of the
     product of its two sides from P_i gets sign 0 (flat): placed with ±1 at parameters
     read back to rounding, its radicand can come out a few ulps negative, and the mode
-    would be lost (9/N28 of the collinear-joints sweep)."""
+    would be lost (9/N28 of the collinear-joints sweep). ``flat`` replaces FLAT_AREA
+    (NEARLY_FLAT for configurations known only to √ε: a double root, numeric.py)."""
     shape = np.shape(next(iter(at.values())))
 
     def stacked(columns: list) -> np.ndarray:
         return np.stack(columns, axis=-1) if columns else np.zeros((*shape, 0))
 
     parameters = stacked([np.abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters])
-    branch = stacked([orientation(at, *triangle, FLAT_AREA) for triangle in compiled.free_triangles])
+    branch = stacked([orientation(at, *triangle, flat) for triangle in compiled.free_triangles])
     return parameters, branch
 
 

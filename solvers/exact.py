@@ -44,10 +44,12 @@ from .characteristic import (
     residual_verdict,
 )
 from .coincidence import (
+    MSOLVE_NOTE,
     coincidence_possible,
     computed_base_pairs,
     solvable_plan,
     with_coincident_modes,
+    with_modes_from_msolve,
     with_modes_of_coincident_joints,
 )
 from .coupling_two import characteristic_polynomial_two, common_points
@@ -85,7 +87,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None
     gaps: tuple[str, ...] = ()
-    probabilistic = None
+    notes: list[str] = []  # the Monte Carlo steps taken
     if plan.number_of_parameters == 0:
         modes = assembly_modes(scene, compile_scene(scene, plan), [(np.zeros(0), branch) for branch in branches])
     elif plan.number_of_parameters == 1:
@@ -94,24 +96,29 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     elif plan.number_of_parameters == 2:
         polynomial, fibers = characteristic_polynomial_two(scene, plan)
         modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches, fibers)
-        probabilistic = LIFTING_NOTE
+        notes.append(LIFTING_NOTE)
         # coupling 2: where a base pair (a parameter's included) coincides the plan is undefined
         # along a whole curve, which the genuine curves leave out
-        pairs, covered = computed_base_pairs(scene, plan, with_parameters=True), False
+        pairs, covered, by_msolve = computed_base_pairs(scene, plan, with_parameters=True), False, False
         if pairs and coincidences:
+            modes, by_msolve, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)
+            covered, gaps = by_msolve and not unsettled, gaps + unsettled
+            notes += [MSOLVE_NOTE] if by_msolve else []
+        if pairs and coincidences and not by_msolve:  # without msolve: another plan, if one is defined there
             modes, covered = with_modes_of_coincident_joints(
                 scene, plan, pairs, modes, lambda other: solve_exact(scene, other, coincidences=False))
-        if pairs and not covered:
+        if pairs and not covered and not by_msolve:
             gaps += unexamined_coincidences(pairs)
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
     if polynomial is not None:
-        modes, more = _modes_where_undefined(scene, plan, polynomial, undefined, modes, coincidences)
+        modes, more, by_msolve = _modes_where_undefined(scene, plan, polynomial, undefined, modes, coincidences)
         gaps += more
+        notes += [MSOLVE_NOTE] if by_msolve and MSOLVE_NOTE not in notes else []
     return Solution("exact", plan.number_of_parameters, tuple(parameter_name(p) for p in plan.parameters),
                     plan.free_sign_triangles, modes, polynomial,
-                    Certificate(not gaps, probabilistic, gaps))
+                    Certificate(not gaps, "; ".join(notes) or None, gaps))
 
 
 #: What the coupling-2 certificate says of its one Monte Carlo step.
@@ -126,14 +133,15 @@ def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:
 
 def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
                            undefined: list[tuple[float, frozenset]], modes: tuple[AssemblyMode, ...],
-                           coincidences: bool) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...]]:
+                           coincidences: bool) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...], bool]:
     """Step 4: the dropped factors that the plan could not decide (``polynomial.degenerate``)
     and that have a positive real root, and the real roots of kept factors at which the
     plan is undefined on some branch (``undefined``). Where no joint pair found coincident
     there can coincide (:func:`~baranov.solvers.coincidence.coincidence_possible`) no real
     mode is lost; otherwise the scene is solved again with a plan that avoids those pairs
     and its modes at those roots are added (thesis §5.1.3.2). What remains undecided is
-    returned as gaps."""
+    returned as gaps, and whether msolve was needed
+    (:func:`~baranov.solvers.coincidence.with_modes_from_msolve`)."""
     name = parameter_name(plan.parameters[0])
     pairs, roots, gaps = set(), [], []
     for factor, coincident in polynomial.degenerate:
@@ -149,14 +157,17 @@ def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicP
     for value, coincident in undefined:
         pairs |= coincident
         roots.append(value)
-    covered = False
+    covered = by_msolve = False
     if roots and coincidences:
+        modes, by_msolve, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)
+        covered, gaps = by_msolve and not unsettled, gaps + list(unsettled)
+    if roots and coincidences and not by_msolve:  # without msolve: another plan, if one is defined there
         modes, covered = with_coincident_modes(scene, plan, pairs, roots, modes,
                                                lambda other: solve_exact(scene, other, coincidences=False))
-    if roots and not covered:
+    if roots and not covered and not by_msolve:
         gaps.append(f"{name} ≈ {', '.join(f'{r:.6g}' for r in roots)}: the plan is undefined there "
                     f"(joints {_pair_names(pairs)} may coincide) and no other plan decides")
-    return modes, tuple(gaps)
+    return modes, tuple(gaps), by_msolve
 
 
 def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial, branches: np.ndarray,
@@ -187,6 +198,7 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
     root isolation per precision used."""
     names = tuple(parameter_name(pair) for pair in plan.parameters)
     every_branch = [tuple(int(s) for s in b) for b in branches]
+    zero = coincidence_possible(scene, frozenset(plan.parameters[0]))
     modes: list[AssemblyMode] = []
     gaps: list[str] = []
     undefined: list[tuple[float, frozenset]] = []
@@ -205,7 +217,8 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
                     undecided = {index: every_branch for index in range(len(roots))}
                     found = {index: [] for index in undecided}
                 for index, signs_list in list(undecided.items()):
-                    still = _modes_at_root(scene, plan, _parameter_points(roots[index], fiber), signs_list, names,
+                    points = _parameter_points(roots[index], fiber, zero)
+                    still = _modes_at_root(scene, plan, points, signs_list, names,
                                            found[index], coincident.setdefault(index, set()))
                     if still:
                         undecided[index] = sorted(still)
@@ -251,12 +264,15 @@ def _pair_names(pairs) -> str:
     return ", ".join(sorted("=".join(sorted(pair)) for pair in pairs))
 
 
-def _parameter_points(root: flint.arb, fiber: Fiber | None) -> list[tuple[flint.acb, ...]] | None:
+def _parameter_points(root: flint.arb, fiber: Fiber | None, zero: bool) -> list[tuple[flint.acb, ...]] | None:
     """The parameter values to try at a real root: (root,) for coupling 1; the real common
     points (root, v), v > 0, of the two curves for coupling 2; None if they cannot be
     decided at this precision (a ball straddling 0, or roots not isolated); [] where
-    root ≤ 0 (a squared distance)."""
-    if not root > 0:
+    root < 0 (a squared distance), or root = 0 unless ``zero`` (the parameter's joints can
+    coincide: issue 25's 9/N2 instance, a mode at s1,10 = 0 that was skipped)."""
+    if root.is_exact() and root == 0 and zero:
+        pass
+    elif not root > 0:
         return None if root.contains(0) and not root.is_exact() else []
     if fiber is None:
         return [(flint.acb(root),)]

@@ -43,6 +43,7 @@ from .coincidence import (
     with_modes_of_coincident_joints,
 )
 from .configuration import (
+    NEARLY_FLAT,
     RESIDUAL_TOLERANCE,
     assembly_modes,
     compile_scene,
@@ -102,9 +103,15 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
     points = np.stack([complex_points.real, complex_points.imag], axis=-1)[usable]
     points, residual = polish_configurations(scene, joints, points)
     points = points[residual < RESIDUAL_TOLERANCE]
-    parameters, branch = read_back(compiled, {j: points[:, n, 0] + 1j * points[:, n, 1]
-                                              for n, j in enumerate(joints)})
-    return distinct_candidates(parameters, branch)
+    at = {j: points[:, n, 0] + 1j * points[:, n, 1] for n, j in enumerate(joints)}
+    parameters, branch = read_back(compiled, at)
+    # at a double root on the domain's edge the polished joints are right to ~√ε only, a
+    # flat triangle reads back ±1 and its radicand comes out negative: try it flat too
+    # (tests/regressions/9-N28-double-root.json)
+    _, flattened = read_back(compiled, at, NEARLY_FLAT)
+    changed = (flattened != branch).any(axis=1)
+    return distinct_candidates(np.concatenate([parameters, parameters[changed]]),
+                               np.concatenate([branch, flattened[changed]]))
 
 
 #: A local minimum of |f| between samples is re-sampled this finely: two close simple
@@ -147,10 +154,58 @@ def _roots_at_critical_values(compiled: CompiledSystem, branches: np.ndarray, va
     return [(np.array([values[n]]), branches[b]) for b, n in zip(*np.nonzero(residuals < 1e-9), strict=True)]
 
 
+#: A free-sign triangle whose relative radicand is within FLAT_NOISE of 0 at FLAT_SAMPLES
+#: grid samples or more is flat along its branch (:func:`_flat_along_branches`).
+FLAT_NOISE = 1e-12
+FLAT_SAMPLES = 16
+
+
+def _flat_along_branches(branches: np.ndarray, margins: np.ndarray) -> np.ndarray:
+    """``branches`` with sign 0 for each free-sign triangle that stays flat along the
+    parameter (its radicand is 0 at FLAT_SAMPLES samples: a polynomial in the parameter
+    that vanishes that often vanishes identically on the branch). Rounding then makes the
+    radicand flip between ±1e-16, and the feasible domain between defined and undefined,
+    at every sample: issue 25's 7/N3 instance drawn with P8, P3, P4 in line, whose
+    alternative plan keeps s8,3 constant on a branch, ran for over 300 s in edge searches
+    and Brent brackets across that noise. Flat, the branch is one smooth curve."""
+    flat = (np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_NOISE).sum(axis=1) >= FLAT_SAMPLES
+    if not flat.any():
+        return branches
+    return np.unique(np.where(flat, 0, branches), axis=0)
+
+
+class MovableLinkageError(SolverError):
+    """The closure condition vanishes along an interval: with these dimensions the linkage
+    moves, and its configurations there are a continuum, not isolated assembly modes."""
+
+
+def _require_isolated_roots(compiled: CompiledSystem, branches: np.ndarray, grid: np.ndarray,
+                            table: np.ndarray) -> None:
+    """Raise :class:`MovableLinkageError` where a branch's closure residual is within
+    FLAT_NOISE of 0 at FLAT_SAMPLES samples or more (a polynomial condition that vanishes
+    that often vanishes identically: a continuum of configurations). Issue 25's 7/N2
+    instance rotates about P1 = P6 = P8; the bracketing of its rounding noise ran for over
+    300 s."""
+    vanishing = (np.abs(np.nan_to_num(table, nan=1.0)) < FLAT_NOISE).sum(axis=1)
+    if (vanishing >= FLAT_SAMPLES).any():
+        b = int(np.argmax(vanishing))
+        where = grid[np.abs(np.nan_to_num(table[b], nan=1.0)) < FLAT_NOISE]
+        name = parameter_name(compiled.plan.parameters[0])
+        raise MovableLinkageError(
+            f"the linkage moves with these dimensions: the closure condition vanishes for {name} from "
+            f"{where.min():.6g} to {where.max():.6g} (signs {''.join({1: '+', -1: '-', 0: '0'}[int(s)] for s in branches[b])}), "
+            "a continuum of configurations rather than isolated assembly modes")
+
+
 def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: float, samples: int):
     grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
-    table = compiled.residuals(grid[:, None], branches)[:, :, 0]
     failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
+    flattened = _flat_along_branches(branches, margins)
+    if flattened.shape != branches.shape or (flattened != branches).any():
+        branches = flattened
+        failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
+    table = compiled.residuals(grid[:, None], branches)[:, :, 0]
+    _require_isolated_roots(compiled, branches, grid, table)
     candidates = []
     for b, branch in enumerate(branches):
         def sampled(points: np.ndarray, branch=branch) -> np.ndarray:

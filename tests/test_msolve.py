@@ -1,0 +1,107 @@
+"""The msolve oracle (solvers/msolve.py): its Cartesian system vanishes exactly at every
+mode, its modes are the backends' on the examples, its coincidence constraints select the
+modes where two joints meet."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+import pytest
+from baranov.enumerate import baranov_trusses
+from baranov.solvers import load_scene, scene_from_dict, solve
+from baranov.solvers.instances import scene_of
+from baranov.solvers.msolve import cartesian_system, find_msolve, match_configurations, msolve_modes
+from hypothesis import given
+from hypothesis import strategies as st
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+needs_msolve = pytest.mark.skipif(find_msolve() is None, reason="msolve binary not installed (make installs it)")
+
+
+def _evaluate(polynomial: dict, values: dict[str, Fraction]) -> Fraction:
+    total = Fraction(0)
+    for monomial, coefficient in polynomial.items():
+        term = coefficient
+        for variable in monomial:
+            term *= values[variable]
+        total += term
+    return total
+
+
+@given(st.integers(0, 2), st.integers(0, 10**6), st.sampled_from([None, 1, 2]))
+def test_cartesian_system_vanishes_at_the_generating_configuration(index, seed, scale):
+    """Every polynomial is exactly 0 at the configuration the scene was drawn from (the
+    auxiliary square roots at their required signs): the encoding imposes each link's
+    shape and orientation."""
+    truss = baranov_trusses(7)[index]
+    rng = np.random.default_rng(seed)
+    names = [j.name for j in truss.joints]
+    while True:
+        points = {n: (Fraction(int(rng.integers(-9, 10)), scale or 1), Fraction(int(rng.integers(-9, 10))))
+                  for n in names}
+        if len(set(points.values())) == len(points):
+            break
+    scene = scene_of(truss, points)
+    variables, polynomials, joints, signs = cartesian_system(scene)
+    values = {}
+    for joint, (x, y) in joints.items():
+        values[x], values[y] = points[joint]
+    assert not signs  # drawn from rational coordinates: every area is rational
+    assert all(_evaluate(p, values) == 0 for p in polynomials)
+    assert len(variables) == len(polynomials)
+
+
+@needs_msolve
+@pytest.mark.parametrize("name, modes", [("5-B1", 6), ("7-B1", 8), ("3-RPR-I", 1), ("7-B2", None)])
+def test_msolve_finds_the_modes_of_the_examples(name, modes):
+    scene = load_scene(EXAMPLES / f"{name}.json")
+    oracle = msolve_modes(scene)
+    exact = solve(scene, method="exact")
+    assert oracle.status == "finite"
+    assert modes is None or len(oracle.configurations) == modes
+    assert match_configurations([m.joints for m in exact.assembly_modes], list(oracle.configurations)) == ([], [])
+
+
+@needs_msolve
+@pytest.mark.parametrize("legs", [(9, 10, 8), (16, 16, 16), (20, 13, 10)])
+def test_irrational_areas_use_a_signed_auxiliary_unknown(legs):
+    """A link whose area is not rational (an equilateral platform, 16 A² = 48) gets
+    m² = 16 A², and only the sign of its own orientation is kept: the modes are the
+    numeric backend's, mirrored platforms excluded."""
+    scene = scene_from_dict({"ground": "base", "links": [
+        {"name": "base", "joints": {"P1": [0, 0], "P2": [6, 0], "P3": [2, 5]}},
+        {"name": "platform", "joints": ["P4", "P5", "P6"], "squared_distances": {"P4,P5": 4, "P4,P6": 4, "P5,P6": 4},
+         "orientation": "ccw"},
+        *({"name": f"leg{a}{b}", "joints": [f"P{a}", f"P{b}"], "squared_length": length}
+          for (a, b), length in zip(((1, 4), (2, 5), (3, 6)), legs, strict=True))]})
+    assert list(cartesian_system(scene)[3].values()) == [1]
+    oracle = msolve_modes(scene)
+    numeric = [m.joints for m in solve(scene).assembly_modes]
+    assert oracle.configurations and match_configurations(numeric, list(oracle.configurations)) == ([], [])
+
+
+@needs_msolve
+def test_coincidence_constraints_select_modes():
+    """msolve with P_u = P_v added returns exactly the modes where those joints meet:
+    none for a generic instance, the generating mode for an instance drawn with them at
+    one point."""
+    truss = baranov_trusses(7)[0]
+    points = {j.name: (Fraction(x), Fraction(y)) for j, (x, y) in
+              zip(truss.joints, [(0, 0), (5, 1), (2, 6), (7, 5), (3, 3), (-2, 4), (6, -3), (1, -4), (-3, -1)],
+                  strict=True)}
+    far_apart = frozenset(("P1", "P3"))  # on no common link
+    generic = scene_of(truss, points)
+    assert msolve_modes(generic, coincident=[far_apart]).configurations == ()
+    points["P3"] = points["P1"]
+    meeting = scene_of(truss, points)
+    found = msolve_modes(meeting, coincident=[far_apart]).configurations
+    assert found and all(c["P1"] == pytest.approx(c["P3"]) for c in found)
+
+
+def test_match_configurations_pairs_modes_one_to_one():
+    a = {"P1": (0.0, 0.0), "P2": (1.0, 0.0)}
+    b = {"P1": (0.0, 0.0), "P2": (1.0, 1e-9)}
+    assert match_configurations([a, b], [a]) == ([], [1])  # two found cannot both match one
+    assert match_configurations([], [a]) == ([0], [])
