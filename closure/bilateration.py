@@ -17,6 +17,14 @@ from __future__ import annotations
 import numpy as np
 
 
+#: A radicand above −this times the squared largest side is rounding noise around 0 (a
+#: flat triangle), not a triangle that does not exist: where a radicand touches 0 (a
+#: double zero, joints in line at a mode), rounding makes it a few ulps negative over a
+#: stretch ~1e-8 wide, and Brent's bracket hit NaN there (issue 25's 7/N3 instance at
+#: s1,9 = 13).
+RADICAND_NOISE = 1e-13
+
+
 def oriented_area(s_ij, s_ik, s_jk, sign):
     """A_{i,j,k} from the three squared distances and the orientation sign (±1), thesis
     eq. (2.7). NaN where the radicand is negative (the triangle does not exist). Sign 0
@@ -29,8 +37,9 @@ def oriented_area(s_ij, s_ik, s_jk, sign):
     """
     s_ij, s_ik, s_jk = (np.asarray(x, dtype=float) for x in (s_ij, s_ik, s_jk))
     radicand = (s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)
+    noise = -RADICAND_NOISE * np.maximum(np.maximum(s_ij, s_ik), s_jk) ** 2
     with np.errstate(invalid="ignore"):
-        area = sign * np.sqrt(np.where(radicand >= 0, radicand, np.nan)) / 4
+        area = sign * np.sqrt(np.where(radicand >= noise, np.maximum(radicand, 0.0), np.nan)) / 4
     flat = np.asarray(sign) == 0
     if not flat.any():  # the usual case: no flat triangle asked for
         return area

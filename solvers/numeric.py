@@ -37,9 +37,11 @@ from baranov.planner import Plan
 from scipy.optimize import brentq, minimize_scalar
 
 from .coincidence import (
+    coincidence_possible,
     computed_base_pairs,
     solvable_plan,
     with_coincident_modes,
+    with_modes_from_msolve,
     with_modes_of_coincident_joints,
 )
 from .configuration import (
@@ -53,7 +55,7 @@ from .configuration import (
     placed_from_ground,
     read_back,
 )
-from .modes import Solution, SolverError
+from .modes import AssemblyMode, Solution, SolverError
 from .polish import polish_configurations
 from .scene import Scene
 from .two_parameter import two_parameter_roots
@@ -71,7 +73,9 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     if degree == 0:
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
-        candidates = _one_parameter_roots(compiled, branches, distance_bound(scene) ** 2, samples)
+        candidates, near = _one_parameter_roots(compiled, branches, distance_bound(scene) ** 2, samples)
+        if near:  # a root where f is not smooth (a singular mode): polished on the links, then verified
+            candidates += _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
         candidates += _roots_at_critical_values(compiled, branches, _critical_values(scene, plan))
     elif degree == 2:
         upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
@@ -80,15 +84,42 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
     modes = assembly_modes(scene, compiled, candidates)
-    if degree == 1 and coincidences:  # the sampled interval starts above 0: the parameter's joints coincident
-        modes, _ = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], modes,
-                                         lambda other: solve_numeric(scene, other, samples, coincidences=False))
-    # coupling 1 samples its parameter from above 0 and handles 0 above; coupling 2 does not
-    if degree > 0 and coincidences and (pairs := computed_base_pairs(scene, plan, with_parameters=degree == 2)):
-        modes, _ = with_modes_of_coincident_joints(scene, plan, pairs, modes,
-                                                lambda other: solve_numeric(scene, other, samples, coincidences=False))
+    if degree > 0 and coincidences:
+        modes = _modes_of_coincident_joints(scene, plan, samples, modes)
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
                     plan.free_sign_triangles, modes)
+
+
+def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int,
+                                modes: tuple[AssemblyMode, ...]) -> tuple[AssemblyMode, ...]:
+    """``modes`` and the modes where joints the plan divides by coincide: its bases and
+    reference (:func:`~baranov.solvers.coincidence.computed_base_pairs`, parameters
+    included for coupling 2) and, for coupling 1, the parameter's own joints (sampling
+    starts above 0). With msolve and an exact scene, msolve lists them
+    (:func:`~baranov.solvers.coincidence.with_modes_from_msolve`; a continuum there raises
+    :class:`MovableLinkageError`); otherwise the scene is solved again with a plan that
+    avoids those pairs, which can itself be undefined elsewhere (issue 25: 9/N3, 9/N5
+    missed 2-4 modes so)."""
+    pairs = computed_base_pairs(scene, plan, with_parameters=plan.number_of_parameters == 2)
+    if plan.number_of_parameters == 1 and coincidence_possible(scene, frozenset(plan.parameters[0])):
+        pairs.add(frozenset(plan.parameters[0]))
+    if not pairs:
+        return modes
+    found, ran, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)
+    movable = [gap for gap in unsettled if "movable" in gap]
+    if movable:
+        raise MovableLinkageError(movable[0])
+    if ran and not unsettled:
+        return found
+
+    def again(other: Plan) -> Solution:
+        return solve_numeric(scene, other, samples, coincidences=False)
+
+    if plan.number_of_parameters == 1:  # the sampled interval starts above 0
+        modes, _ = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], modes, again)
+    if pairs := computed_base_pairs(scene, plan, with_parameters=plan.number_of_parameters == 2):
+        modes, _ = with_modes_of_coincident_joints(scene, plan, pairs, modes, again)
+    return modes
 
 
 def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs: np.ndarray):
@@ -113,6 +144,11 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
     return distinct_candidates(np.concatenate([parameters, parameters[changed]]),
                                np.concatenate([branch, flattened[changed]]))
 
+
+#: A local minimum of |f| below this but not below 1e-7 (a root where f is not smooth:
+#: f ≈ c√|s − s0| at a singular mode, issue 25's 7/N3 instance at s1,9 = 13 with P6 = P9
+#: and P8 P3 P4 in line) is polished on the link constraints and verified.
+NEAR_ROOT = 1e-4
 
 #: A local minimum of |f| between samples is re-sampled this finely: two close simple
 #: roots inside one cell show no sign change on the coarse grid (a saved regression:
@@ -147,11 +183,24 @@ def _critical_values(scene: Scene, plan: Plan) -> list[float]:
 
 def _roots_at_critical_values(compiled: CompiledSystem, branches: np.ndarray, values: list[float]):
     """The (value, branch) pairs among the critical values where the closure residual
-    vanishes (relative 1e-9)."""
+    vanishes (relative 1e-9), on every branch and on every branch with its nearly flat
+    free-sign triangles (relative radicand below FLAT_MARGIN) taken flat: the critical
+    value, (a ± b)² in floats, can miss the exact one by an ulp, and a radicand that
+    vanishes there then comes out negative (issue 25's 7/N1 instance: a mode at s4,5 = 2,
+    where one radicand turns positive as another turns negative — the feasible domain is
+    that single point)."""
     if not values:
         return []
-    residuals = np.abs(compiled.residuals(np.array(values)[:, None], branches)[:, :, 0])
-    return [(np.array([values[n]]), branches[b]) for b, n in zip(*np.nonzero(residuals < 1e-9), strict=True)]
+    points = np.array(values)[:, None]
+    _, _, margins = compiled.failure_profile(points, branches)  # (B, N, free)
+    flat = np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN
+    variants = np.where(flat, 0, branches[:, None, :])  # (B, N, free)
+    found = []
+    for n, value in enumerate(values):
+        tried = np.unique(np.concatenate([branches, variants[:, n]]), axis=0)
+        residuals = np.abs(compiled.residuals(points[n:n + 1], tried)[:, 0, 0])
+        found += [(np.array([value]), tried[b]) for b in np.flatnonzero(residuals < 1e-9)]
+    return found
 
 
 #: A free-sign triangle whose relative radicand is within FLAT_NOISE of 0 at FLAT_SAMPLES
@@ -206,7 +255,7 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
         failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
     table = compiled.residuals(grid[:, None], branches)[:, :, 0]
     _require_isolated_roots(compiled, branches, grid, table)
-    candidates = []
+    candidates, near_roots = [], []
     for b, branch in enumerate(branches):
         def sampled(points: np.ndarray, branch=branch) -> np.ndarray:
             return compiled.residuals(points[:, None], branch[None, :])[0, :, 0]
@@ -221,15 +270,17 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
                                        len(compiled.plan.steps))
         points, values, edges = _with_edges(points, values, sampled)
         roots = [edge for edge, value in edges if abs(value) < 1e-7]
-        roots += _scan(f, points, values, sampled)
+        near: list[float] = []
+        roots += _scan(f, points, values, sampled, near)
         for low, high in _suspicious_minima(points, values):
             fine = np.linspace(low, high, REFINEMENT)
-            roots += _scan(f, fine, sampled(fine), sampled)
+            roots += _scan(f, fine, sampled(fine), sampled, near)
         for root in roots:
             candidates.append((np.array([root]), branch))
         candidates += _roots_at_folds(compiled, branch, edges)
         candidates += _roots_at_touching_radicands(compiled, branch, grid, failures[b], radicands[b])
-    return candidates
+        near_roots += [(np.array([x]), branch) for x in near]
+    return candidates, near_roots
 
 
 #: A failing radicand whose coarse-grid local maximum is below −this (relative to the
@@ -381,12 +432,20 @@ def _merge(points: np.ndarray, values: np.ndarray, more_points: np.ndarray, more
     return merged[keep], merged_values[keep]
 
 
+#: A local minimum of |f| must lie below both neighbours by this (relative to |f| there,
+#: and to 1e-3 at least): where f is flat to rounding, every other sample is a "minimum"
+#: (issue 25's 7/N1 instance: 36 cells of 397 noise minima each, one bounded
+#: minimisation per minimum, over 60 s).
+MINIMUM_DEPTH = 1e-10
+
+
 def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float, float]]:
     """Cells around interior local minima of |f| with no sign change."""
     finite = np.isfinite(values)
     magnitude = np.abs(values)
-    minima = (finite[:-2] & finite[1:-1] & finite[2:] & (magnitude[1:-1] <= magnitude[:-2])
-              & (magnitude[1:-1] <= magnitude[2:]) & (values[:-2] * values[2:] > 0))
+    dip = MINIMUM_DEPTH * np.maximum(magnitude[1:-1], 1e-3)  # below rounding noise: not a minimum
+    minima = (finite[:-2] & finite[1:-1] & finite[2:] & (magnitude[1:-1] <= magnitude[:-2] - dip)
+              & (magnitude[1:-1] <= magnitude[2:] - dip) & (values[:-2] * values[2:] > 0))
     return [(float(grid[i - 1]), float(grid[i + 1])) for i in np.flatnonzero(minima) + 1]
 
 
@@ -414,7 +473,7 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
     return (*_merge(points, values, np.concatenate(extra_points), np.concatenate(extra_values)), edges)
 
 
-def _scan(f, grid: np.ndarray, values: np.ndarray, sampled=None) -> list[float]:
+def _scan(f, grid: np.ndarray, values: np.ndarray, sampled=None, near: list | None = None) -> list[float]:
     """Roots of f on sampled ``grid``: exact zeros, sign changes (Brent), and tangential
     roots at local minima of |f| (bounded minimisation). A sign change across an
     undefined gap narrower than the cell (Brent meets NaN) is re-sampled finely, with its
@@ -430,12 +489,14 @@ def _scan(f, grid: np.ndarray, values: np.ndarray, sampled=None) -> list[float]:
                 fine = np.linspace(grid[i], grid[i + 1], REFINEMENT)
                 points, fine_values, edges = _with_edges(fine, sampled(fine), sampled)
                 roots += [edge for edge, value in edges if abs(value) < 1e-7]
-                roots += _scan(f, points, fine_values)
+                roots += _scan(f, points, fine_values, near=near)
     for low, high in _suspicious_minima(grid, values):
         found = minimize_scalar(lambda s: abs(f(s)), bounds=(low, high), method="bounded",
                                 options={"xatol": 1e-14 * high})
         if found.success and abs(f(found.x)) < 1e-7:
             roots.append(float(found.x))
+        elif near is not None and found.success and abs(f(found.x)) < NEAR_ROOT:
+            near.append(float(found.x))
     return roots
 
 
