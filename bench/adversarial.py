@@ -32,6 +32,7 @@ from baranov.planner import coupling_degree
 from baranov.solvers import solve
 from baranov.solvers.adversarial import ADVERSARIAL_KINDS, adversarial_scene
 from baranov.solvers.instances import instance_dict
+from baranov.solvers.numeric import MovableLinkageError
 
 METHODS = ("numeric", "exact")
 
@@ -74,7 +75,13 @@ def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tu
     if oracle.status == "finite":
         row["msolve_has_generating"] = not match_configurations(list(oracle.configurations), [generating])[0]
     for method in methods:
-        solution, seconds = timed(lambda method=method: solve(scene, method=method), timeout)
+        try:
+            solution, seconds = timed(lambda method=method: solve(scene, method=method), timeout)
+        except ValueError as error:  # SolverError: a movable linkage, or a scene the method cannot solve
+            row[f"{method}_seconds"] = 0.0
+            row[f"{method}_status"] = "movable" if isinstance(error, MovableLinkageError) else "error"
+            row[f"{method}_message"] = str(error)
+            continue
         row[f"{method}_seconds"] = seconds
         if solution is None:
             row[f"{method}_status"] = "timeout"
@@ -95,7 +102,12 @@ def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tu
 
 
 def failed(row: dict, methods: tuple[str, ...]) -> bool:
-    """Whether a backend lost or added a mode, timed out, or the oracle could not decide."""
+    """Whether a backend lost or added a mode, timed out, or the oracle could not decide;
+    for a movable linkage (msolve: positive-dimensional), whether a backend failed to say
+    so (the numeric one raises MovableLinkageError, the exact one is not certified)."""
+    if row["msolve_status"] == "infinite":
+        return any(row.get(f"{m}_status") not in ("movable", "solved") or row.get(f"{m}_certified") is True
+                   or (m == "numeric" and row.get(f"{m}_status") != "movable") for m in methods)
     if row["msolve_status"] != "finite":
         return True
     return any(row.get(f"{m}_status") != "solved" or row.get(f"{m}_missed") or row.get(f"{m}_spurious")
@@ -169,11 +181,17 @@ def summary(rows: list[dict], methods: tuple[str, ...]) -> list[str]:
     lines = [f"- msolve: {len(finite)} of {len(rows)} instances solved (finite); "
              f"{sum(1 for r in finite if not r['msolve_has_generating'])} without the generating configuration; "
              f"{sum(r['msolve_modes'] for r in finite)} real modes in all"]
+    movable = [r for r in rows if r["msolve_status"] == "infinite"]
+    if movable:
+        lines.append(f"- {len(movable)} movable linkages (msolve: positive-dimensional); said so by the numeric "
+                     f"backend (MovableLinkageError) on {sum(r.get('numeric_status') == 'movable' for r in movable)}, "
+                     f"by the exact certificate on {sum(r.get('exact_certified') is False for r in movable)}")
     for method in methods:
         mine = [r for r in finite if r.get(f"{method}_status") == "solved"]
-        times = [r[f"{method}_seconds"] for r in rows if f"{method}_seconds" in r]
+        times = [r[f"{method}_seconds"] for r in rows if r.get(f"{method}_status") in ("solved", "timeout")]
         uncertified = sum(1 for r in mine if r.get(f"{method}_certified") is False)
-        ratios = [percentile_ratio([r[f"{method}_seconds"] for r in rows if r["truss"] == t and f"{method}_seconds" in r])
+        ratios = [percentile_ratio([r[f"{method}_seconds"] for r in rows
+                                    if r["truss"] == t and r.get(f"{method}_status") in ("solved", "timeout")])
                   for t in {r["truss"] for r in rows}]
         lines.append(
             f"- {method}: {sum(r[f'{method}_missed'] for r in mine)} missed and "
