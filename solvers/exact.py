@@ -270,9 +270,8 @@ def _parameter_points(root: flint.arb, fiber: Fiber | None, zero: bool) -> list[
     decided at this precision (a ball straddling 0, or roots not isolated); [] where
     root < 0 (a squared distance), or root = 0 unless ``zero`` (the parameter's joints can
     coincide: issue 25's 9/N2 instance, a mode at s1,10 = 0 that was skipped)."""
-    if root.is_exact() and root == 0 and zero:
-        pass
-    elif not root > 0:
+    at_zero = zero and root.is_exact() and root == 0
+    if not root > 0 and not at_zero:
         return None if root.contains(0) and not root.is_exact() else []
     if fiber is None:
         return [(flint.acb(root),)]
