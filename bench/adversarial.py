@@ -26,7 +26,7 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 import numpy as np
-from baranov.solvers.msolve import match_configurations, msolve_modes
+from baranov.solvers.msolve import compare_modes, match_configurations, msolve_modes
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.solvers import solve
@@ -91,8 +91,8 @@ def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tu
         row[f"{method}_modes"] = len(found)
         row[f"{method}_has_generating"] = not match_configurations(found, [generating])[0]
         if oracle.status == "finite":
-            missed, spurious = match_configurations(found, list(oracle.configurations))
-            row[f"{method}_missed"], row[f"{method}_spurious"] = len(missed), len(spurious)
+            row[f"{method}_missed"], row[f"{method}_spurious"], row[f"{method}_coarse"] = compare_modes(
+                found, list(oracle.configurations))
         if solution.certificate is not None:
             row[f"{method}_certified"] = solution.certificate.complete
             row[f"{method}_gaps"] = list(solution.certificate.gaps)
@@ -197,6 +197,7 @@ def summary(rows: list[dict], methods: tuple[str, ...]) -> list[str]:
             f"- {method}: {sum(r[f'{method}_missed'] for r in mine)} missed and "
             f"{sum(r[f'{method}_spurious'] for r in mine)} spurious modes on {len(mine)} instances "
             f"({sum(1 for r in mine if r[f'{method}_missed'] or r[f'{method}_spurious'])} instances wrong, "
+            f"{sum(r.get(f'{method}_coarse', 0) for r in mine)} modes located only to 1e-4 (singular), "
             f"{sum(1 for r in rows if r.get(f'{method}_status') == 'timeout')} timeouts"
             + (f", {uncertified} not certified complete" if method == "exact" else "")
             + f"); solve time median {np.median(times):.2f} s, max {max(times):.1f} s; "

@@ -5,6 +5,7 @@ exact backends."""
 from __future__ import annotations
 
 import math
+from itertools import combinations
 
 import numpy as np
 from baranov.closure import CompiledSystem, closure_system
@@ -12,7 +13,7 @@ from baranov.planner import Plan
 from baranov.topology import thesis_subscript
 
 from .modes import AssemblyMode
-from .polish import polish_configurations
+from .polish import POLISH_STEPS, polish_configurations
 from .scene import Scene
 
 #: A candidate is an assembly mode when every link dimension holds to this (relative).
@@ -70,7 +71,37 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates) -> tuple[
             mode = flattened_mode(scene, compiled, mode)
             if not any(same_mode(mode, other, scene) for other in modes):
                 modes.append(mode)
-    return sorted_modes(modes)
+    return sorted_modes(merged_clusters(scene, compiled, modes))
+
+
+#: Verified modes closer than this (relative to the linkage's size) are polished again,
+#: CLUSTER_STEPS plain Gauss–Newton steps, before they count as distinct.
+CLUSTER = 1e-3
+CLUSTER_STEPS = 200
+
+
+def merged_clusters(scene: Scene, compiled: CompiledSystem, modes: list[AssemblyMode]) -> list[AssemblyMode]:
+    """``modes`` with the near-copies of a singular mode merged into it. At a root of
+    multiplicity k a point δ away has residual ~δ^k, so points 1e-4 from the mode verify
+    to 1e-11 (issue 25: 9/N2 drawn at a flexible configuration, five such "modes" around
+    s1,10 = s1,12 = 1). Modes with a neighbour within CLUSTER of the linkage's size are
+    polished by plain Gauss–Newton steps on the link constraints, which approach the
+    singular mode (measured there: from 5e-5 to 7e-7 in 50 steps), and kept only if still
+    distinct; two regular roots this close each converge to themselves. Cost: O(n² J)
+    distance checks for n modes of J joints, and CLUSTER_STEPS steps per clustered mode."""
+    scale = max(1.0, distance_bound(scene))
+    clustered = sorted({index for a, b in combinations(range(len(modes)), 2)
+                        if all(math.dist(modes[a].joints[j], modes[b].joints[j]) < CLUSTER * scale
+                               for j in modes[a].joints) for index in (a, b)})
+    if not clustered:
+        return modes
+    kept = [mode for index, mode in enumerate(modes) if index not in clustered]
+    for index in sorted(clustered, key=lambda i: modes[i].max_residual):
+        mode = polished_mode(scene, compiled, modes[index], CLUSTER_STEPS, monotone=False)
+        mode = flattened_mode(scene, compiled, mode if mode.max_residual < RESIDUAL_TOLERANCE else modes[index])
+        if not any(same_mode(mode, other, scene) for other in kept):
+            kept.append(mode)
+    return kept
 
 
 #: A free-sign triangle of a verified mode whose doubled area is below this (relative to
@@ -163,11 +194,13 @@ def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray],
     return parameters, branch
 
 
-def polished_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -> AssemblyMode:
-    """``mode`` polished on the link constraints (:func:`polish_configurations`), with its
-    parameters and free-sign branch read back from the polished configuration."""
+def polished_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode, steps: int = POLISH_STEPS,
+                  monotone: bool = True) -> AssemblyMode:
+    """``mode`` polished on the link constraints (:func:`polish_configurations`, with
+    ``steps`` and ``monotone``), its parameters and free-sign branch read back from the
+    polished configuration."""
     joints = sorted(mode.joints)
-    points, _ = polish_configurations(scene, joints, np.array([[mode.joints[j] for j in joints]]))
+    points, _ = polish_configurations(scene, joints, np.array([[mode.joints[j] for j in joints]]), steps, monotone)
     at = {j: complex(*points[0, n]) for n, j in enumerate(joints)}
     parameters, branch = read_back(compiled, {j: np.asarray(p) for j, p in at.items()})
     return AssemblyMode({parameter_name(pair): float(v) for pair, v in zip(compiled.parameters, parameters,

@@ -282,3 +282,24 @@ def match_configurations(found: list[dict], expected: list[dict], tolerance: flo
             used_expected.add(j)
     return ([j for j in range(len(expected)) if j not in used_expected],
             [i for i in range(len(found)) if i not in used_found])
+
+
+#: Tolerance (relative) of the second round of :func:`compare_modes`: float64 places a
+#: mode at a root of multiplicity k to about ε^(1/k) only (6e-6 for k = 3).
+COARSE = 1e-4
+
+
+def compare_modes(found: list[dict], expected: list[dict]) -> tuple[int, int, int]:
+    """(missed, spurious, coarse): :func:`match_configurations` at 1e-6, then its
+    leftovers matched again at COARSE — a found mode that only that second round pairs
+    with an expected one is counted as *coarse* (the same mode, located as well as floats
+    allow at a singular mode), neither missed nor spurious.
+
+    >>> a, b = {"P1": (0.0, 0.0), "P2": (1.0, 0.0)}, {"P1": (0.0, 0.0), "P2": (1.0, 2e-5)}
+    >>> compare_modes([b], [a]), compare_modes([a], [a]), compare_modes([], [a])
+    ((0, 0, 1), (0, 0, 0), (1, 0, 0))
+    """
+    missed, spurious = match_configurations(found, expected)
+    left_found, left_expected = [found[i] for i in spurious], [expected[j] for j in missed]
+    still_missed, still_spurious = match_configurations(left_found, left_expected, COARSE)
+    return len(still_missed), len(still_spurious), len(missed) - len(still_missed)

@@ -19,9 +19,14 @@ from .scene import Scene
 POLISH_STEPS = 30
 
 
-def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray, steps: int = POLISH_STEPS,
+                          monotone: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Gauss–Newton on the relative link residuals (|p_u - p_v|² - s_{u,v}) / s_{u,v},
-    ground joints held at their world coordinates, for K configurations at once.
+    ground joints held at their world coordinates, for K configurations at once, at most
+    ``steps`` steps. ``monotone``: a step is taken only if it lowers the largest residual,
+    and a configuration leaves once it stops doing so; otherwise every step is taken (at
+    a singular mode the largest residual stalls at 1e-11 while the steps still approach
+    the mode: :func:`~baranov.solvers.configuration.merged_clusters`).
 
     Args:
         scene: the linkage.
@@ -30,8 +35,7 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray) -
 
     Returns:
         The polished configurations, shape (K, J, 2), and the largest relative link
-        residual of each. Cost O(K · E · (2J)²) per step for E link dimensions; a
-        configuration leaves the iteration once its residual stops decreasing.
+        residual of each. Cost O(K · E · (2J)²) per step for E link dimensions.
     """
     index = {name: n for n, name in enumerate(joints)}
     fixed = np.zeros(len(joints), bool)
@@ -57,7 +61,7 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray) -
     difference, residual = residuals(points)
     size = np.abs(residual).max(axis=1)
     active = np.flatnonzero(np.isfinite(size))
-    for _ in range(POLISH_STEPS):
+    for _ in range(steps):
         if active.size == 0:
             break
         jacobian = np.zeros((active.size, len(pairs), len(free), 2))
@@ -73,9 +77,9 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray) -
         trial[:, free] += step.reshape(active.size, len(free), 2)
         trial_difference, trial_residual = residuals(trial)
         trial_size = np.abs(trial_residual).max(axis=1)
-        better = np.isfinite(trial_size) & (trial_size < size[active])
+        better = np.isfinite(trial_size) & ((trial_size < size[active]) | (not monotone))
         moved = active[better]
         points[moved], difference[moved], residual[moved], size[moved] = (
             trial[better], trial_difference[better], trial_residual[better], trial_size[better])
-        active = moved[size[moved] > 1e-15]
+        active = moved[size[moved] > 1e-15] if monotone else moved
     return points, size
