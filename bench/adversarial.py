@@ -89,7 +89,7 @@ def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tu
         found = [mode.joints for mode in solution.assembly_modes]
         row[f"{method}_status"] = "solved"
         row[f"{method}_modes"] = len(found)
-        row[f"{method}_has_generating"] = not match_configurations(found, [generating])[0]
+        row[f"{method}_has_generating"] = compare_modes(found, [generating])[0] == 0  # coarsely, at a singular mode
         if oracle.status == "finite":
             row[f"{method}_missed"], row[f"{method}_spurious"], row[f"{method}_coarse"] = compare_modes(
                 found, list(oracle.configurations))
