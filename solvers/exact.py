@@ -112,6 +112,12 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
+    if polynomial is not None and not polynomial.factors:
+        # every closure condition is a power of the parameter times a constant: on issue 25's
+        # 9/N20 instance (movable: msolve finds a positive-dimensional set, the numeric backend
+        # a closure condition vanishing along s10,8 in (0, 68)) this was certified with 8 modes
+        gaps += ("the characteristic polynomial has no factor but powers of the parameter: a degenerate "
+                 "instance (it may move) that this plan cannot decide",)
     if polynomial is not None:
         modes, more, by_msolve = _modes_where_undefined(scene, plan, polynomial, undefined, modes, coincidences)
         gaps += more
