@@ -198,7 +198,8 @@ def summary(rows: list[dict], methods: tuple[str, ...]) -> list[str]:
             f"{sum(r[f'{method}_spurious'] for r in mine)} spurious modes on {len(mine)} instances "
             f"({sum(1 for r in mine if r[f'{method}_missed'] or r[f'{method}_spurious'])} instances wrong, "
             f"{sum(r.get(f'{method}_coarse', 0) for r in mine)} modes located only to 1e-4 (singular), "
-            f"{sum(1 for r in rows if r.get(f'{method}_status') == 'timeout')} timeouts"
+            f"{sum(1 for r in rows if r.get(f'{method}_status') == 'timeout')} timeouts, "
+            f"{sum(1 for r in rows if r.get(f'{method}_status') == 'error')} refused (SolverError)"
             + (f", {uncertified} not certified complete" if method == "exact" else "")
             + f"); solve time median {np.median(times):.2f} s, max {max(times):.1f} s; "
             f"p99/median per truss at most {max(ratios):.1f}")
