@@ -241,8 +241,14 @@ modes at double roots and at coincidences, and running over 300 s on five instan
 (rounding noise where a triangle is flat along a branch or the linkage moves). Each cause
 is explained in docs/exact.md (step 9) and docs/numeric.md ("Adversarial instances"), one
 instance of each saved in tests/regressions/ (tests/test_adversarial.py checks them
-against msolve). Still open: extra modes reported by the numeric backend next to a
-singular mode of coupling degree 2 (docs/numeric.md).
+against msolve). Still open after the run below (its instances saved under
+tests/regressions/open/ where pinned): the exact backend certifying 3 of 4 modes on a
+coupling-2 instance with two joints at one point (9/N27); the numeric backend reporting
+near-copies of a singular mode that are flat to rounding (9/N15; 12 extra modes on a
+9/N22 instance), missing a mode on 9/N21 and 9/N24 (kind domain-edge), and taking 189 s
+and 86 s on two coupling-2 instances of 9/N18 (small box), where the time bound
+(p99 ≤ 10 × median per truss) fails; 9/N17 drawn with two joints of one link at one point
+is refused by both backends (no plan avoids that pair) although msolve finds it movable.
 
 {adversarial}
 
