@@ -46,7 +46,7 @@ bench-timing: $(STAMP)  ## timing and memory medians of each stage
 bench-collinear: $(STAMP)  ## both backends on every 9-link truss drawn with joints in line (issue 28): docs/bench/collinear-joints.md, included in docs/stability.md by `make bench` (about 18 min, 2 cores)
 	$(BIN)/python bench/sweep_collinear.py --links 9 --on-line 3,4 --instances 5 --box 4 --workers 2 --out docs/bench/collinear-joints.md
 
-bench-adversarial: $(STAMP)  ## both backends against msolve on adversarial 7- and 9-link instances (issue 25): docs/bench/adversarial.md, included in docs/stability.md by `make bench`; resumable (bench/results/adversarial.jsonl); about 75 min on 1 worker for 1550 instances
+bench-adversarial: $(STAMP)  ## both backends against msolve on adversarial 7- and 9-link instances (issue 25): docs/bench/adversarial.md, included in docs/stability.md by `make bench`; resumable (bench/results/adversarial.jsonl); 1489 of its 1550 instances took about 38 min on 2 workers
 	$(BIN)/python bench/adversarial.py --links 7,9 --instances 10 --workers 2 --out bench/results/adversarial.jsonl --report docs/bench/adversarial.md
 
 clean:
