@@ -242,13 +242,13 @@ modes at double roots and at coincidences, and running over 300 s on five instan
 is explained in docs/exact.md (step 9) and docs/numeric.md ("Adversarial instances"), one
 instance of each saved in tests/regressions/ (tests/test_adversarial.py checks them
 against msolve). Still open after the run below (its instances saved under
-tests/regressions/open/ where pinned): the exact backend certifying 3 of 4 modes on a
-coupling-2 instance with two joints at one point (9/N27); the numeric backend reporting
+tests/regressions/open/ where pinned): the numeric backend reporting
 near-copies of a singular mode that are flat to rounding (9/N15; 12 extra modes on a
 9/N22 instance), missing a mode on 9/N21 and 9/N24 (kind domain-edge), and taking 189 s
 and 86 s on two coupling-2 instances of 9/N18 (small box), where the time bound
 (p99 ≤ 10 × median per truss) fails; 9/N17 drawn with two joints of one link at one point
 is refused by both backends (no plan avoids that pair) although msolve finds it movable.
+(The run's one exact miss, 9/N27 with a mode at s1,11 = 0, is fixed since: docs/exact.md.)
 
 {adversarial}
 

@@ -100,6 +100,8 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         # coupling 2: where a base pair (a parameter's included) coincides the plan is undefined
         # along a whole curve, which the genuine curves leave out
         pairs, covered, by_msolve = computed_base_pairs(scene, plan, with_parameters=True), False, False
+        # a parameter's own joints may meet too (v = 0 is no common point of the curves: 9/N27)
+        pairs |= {frozenset(p) for p in plan.parameters if coincidence_possible(scene, frozenset(p))}
         if pairs and coincidences:
             modes, by_msolve, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)
             covered, gaps = by_msolve and not unsettled, gaps + unsettled

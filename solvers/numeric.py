@@ -101,8 +101,7 @@ def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int,
     avoids those pairs, which can itself be undefined elsewhere (issue 25: 9/N3, 9/N5
     missed 2-4 modes so)."""
     pairs = computed_base_pairs(scene, plan, with_parameters=plan.number_of_parameters == 2)
-    if plan.number_of_parameters == 1 and coincidence_possible(scene, frozenset(plan.parameters[0])):
-        pairs.add(frozenset(plan.parameters[0]))
+    pairs |= {frozenset(p) for p in plan.parameters if coincidence_possible(scene, frozenset(p))}
     if not pairs:
         return modes
     found, ran, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)

@@ -149,14 +149,3 @@ def test_open_flat_valley_is_one_mode():
     found = [mode.joints for mode in solve(scene).assembly_modes]
     assert compare_modes(found, list(oracle.configurations))[:2] == (0, 0)
 
-
-@needs_msolve
-@pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="open: the exact backend certifies 3 of 4 modes (coupling degree 2, two joints "
-                                       "at one point; docs/exact.md)")
-def test_open_exact_miss_coupling_two():
-    scene = load_scene(REGRESSIONS / "open" / "9-N27-exact-miss.json")
-    oracle = msolve_modes(scene)
-    solution = solve(scene, method="exact")
-    found = [mode.joints for mode in solution.assembly_modes]
-    assert compare_modes(found, list(oracle.configurations))[:2] == (0, 0) or not solution.certificate.complete
