@@ -36,7 +36,7 @@ import sys
 import tempfile
 import time
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 
@@ -76,7 +76,6 @@ class OracleResult:
     message: str = ""
     unknowns: int = 0
     equations: int = 0
-    signs: tuple = field(default=(), repr=False)
 
 
 def find_msolve() -> str | None:
