@@ -104,6 +104,8 @@ def run_solve(args: argparse.Namespace) -> int:
               f"{len(polynomial.real_roots())} real roots (isolated in certified enclosures)")
     if solution.certificate is not None:
         print(f"assembly modes: {solution.certificate.summary()}")
+    for sentence in solution.undecided:
+        print(f"undecided: {sentence}")
     if not modes:
         print("the linkage cannot be assembled with these dimensions")
         return 0

@@ -5,7 +5,6 @@ exact backends."""
 from __future__ import annotations
 
 import math
-from itertools import combinations
 
 import numpy as np
 from baranov.closure import CompiledSystem, closure_system
@@ -61,17 +60,62 @@ def distinct_candidates(values: np.ndarray, branches: np.ndarray) -> list[tuple[
 
 def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates) -> tuple[AssemblyMode, ...]:
     """The verified, distinct assembly modes among ``candidates`` (parameter values,
-    branch), sorted by parameters then signs."""
-    modes: list[AssemblyMode] = []
-    for values, branch in candidates:
-        mode = configuration(scene, compiled, np.asarray(values, float), np.asarray(branch))
-        if RESIDUAL_TOLERANCE <= mode.max_residual < POLISH_LIMIT:
-            mode = polished_mode(scene, compiled, mode)
-        if mode.max_residual < RESIDUAL_TOLERANCE:
-            mode = flattened_mode(scene, compiled, mode)
-            if not any(same_mode(mode, other, scene) for other in modes):
-                modes.append(mode)
-    return sorted_modes(merged_clusters(scene, compiled, modes))
+    branch), sorted by parameters then signs. All candidates are placed, verified and
+    polished together (a coupling-2 solve can bring 10⁴ candidates: one at a time, they
+    took 41 of 62 s on an issue-25 instance of 9/N18); the first candidate of each mode
+    is kept. Cost O(K · J) array work for K candidates of J joints, and O(K · n · J) for
+    the duplicate check against the n modes."""
+    candidates = list(candidates)
+    if not candidates:
+        return ()
+    values = np.array([np.asarray(v, float) for v, _ in candidates]).reshape(len(candidates), -1)
+    branches = np.array([np.asarray(b) for _, b in candidates], int).reshape(len(candidates), -1)
+    joints, points = placed_configurations(scene, compiled, values, branches)
+    residual = joint_residuals(scene, joints, points)
+    polish = np.flatnonzero((RESIDUAL_TOLERANCE <= residual) & (residual < POLISH_LIMIT))
+    if len(polish):
+        points[polish], values[polish], branches[polish], residual[polish] = polished_configurations(
+            scene, compiled, joints, points[polish])
+    kept = np.flatnonzero(residual < RESIDUAL_TOLERANCE)
+    kept = kept[first_of_each_mode(points[kept], scene)]
+    modes = [flattened_mode(scene, compiled, mode_of(compiled, joints, values[k], branches[k], points[k], residual[k]))
+             for k in kept]
+    stacked = np.array([[complex(*mode.joints[j]) for j in joints] for mode in modes])
+    return sorted_modes([modes[k] for k in first_of_each_mode(stacked, scene)])
+
+
+def placed_configurations(scene: Scene, compiled: CompiledSystem, values: np.ndarray,
+                          branches: np.ndarray) -> tuple[list[str], np.ndarray]:
+    """Joint names (sorted) and the configurations of K candidates, point k at parameter
+    values ``values[k]`` on branch ``branches[k]``: complex array (K, J), NaN where a
+    radicand was negative."""
+    placed = placed_from_ground(scene, compiled.paired_matrices(values, branches))
+    joints = sorted(placed)
+    return joints, np.stack([np.broadcast_to(placed[j], (len(values),)) for j in joints], axis=1)
+
+
+def polished_configurations(scene: Scene, compiled: CompiledSystem, joints: list[str], points: np.ndarray,
+                            steps: int = POLISH_STEPS, monotone: bool = True):
+    """Configurations (complex (K, J)) polished on the link constraints
+    (:func:`polish_configurations`), with their parameters and free-sign branches read back
+    and their residuals: ``(points, values, branches, residuals)``."""
+    real = np.stack([points.real, points.imag], axis=-1)
+    real, _ = polish_configurations(scene, joints, real, steps, monotone)
+    polished = real[..., 0] + 1j * real[..., 1]
+    values, branches = read_back(compiled, {j: polished[:, n] for n, j in enumerate(joints)})
+    return polished, values, branches, joint_residuals(scene, joints, polished)
+
+
+def first_of_each_mode(points: np.ndarray, scene: Scene) -> np.ndarray:
+    """Indices of the configurations (complex (K, J)) that do not repeat an earlier one:
+    the first of each group placing every joint within 1e-6 of the linkage's size
+    (:func:`same_mode`). Cost O(K · n · J) for n distinct configurations."""
+    tolerance = 1e-6 * max(1.0, distance_bound(scene))
+    first: list[int] = []
+    for k in range(len(points)):
+        if not first or (np.abs(points[first] - points[k]).max(axis=1) >= tolerance).all():
+            first.append(k)
+    return np.array(first, int)
 
 
 #: Verified modes closer than this (relative to the linkage's size) are polished again,
@@ -80,28 +124,101 @@ CLUSTER = 1e-3
 CLUSTER_STEPS = 200
 
 
-def merged_clusters(scene: Scene, compiled: CompiledSystem, modes: list[AssemblyMode]) -> list[AssemblyMode]:
-    """``modes`` with the near-copies of a singular mode merged into it. At a root of
-    multiplicity k a point δ away has residual ~δ^k, so points 1e-4 from the mode verify
-    to 1e-11 (issue 25: 9/N2 drawn at a flexible configuration, five such "modes" around
-    s1,10 = s1,12 = 1). Modes with a neighbour within CLUSTER of the linkage's size are
-    polished by plain Gauss–Newton steps on the link constraints, which approach the
-    singular mode (measured there: from 5e-5 to 7e-7 in 50 steps), and kept only if still
-    distinct; two regular roots this close each converge to themselves. Cost: O(n² J)
-    distance checks for n modes of J joints, and CLUSTER_STEPS steps per clustered mode."""
-    scale = max(1.0, distance_bound(scene))
-    clustered = sorted({index for a, b in combinations(range(len(modes)), 2)
-                        if all(math.dist(modes[a].joints[j], modes[b].joints[j]) < CLUSTER * scale
-                               for j in modes[a].joints) for index in (a, b)})
+def merged_clusters(scene: Scene, compiled: CompiledSystem,
+                    modes: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...]]:
+    """``modes`` with the near-copies of a singular mode merged into it, sorted; and one
+    sentence per group of modes that floating point could not tell apart.
+
+    At a root of multiplicity k a point δ away has residual ~δ^k, so points 1e-4 from the
+    mode verify to 1e-11 (issue 25: 9/N2 drawn at a flexible configuration, five such
+    "modes" around s1,10 = s1,12 = 1). Modes with a neighbour within CLUSTER of the
+    linkage's size are polished by plain Gauss–Newton steps on the link constraints, which
+    approach the singular mode (measured there: from 5e-5 to 7e-7 in 50 steps), and kept
+    only if still distinct; two regular roots this close each converge to themselves.
+    Where the residual is flat to rounding along a valley, the steps do not move them
+    (9/N15, 9/N22: four and eleven points within 3e-5 of the mode, residuals 1e-16 to
+    1e-13); those still close are merged by :func:`_same_valley`. Cost: O(n² J) distance
+    checks for n modes of J joints, CLUSTER_STEPS steps per clustered mode."""
+    clustered = sorted({index for a, b in _close_pairs(scene, modes, CLUSTER) for index in (a, b)})
     if not clustered:
-        return modes
+        return sorted_modes(modes), ()
     kept = [mode for index, mode in enumerate(modes) if index not in clustered]
     for index in sorted(clustered, key=lambda i: modes[i].max_residual):
         mode = polished_mode(scene, compiled, modes[index], CLUSTER_STEPS, monotone=False)
         mode = flattened_mode(scene, compiled, mode if mode.max_residual < RESIDUAL_TOLERANCE else modes[index])
         if not any(same_mode(mode, other, scene) for other in kept):
             kept.append(mode)
-    return kept
+    groups = _valley_groups(scene, kept)
+    undecided = tuple(_valley_sentence(scene, [kept[i] for i in group]) for group in groups if len(group) > 1)
+    return sorted_modes([_valley_representative([kept[i] for i in group]) for group in groups]), undecided
+
+
+def _close_pairs(scene: Scene, modes, within: float) -> list[tuple[int, int]]:
+    """Pairs of modes placing every joint within ``within`` of the linkage's size."""
+    if len(modes) < 2:
+        return []
+    joints = sorted(modes[0].joints)
+    points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in modes])
+    distance = np.abs(points[:, None, :] - points[None, :, :]).max(axis=-1)
+    first, second = np.nonzero(np.triu(distance < within * max(1.0, distance_bound(scene)), k=1))
+    return list(zip(first.tolist(), second.tolist(), strict=True))
+
+
+def _same_valley(scene: Scene, first: AssemblyMode, second: AssemblyMode) -> bool:
+    """Whether two verified modes lie in one valley of the residual, flat to rounding:
+    their midpoint, polished on the link constraints, verifies as well as they do and
+    stays put (moves less than a tenth of their distance). Between two distinct regular
+    roots the midpoint's residual is ~L d²/8 and polishing carries it towards one of
+    them; measured on 9/N15 and 9/N22, the polished midpoints moved 0–8 % of d."""
+    joints = sorted(first.joints)
+    ends = np.array([[complex(*mode.joints[j]) for j in joints] for mode in (first, second)])
+    middle = ends.mean(axis=0)
+    real, _ = polish_configurations(scene, joints, np.stack([middle.real, middle.imag], axis=-1)[None])
+    polished = real[0, :, 0] + 1j * real[0, :, 1]
+    residual = joint_residuals(scene, joints, polished[None])[0]
+    distance = np.abs(ends[0] - ends[1]).max()
+    return bool(residual <= max(10 * max(first.max_residual, second.max_residual), 1e-14)
+                and np.abs(polished - middle).max() <= 0.1 * distance)
+
+
+def _valley_groups(scene: Scene, modes: list[AssemblyMode]) -> list[list[int]]:
+    """Indices of ``modes`` grouped by :func:`_same_valley` among close pairs (union–find)."""
+    parent = list(range(len(modes)))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            i = parent[i]
+        return i
+
+    for a, b in _close_pairs(scene, modes, CLUSTER):
+        if root(a) != root(b) and _same_valley(scene, modes[a], modes[b]):
+            parent[root(a)] = root(b)
+    groups: dict[int, list[int]] = {}
+    for i in range(len(modes)):
+        groups.setdefault(root(i), []).append(i)
+    return list(groups.values())
+
+
+def _valley_representative(modes: list[AssemblyMode]) -> AssemblyMode:
+    """The mode reported for a valley: one with a flat free-sign triangle (the singular
+    mode itself, placed with its joints in line), else the most central one."""
+    flat = [mode for mode in modes if 0 in mode.signs]
+    if flat:
+        return min(flat, key=lambda mode: mode.max_residual)
+    joints = sorted(modes[0].joints)
+    points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in modes])
+    spread = np.abs(points[:, None, :] - points[None, :, :]).max(axis=(1, 2))
+    return modes[int(np.argmin(spread))]
+
+
+def _valley_sentence(scene: Scene, modes: list[AssemblyMode]) -> str:
+    names = sorted(modes[0].parameters)
+    ranges = ", ".join(f"{name} in [{min(m.parameters[name] for m in modes):.8g}, "
+                       f"{max(m.parameters[name] for m in modes):.8g}]" for name in names)
+    return (f"{len(modes)} verified configurations within "
+            f"{max(math.dist(a.joints[j], b.joints[j]) for a in modes for b in modes for j in a.joints):.1e} of "
+            f"each other ({ranges}) lie in one valley of the residual, flat to rounding: reported as one mode "
+            "(a singular mode, or modes closer than floating point separates)")
 
 
 #: A free-sign triangle of a verified mode whose doubled area is below this (relative to
@@ -152,18 +269,20 @@ def placed_from_ground(scene: Scene, matrices: dict[str, np.ndarray]) -> dict[st
 def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, branch: np.ndarray) -> AssemblyMode:
     """The configuration of one candidate, with its largest relative error over every link
     dimension (1.0 for a rigid link found mirrored; inf where it cannot be built)."""
-    matrices, _ = compiled.matrices(values.reshape(1, -1), branch[None, :])
-    points = {j: complex(p[0, 0]) for j, p in placed_from_ground(scene, matrices).items()}
-    if not all(math.isfinite(p.real) and math.isfinite(p.imag) for p in points.values()):
+    joints, points = placed_configurations(scene, compiled, values.reshape(1, -1), branch.reshape(1, -1))
+    if not np.isfinite(points).all():
         return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)  # a radicand was negative
-    residual = joint_residual(scene, points)
-    names = [parameter_name(p) for p in compiled.parameters]
-    return AssemblyMode(
-        {name: float(v) for name, v in zip(names, values, strict=True)},
-        tuple(int(s) for s in branch),
-        {j: (p.real, p.imag) for j, p in sorted(points.items())},
-        residual,
-    )
+    return mode_of(compiled, joints, values, branch, points[0], joint_residuals(scene, joints, points)[0])
+
+
+def mode_of(compiled: CompiledSystem, joints: list[str], values: np.ndarray, branch: np.ndarray,
+            points: np.ndarray, residual: float) -> AssemblyMode:
+    """The :class:`AssemblyMode` at parameter ``values`` on ``branch``, joints ``joints``
+    at ``points`` (complex)."""
+    return AssemblyMode({parameter_name(pair): float(v) for pair, v in zip(compiled.parameters, values, strict=True)},
+                        tuple(int(s) for s in branch),
+                        {j: (float(p.real), float(p.imag)) for j, p in zip(joints, points, strict=True)},
+                        float(residual))
 
 
 def orientation(at: dict, i: str, j: str, k: str, flat: float):
@@ -200,36 +319,41 @@ def polished_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode, st
     ``steps`` and ``monotone``), its parameters and free-sign branch read back from the
     polished configuration."""
     joints = sorted(mode.joints)
-    points, _ = polish_configurations(scene, joints, np.array([[mode.joints[j] for j in joints]]), steps, monotone)
-    at = {j: complex(*points[0, n]) for n, j in enumerate(joints)}
-    parameters, branch = read_back(compiled, {j: np.asarray(p) for j, p in at.items()})
-    return AssemblyMode({parameter_name(pair): float(v) for pair, v in zip(compiled.parameters, parameters,
-                                                                           strict=True)},
-                        tuple(int(s) for s in branch), {j: (p.real, p.imag) for j, p in at.items()},
-                        joint_residual(scene, at))
+    points, values, branches, residuals = polished_configurations(
+        scene, compiled, joints, np.array([[complex(*mode.joints[j]) for j in joints]]), steps, monotone)
+    return mode_of(compiled, joints, values[0], branches[0], points[0], residuals[0])
 
 
 def joint_residual(scene: Scene, points: dict[str, complex]) -> float:
     """The largest relative error of joint positions (complex) on every link dimension
-    and ground joint; 1.0 if a rigid link is mirrored (its widest triangle reversed). For
-    coincident joints (target 0) the error is relative to the link's size. Shared by every
+    and ground joint (:func:`joint_residuals` of one configuration). Shared by every
     method, baselines included, so their residuals compare."""
-    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
-    residual = 0.0
+    joints = sorted(points)
+    return float(joint_residuals(scene, joints, np.array([[points[j] for j in joints]]))[0])
+
+
+def joint_residuals(scene: Scene, joints: list[str], points: np.ndarray) -> np.ndarray:
+    """For configurations ``points`` (complex (K, J), joints named ``joints``): the largest
+    relative error on every link dimension and ground joint; 1.0 if a rigid link is
+    mirrored (its widest triangle reversed); inf where a joint is not finite. For
+    coincident joints (target 0) the error is relative to the link's size."""
+    at = {j: points[:, n] for n, j in enumerate(joints)}
+    residual = np.zeros(len(points))
     for link in scene.links:
         size = max(float(target) for target in link.squared_distances.values())
         for pair, target in link.squared_distances.items():
             u, v = tuple(pair)
-            residual = max(residual, abs(abs(points[u] - points[v]) ** 2 - float(target)) / (float(target) or size))
+            residual = np.maximum(residual, np.abs(np.abs(at[u] - at[v]) ** 2 - float(target)) / (float(target) or size))
         triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
         if triangle is not None:
-            i, j, k = (points[n] for n in triangle)
+            i, j, k = (at[n] for n in triangle)
             cross = ((j - i).conjugate() * (k - i)).imag
-            if (1 if cross > 0 else -1) != scene.orientation(triangle):
-                residual = max(residual, 1.0)  # mirrored rigid link
-    for joint, target in world.items():
-        residual = max(residual, abs(points[joint] - target) / max(abs(target), 1.0))
-    return residual
+            mirrored = np.where(cross > 0, 1, -1) != scene.orientation(triangle)
+            residual = np.where(mirrored, np.maximum(residual, 1.0), residual)
+    for joint, (x, y) in scene.world.items():
+        target = complex(float(x), float(y))
+        residual = np.maximum(residual, np.abs(at[joint] - target) / max(abs(target), 1.0))
+    return np.where(np.isfinite(points).all(axis=1), residual, np.inf)
 
 
 def same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:

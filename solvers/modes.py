@@ -68,6 +68,9 @@ class Solution:
     assembly_modes: tuple[AssemblyMode, ...]
     characteristic_polynomial: Any = None  # a CharacteristicPolynomial (exact method)
     certificate: Certificate | None = None  # exact method
+    #: what the numeric method could not resolve in floating point, one sentence each
+    #: (e.g. a stretch where the closure condition is flat to rounding, reported as one mode)
+    undecided: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
         """The JSON form printed by ``baranov solve --json``."""
@@ -83,6 +86,8 @@ class Solution:
         }
         if self.characteristic_polynomial is not None:
             result["characteristic_polynomial"] = self.characteristic_polynomial.to_dict()
+        if self.undecided:
+            result["undecided"] = list(self.undecided)
         if self.certificate is not None:
             result["certificate"] = {"complete": self.certificate.complete,
                                      "probabilistic": self.certificate.probabilistic,

@@ -51,6 +51,7 @@ from .configuration import (
     compile_scene,
     distance_bound,
     distinct_candidates,
+    merged_clusters,
     parameter_name,
     placed_from_ground,
     read_back,
@@ -70,10 +71,12 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
+    flat_stretches: list[str] = []
     if degree == 0:
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
-        candidates, near = _one_parameter_roots(compiled, branches, distance_bound(scene) ** 2, samples)
+        candidates, near = _one_parameter_roots(compiled, branches, distance_bound(scene) ** 2, samples,
+                                                flat_stretches)
         if near:  # a root where f is not smooth (a singular mode): polished on the links, then verified
             candidates += _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
         candidates += _roots_at_critical_values(compiled, branches, _critical_values(scene, plan))
@@ -86,8 +89,10 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     modes = assembly_modes(scene, compiled, candidates)
     if degree > 0 and coincidences:
         modes = _modes_of_coincident_joints(scene, plan, samples, modes)
+    modes, undecided = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
+    undecided = tuple(flat_stretches) + undecided
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, modes)
+                    plan.free_sign_triangles, modes, undecided=tuple(undecided))
 
 
 def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int,
@@ -245,7 +250,11 @@ def _require_isolated_roots(compiled: CompiledSystem, branches: np.ndarray, grid
             "a continuum of configurations rather than isolated assembly modes")
 
 
-def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: float, samples: int):
+def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: float, samples: int,
+                         flat_stretches: list[str]):
+    """Candidate roots ``(array([s]), branch)`` of the closure condition on every branch,
+    and the approximate roots to polish on the link constraints; a sentence for each
+    stretch where f is flat to rounding is appended to ``flat_stretches``."""
     grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
     failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
     flattened = _flat_along_branches(branches, margins)
@@ -274,12 +283,69 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
         for low, high in _suspicious_minima(points, values):
             fine = np.linspace(low, high, REFINEMENT)
             roots += _scan(f, fine, sampled(fine), sampled, near)
+        roots, valleys = _merged_flat_valleys(sampled, roots)
+        flat_stretches += [f"{parameter_name(compiled.parameters[0])} in [{low:.10g}, {high:.10g}] on branch "
+                           f"{''.join('+' if s > 0 else '-' for s in branch)}: the closure condition is flat to "
+                           "rounding there; reported as one mode (a singular mode, or modes closer than floating "
+                           "point separates)" for low, high in valleys]
         for root in roots:
             candidates.append((np.array([root]), branch))
         candidates += _roots_at_folds(compiled, branch, edges)
         candidates += _roots_at_touching_radicands(compiled, branch, grid, failures[b], radicands[b])
         near_roots += [(np.array([x]), branch) for x in near]
     return candidates, near_roots
+
+
+#: Samples of f between two neighbouring roots, and of a flat stretch's extent.
+VALLEY_SAMPLES = 64
+
+
+def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list[tuple[float, float]]]:
+    """``roots`` with each run of neighbours between which |f| stays below FLAT_NOISE
+    replaced by the middle of that flat stretch, and the stretches. Next to a singular
+    mode of high multiplicity f ≈ c (s − s0)^m is flat to rounding over a whole stretch,
+    its sign flips with the noise and every flip brackets a "root": issue 25's 9/N15
+    (tests/regressions/9-N15-flat-valley.json) gave four modes between s10,8 = 31.9974
+    and 32.0043 around the true one at 32, |f| < 1e-14 on [31.99, 32.01]. |f| is
+    symmetric about s0 to first order, so the middle of the stretch where it stays below
+    FLAT_NOISE is the estimate (31.99994 there). Where the noise is larger than FLAT_NOISE
+    (next to a fold: 1e-8 on 9/N22) the modes are merged later, by
+    :func:`~baranov.solvers.configuration.merged_clusters`."""
+    roots = sorted(roots)
+    kept, valleys, start = [], [], 0
+    for n in range(1, len(roots) + 1):
+        if n < len(roots) and roots[n] > roots[n - 1] and _flat(sampled, roots[n - 1], roots[n]):
+            continue
+        if n - start > 1:
+            low, high = _flat_stretch(sampled, roots[start], roots[n - 1])
+            kept.append((low + high) / 2)
+            valleys.append((low, high))
+        else:
+            kept.append(roots[start])
+        start = n
+    return kept, valleys
+
+
+def _flat(sampled, low: float, high: float) -> bool:
+    values = sampled(np.linspace(low, high, VALLEY_SAMPLES))
+    return bool(np.isfinite(values).all() and (np.abs(values) <= FLAT_NOISE).all())
+
+
+def _flat_stretch(sampled, low: float, high: float) -> tuple[float, float]:
+    """The stretch around [low, high] (flat) where |f| stays below FLAT_NOISE, sampled
+    outwards over windows of growing width, to VALLEY_SAMPLES⁻¹ of the last window."""
+    ends = []
+    for direction, end in ((-1, low), (1, high)):
+        width = high - low
+        for _ in range(8):
+            points = end + direction * np.linspace(0, width, VALLEY_SAMPLES)
+            flat = np.abs(np.nan_to_num(sampled(points), nan=np.inf)) <= FLAT_NOISE
+            if not flat.all():
+                end = float(points[np.argmin(flat)] - direction * width / (VALLEY_SAMPLES - 1))
+                break
+            end, width = float(points[-1]), width * 4
+        ends.append(end)
+    return ends[0], ends[1]
 
 
 #: A failing radicand whose coarse-grid local maximum is below −this (relative to the
@@ -321,6 +387,11 @@ def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, g
         if best.success and best.fun <= TOUCH_TOLERANCE:
             flat = branch.copy()
             flat[k] = 0
+            # another free-sign triangle may turn flat at the same point (a domain edge:
+            # issue 25's 9/N21, where P11 P3 P4 touches flat at s10,8 = 10 exactly as
+            # P9 P5 P6 folds); by a rounding error it fails there, so it is taken flat too
+            margins = compiled.failure_profile(np.array([[best.x]]), flat[None, :])[2][0, 0]
+            flat[np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN] = 0
             found.append((np.array([float(best.x)]), flat))
     return found
 
@@ -457,6 +528,15 @@ def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float
     return [(float(grid[i - 1]), float(grid[i + 1])) for i in index[np.argsort(magnitude[index], kind="stable")]]
 
 
+#: Next to each domain edge, samples at distances 4^-k (k = 1 … EDGE_LEVELS) of the gap to
+#: the nearest sample, down to EDGE_FLOOR of the edge: f is smooth in √δ at distance δ
+#: from an edge, so these are evenly spread in the variable that matters (issue 25's
+#: 9/N24: a root 8.7e-8 from the edge at s11,9 = 18, f ≈ −6e-7 between them, the nearest
+#: sample 7e-6 away).
+EDGE_LEVELS = 24
+EDGE_FLOOR = 1e-10
+
+
 def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
     """Add the ends of the feasible domain (one per defined/undefined neighbour pair), and
     the defined samples the edge search made on the way, to the samples: f often turns
@@ -464,7 +544,8 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
     no sign change there (tests/regressions/11-missed-21.json); a root 3e-7 from an edge at
     s = 2811.6 changed sign only between the edge and the last sample before it
     (tests/regressions/7-root-at-edge.json, found by the completeness test). Also return
-    the edges with their values (a root may sit on an edge)."""
+    the edges with their values (a root may sit on an edge). Next to each edge, samples
+    spread evenly in √δ (EDGE_LEVELS)."""
     finite = np.isfinite(values)
     edges, extra_points, extra_values = [], [], []
     for i in np.flatnonzero(finite[:-1] != finite[1:]):
@@ -473,6 +554,11 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
         extra_values.append(seen_values)
         if edge is not None:
             edges.append((edge, float(sampled(np.array([edge]))[0])))
+            inside = points[i] if finite[i] else points[i + 1]
+            steps = edge + (inside - edge) * 4.0 ** -np.arange(1, EDGE_LEVELS + 1)
+            steps = steps[np.abs(steps - edge) >= EDGE_FLOOR * abs(edge)]
+            extra_points.append(steps)
+            extra_values.append(sampled(steps))
     if edges:  # the edges are samples too: a root within 1e-10 (relative) of an edge changes sign only there
         extra_points.append(np.array([edge for edge, _ in edges]))
         extra_values.append(np.array([value for _, value in edges]))

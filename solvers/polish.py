@@ -70,8 +70,9 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray, s
             jacobian[:, rows[movable], column[end][movable], :] = (sign * difference[active][:, movable]
                                                                   / weight[movable, None])
         jacobian = jacobian.reshape(active.size, len(pairs), 2 * len(free))
-        normal = np.einsum("kei,kej->kij", jacobian, jacobian) + 1e-14 * np.eye(2 * len(free))
-        gradient = np.einsum("kei,ke->ki", jacobian, residual[active])
+        transposed = jacobian.transpose(0, 2, 1)  # batched matmul: BLAS, unlike einsum
+        normal = transposed @ jacobian + 1e-14 * np.eye(2 * len(free))
+        gradient = (transposed @ residual[active][:, :, None])[:, :, 0]
         step = np.linalg.solve(normal, -gradient[:, :, None])[:, :, 0]
         trial = points[active].copy()
         trial[:, free] += step.reshape(active.size, len(free), 2)
