@@ -135,16 +135,12 @@ def _with_alternative_modes(scene: Scene, plan: Plan, pairs: set[frozenset[str]]
     alternative = alternative_plan(scene, pairs)
     if alternative is None:
         return modes, False
-    names = [parameter_name(pair) for pair in plan.parameters]
-    scale = max(1.0, distance_bound(scene)) ** 2
     found = list(modes)
     solution = solver(alternative)
     for mode in solution.assembly_modes:
-        measured = [_squared_distance(mode, *pair) for pair in plan.parameters]
-        values = accept(measured, mode)
+        values = accept([_squared_distance(mode, *pair) for pair in plan.parameters], mode)
         if values is not None and not any(same_mode(mode, other, scene) for other in found):
-            parameters = dict(zip(names, values, strict=True))
-            found.append(AssemblyMode(parameters, _branch_signs(mode, plan, scale), mode.joints, mode.max_residual))
+            found.append(_in_plan_terms(scene, plan, mode.joints, mode.max_residual, values))
     certificate = getattr(solution, "certificate", None)
     return sorted_modes(found), certificate is None or certificate.complete
 
@@ -169,8 +165,6 @@ def with_modes_from_msolve(scene: Scene, plan: Plan, pairs: Iterable[frozenset[s
     P8 = P9; none of the truss's 88 plans avoids both)."""
     if find_msolve() is None or not scene.exact:
         return modes, False, ()
-    names = [parameter_name(pair) for pair in plan.parameters]
-    scale = max(1.0, distance_bound(scene)) ** 2
     found, gaps = list(modes), []
     for pair in sorted(pairs, key=sorted):
         if not coincidence_possible(scene, pair):
@@ -188,10 +182,45 @@ def with_modes_from_msolve(scene: Scene, plan: Plan, pairs: Iterable[frozenset[s
             if residual >= RESIDUAL_TOLERANCE:
                 gaps.append(f"msolve's mode with {where} does not verify (residual {residual:.1e})")
             elif not any(same_mode(mode, other, scene) for other in found):
-                parameters = {name: _squared_distance(mode, *pair) for name, pair in zip(names, plan.parameters,
-                                                                                           strict=True)}
-                found.append(AssemblyMode(parameters, _branch_signs(mode, plan, scale), configuration, residual))
+                found.append(_in_plan_terms(scene, plan, configuration, residual))
     return sorted_modes(found), True, tuple(gaps)
+
+
+def with_modes_where_undefined(scene: Scene, plan: Plan, pairs: set[frozenset[str]], modes: tuple[AssemblyMode, ...],
+                               alternative: Callable[[tuple[AssemblyMode, ...]], tuple[tuple[AssemblyMode, ...], bool]]
+                               ) -> tuple[tuple[AssemblyMode, ...], bool, tuple[str, ...]]:
+    """``modes`` and the modes where the joints of one of ``pairs`` coincide (where
+    ``plan`` divides by 0): listed by msolve where it can run
+    (:func:`with_modes_from_msolve`), otherwise — or where msolve failed — by
+    ``alternative`` (modes ↦ modes with another plan's, and whether that settles them:
+    :func:`with_coincident_modes`, :func:`with_modes_of_coincident_joints`). Returns the
+    modes, whether msolve listed them, and what neither settled (one sentence each; a
+    sentence with "movable" where msolve found a continuum, which no plan would see)."""
+    found, by_msolve, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)
+    if by_msolve and not unsettled or any("movable" in gap for gap in unsettled):
+        return found, by_msolve, unsettled
+    found, covered = alternative(found)
+    if covered:
+        return found, False, ()
+    return found, by_msolve, unsettled or unexamined_coincidences(pairs)
+
+
+def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:
+    """The gaps for ``pairs`` whose coincidences neither msolve nor another plan settled."""
+    return tuple(f"joints {'='.join(sorted(pair))} (a bilateration base) may coincide: modes where they do "
+                 "are not examined" for pair in sorted(pairs, key=sorted))
+
+
+def _in_plan_terms(scene: Scene, plan: Plan, joints: dict[str, tuple[float, float]], residual: float,
+                   values: list[float] | None = None) -> AssemblyMode:
+    """The mode at configuration ``joints`` described in ``plan``'s terms: its parameters
+    (``values``, or measured on the configuration) and its free-sign branch
+    (:func:`_branch_signs`)."""
+    mode = AssemblyMode({}, (), joints, residual)
+    values = values if values is not None else [_squared_distance(mode, *pair) for pair in plan.parameters]
+    names = [parameter_name(pair) for pair in plan.parameters]
+    scale = max(1.0, distance_bound(scene)) ** 2
+    return AssemblyMode(dict(zip(names, values, strict=True)), _branch_signs(mode, plan, scale), joints, residual)
 
 
 def _squared_distance(mode: AssemblyMode, u: str, v: str) -> float:

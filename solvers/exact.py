@@ -48,11 +48,11 @@ from .coincidence import (
     coincidence_possible,
     computed_base_pairs,
     solvable_plan,
+    unexamined_coincidences,
     with_coincident_modes,
-    with_modes_from_msolve,
     with_modes_of_coincident_joints,
+    with_modes_where_undefined,
 )
-from .coupling_two import characteristic_polynomial_two, common_points
 from .configuration import (
     RESIDUAL_TOLERANCE,
     assembly_modes,
@@ -63,6 +63,7 @@ from .configuration import (
     same_mode,
     sorted_modes,
 )
+from .coupling_two import characteristic_polynomial_two, common_points
 from .fibers import Fiber
 from .modes import AssemblyMode, Certificate, Solution
 from .scene import Scene
@@ -99,17 +100,16 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         notes.append(LIFTING_NOTE)
         # coupling 2: where a base pair (a parameter's included) coincides the plan is undefined
         # along a whole curve, which the genuine curves leave out
-        pairs, covered, by_msolve = computed_base_pairs(scene, plan, with_parameters=True), False, False
+        pairs = computed_base_pairs(scene, plan, with_parameters=True)
         # a parameter's own joints may meet too (v = 0 is no common point of the curves: 9/N27)
         pairs |= {frozenset(p) for p in plan.parameters if coincidence_possible(scene, frozenset(p))}
         if pairs and coincidences:
-            modes, by_msolve, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)
-            covered, gaps = by_msolve and not unsettled, gaps + unsettled
+            modes, by_msolve, unsettled = with_modes_where_undefined(
+                scene, plan, pairs, modes, lambda found: with_modes_of_coincident_joints(
+                    scene, plan, pairs, found, lambda other: solve_exact(scene, other, coincidences=False)))
+            gaps += unsettled
             notes += [MSOLVE_NOTE] if by_msolve else []
-        if pairs and coincidences and not by_msolve:  # without msolve: another plan, if one is defined there
-            modes, covered = with_modes_of_coincident_joints(
-                scene, plan, pairs, modes, lambda other: solve_exact(scene, other, coincidences=False))
-        if pairs and not covered and not by_msolve:
+        elif pairs:
             gaps += unexamined_coincidences(pairs)
     else:
         raise ExactMethodError(
@@ -131,12 +131,6 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
 
 #: What the coupling-2 certificate says of its one Monte Carlo step.
 LIFTING_NOTE = "the polynomial is lifted from its images modulo random 62-bit primes"
-
-
-def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:
-    """The gaps for ``pairs`` whose coincidences no other plan could settle."""
-    return tuple(f"joints {'='.join(sorted(pair))} (a bilateration base) may coincide: modes where they do "
-                 "are not examined" for pair in sorted(pairs, key=sorted))
 
 
 def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
@@ -165,14 +159,14 @@ def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicP
     for value, coincident in undefined:
         pairs |= coincident
         roots.append(value)
-    covered = by_msolve = False
+    by_msolve, unsettled = False, bool(roots)
     if roots and coincidences:
-        modes, by_msolve, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)
-        covered, gaps = by_msolve and not unsettled, gaps + list(unsettled)
-    if roots and coincidences and not by_msolve:  # without msolve: another plan, if one is defined there
-        modes, covered = with_coincident_modes(scene, plan, pairs, roots, modes,
-                                               lambda other: solve_exact(scene, other, coincidences=False))
-    if roots and not covered and not by_msolve:
+        modes, by_msolve, unsettled = with_modes_where_undefined(
+            scene, plan, pairs, modes, lambda found: with_coincident_modes(
+                scene, plan, pairs, roots, found, lambda other: solve_exact(scene, other, coincidences=False)))
+    if by_msolve:
+        gaps += unsettled
+    elif unsettled:
         gaps.append(f"{name} ≈ {', '.join(f'{r:.6g}' for r in roots)}: the plan is undefined there "
                     f"(joints {_pair_names(pairs)} may coincide) and no other plan decides")
     return modes, tuple(gaps), by_msolve

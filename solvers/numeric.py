@@ -41,8 +41,8 @@ from .coincidence import (
     computed_base_pairs,
     solvable_plan,
     with_coincident_modes,
-    with_modes_from_msolve,
     with_modes_of_coincident_joints,
+    with_modes_where_undefined,
 )
 from .configuration import (
     NEARLY_FLAT,
@@ -90,9 +90,8 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     if degree > 0 and coincidences:
         modes = _modes_of_coincident_joints(scene, plan, samples, modes)
     modes, undecided = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
-    undecided = tuple(flat_stretches) + undecided
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, modes, undecided=tuple(undecided))
+                    plan.free_sign_triangles, modes, undecided=tuple(flat_stretches) + undecided)
 
 
 def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int,
@@ -109,20 +108,23 @@ def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int,
     pairs |= {frozenset(p) for p in plan.parameters if coincidence_possible(scene, frozenset(p))}
     if not pairs:
         return modes
-    found, ran, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)
-    movable = [gap for gap in unsettled if "movable" in gap]
-    if movable:
-        raise MovableLinkageError(movable[0])
-    if ran and not unsettled:
-        return found
 
     def again(other: Plan) -> Solution:
         return solve_numeric(scene, other, samples, coincidences=False)
 
-    if plan.number_of_parameters == 1:  # the sampled interval starts above 0
-        modes, _ = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], modes, again)
-    if pairs := computed_base_pairs(scene, plan, with_parameters=plan.number_of_parameters == 2):
-        modes, _ = with_modes_of_coincident_joints(scene, plan, pairs, modes, again)
+    def alternative(found: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], bool]:
+        covered = True
+        if plan.number_of_parameters == 1:  # the sampled interval starts above 0
+            found, covered = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], found, again)
+        if bases := computed_base_pairs(scene, plan, with_parameters=plan.number_of_parameters == 2):
+            found, settled = with_modes_of_coincident_joints(scene, plan, bases, found, again)
+            covered = covered and settled
+        return found, covered
+
+    modes, _, unsettled = with_modes_where_undefined(scene, plan, pairs, modes, alternative)
+    movable = [gap for gap in unsettled if "movable" in gap]
+    if movable:
+        raise MovableLinkageError(movable[0])
     return modes
 
 
