@@ -475,13 +475,25 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
         radicand = (s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)
         if real_only and radicand.real < 0:
             return None, reference, None
-        area = radicand.sqrt()
+        area = _square_root(radicand)
         sign = next(free) if step.free_sign else scene.orientation(step.triangle)
         real, imaginary = (s_ij + s_ik - s_jk) / (2 * s_ij), sign * area / (2 * s_ij)
         (xi, yi), (xj, yj) = points[i], points[j]
         points[step.joint] = (xi + real * (xj - xi) - imaginary * (yj - yi),
                               yi + real * (yj - yi) + imaginary * (xj - xi))
     return points, reference, None
+
+
+def _square_root(radicand: flint.acb) -> flint.acb:
+    """√radicand with its branch cut away from the radicand: i√(−radicand) where the real
+    part is certainly negative. Either determination serves (both signs of each free
+    triangle are branches), but flint's principal root is cut along the negative real
+    axis, and a ball there came out as wide as the root itself at every precision: issue
+    25's 9/N13 (a real root s2,3 = 22.5687 of a dropped factor, the radicand negative on
+    four branches) was left undecided at 4096 bits and the solve uncertified."""
+    if radicand.real < 0:
+        return flint.acb(0, 1) * (-radicand).sqrt()
+    return radicand.sqrt()
 
 
 def computed_distance(points: dict[str, tuple[flint.acb, flint.acb]], u: str, v: str,

@@ -258,6 +258,12 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
     and the approximate roots to polish on the link constraints; a sentence for each
     stretch where f is flat to rounding is appended to ``flat_stretches``."""
     grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
+    # below the first sample, samples even in √s down to joints 1e-7 of the largest
+    # distance apart (closer, they coincide to same_mode's resolution: coincidence.py):
+    # a root at s11,5 = 5.8e-7 (issue 25's 9/N7, P11 and P5 7.6e-4 apart) lay below the
+    # first sample, 1e-4
+    below = grid[0] * 4.0 ** -np.arange(EDGE_LEVELS, 0, -1)
+    grid = np.concatenate([below[below >= 1e-14 * upper], grid])
     failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
     flattened = _flat_along_branches(branches, margins)
     if flattened.shape != branches.shape or (flattened != branches).any():
@@ -282,7 +288,7 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
         roots = [edge for edge, value in edges if abs(value) < 1e-7]
         near: list[float] = []
         roots += _scan(f, points, values, sampled, near)
-        for low, high in _suspicious_minima(points, values):
+        for low, high in _next_to_roots(points, roots) + _suspicious_minima(points, values):
             fine = np.linspace(low, high, REFINEMENT)
             roots += _scan(f, fine, sampled(fine), sampled, near)
         roots, valleys = _merged_flat_valleys(sampled, roots)
@@ -313,10 +319,10 @@ def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list
     FLAT_NOISE is the estimate (31.99994 there). Where the noise is larger than FLAT_NOISE
     (next to a fold: 1e-8 on 9/N22) the modes are merged later, by
     :func:`~baranov.solvers.configuration.merged_clusters`."""
-    roots = sorted(roots)
+    roots = [r for n, r in enumerate(sorted(roots)) if n == 0 or r - sorted(roots)[n - 1] > 1e-12 * abs(r)]
     kept, valleys, start = [], [], 0
     for n in range(1, len(roots) + 1):
-        if n < len(roots) and roots[n] > roots[n - 1] and _flat(sampled, roots[n - 1], roots[n]):
+        if n < len(roots) and _flat(sampled, roots[n - 1], roots[n]):
             continue
         if n - start > 1:
             low, high = _flat_stretch(sampled, roots[start], roots[n - 1])
@@ -516,6 +522,18 @@ MINIMUM_DEPTH = 1e-10
 #: 100–150 "minima" per cell (issue 25's 9/N8 instance drawn at a flexible configuration:
 #: 12 000 evaluations, 36 s where its siblings take 0.6 s).
 MAX_MINIMA = 8
+
+
+def _next_to_roots(grid: np.ndarray, roots: list[float]) -> list[tuple[float, float]]:
+    """The cells on either side of each root's cell, to re-sample finely: a tangential
+    root next to a simple one hides in the slope towards it (issue 25's 9/N6: f ≈ −c(s −
+    25)² touches 0 at 25 and crosses it at 25.0472; the samples 24.971, 25.047, 25.123
+    read −3e-7, −5e-9, +4e-6, a single crossing)."""
+    cells = []
+    for root in roots:
+        i = int(np.clip(np.searchsorted(grid, root), 1, len(grid) - 1))
+        cells.append((float(grid[max(i - 2, 0)]), float(grid[min(i + 1, len(grid) - 1)])))
+    return cells
 
 
 def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float, float]]:
