@@ -80,14 +80,19 @@ def _parser() -> argparse.ArgumentParser:
     solve.add_argument("--method", default="numeric", choices=["numeric", "exact"], help="solving backend")
     solve.add_argument("--json", action="store_true", help="print the result as JSON")
     solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
+    solve.add_argument("--time-limit", type=float, metavar="SECONDS",
+                       help="numeric method: stop searching after this long and name what was left undecided")
     return parser
 
 
 def run_solve(args: argparse.Namespace) -> int:
     if args.plot is not None and not args.plot.parent.is_dir():
         raise UsageError(f"--plot {args.plot}: folder {args.plot.parent} does not exist")
+    if args.time_limit is not None and (args.method != "numeric" or not args.time_limit > 0):
+        raise UsageError(f"--time-limit {args.time_limit:g}: a positive number of seconds, for the numeric method")
     scene = load_scene(args.scene)
-    solution = solve_scene(scene, method=args.method)
+    options = {"time_limit": args.time_limit} if args.time_limit is not None else {}
+    solution = solve_scene(scene, method=args.method, **options)
     if args.plot is not None:
         from baranov.solvers.drawing import render_modes  # matplotlib only when drawing
 

@@ -29,6 +29,7 @@ mirrored. Modes found on several branches are reported once.
 from __future__ import annotations
 
 import math
+import time
 from itertools import combinations
 
 import numpy as np
@@ -63,35 +64,57 @@ from .two_parameter import two_parameter_roots
 
 
 def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *,
-                  coincidences: bool = True) -> Solution:
+                  coincidences: bool = True, time_limit: float | None = None) -> Solution:
     """All assembly modes of ``scene`` (coupling degree 0, 1 or 2) by the numeric method.
     ``coincidences=False`` skips the modes where the parameter's joints coincide (solved
-    with another plan, :mod:`baranov.solvers.coincidence`; used by that solve itself)."""
+    with another plan, :mod:`baranov.solvers.coincidence`; used by that solve itself).
+    ``time_limit`` (seconds): once it has passed, the branches (coupling 1) or the cells
+    of the parameter plane (coupling 2) not yet searched are left, and the solution's
+    ``undecided`` names them; the modes found are verified as always."""
     plan = plan or solvable_plan(scene)
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
-    flat_stretches: list[str] = []
+    deadline = time.monotonic() + time_limit if time_limit is not None else math.inf
+    undecided: list[str] = []
     if degree == 0:
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
         candidates, near = _one_parameter_roots(compiled, branches, distance_bound(scene) ** 2, samples,
-                                                flat_stretches)
+                                                undecided, deadline)
         if near:  # a root where f is not smooth (a singular mode): polished on the links, then verified
             candidates += _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
         candidates += _roots_at_critical_values(compiled, branches, _critical_values(scene, plan))
     elif degree == 2:
         upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
-        candidates, (stalled, stalled_branches) = two_parameter_roots(compiled, branches, upper)
+        candidates, (stalled, stalled_branches), unsearched = two_parameter_roots(compiled, branches, upper, deadline)
         candidates += _polished(scene, compiled, stalled, branches[stalled_branches])
+        undecided += _unsearched_cells(compiled, branches, unsearched)
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
     modes = assembly_modes(scene, compiled, candidates)
     if degree > 0 and coincidences:
         modes = _modes_of_coincident_joints(scene, plan, samples, modes)
-    modes, undecided = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
+    modes, valleys = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, modes, undecided=tuple(flat_stretches) + undecided)
+                    plan.free_sign_triangles, modes, undecided=tuple(undecided) + valleys)
+
+
+def _signs_text(branch: np.ndarray) -> str:
+    return "".join("+" if s > 0 else "-" if s < 0 else "0" for s in branch)
+
+
+def _unsearched_cells(compiled: CompiledSystem, branches: np.ndarray, cells) -> list[str]:
+    """One sentence per branch with cells of the √ plane left unsearched by the time
+    limit: their bounding box in the parameters."""
+    names = " × ".join(parameter_name(pair) for pair in compiled.parameters)
+    sentences = []
+    for b in np.unique(cells.branch):
+        mine = cells.branch == b
+        low, high = cells.low[mine].min(axis=0) ** 2, cells.high[mine].max(axis=0) ** 2
+        sentences.append(f"{names} in [{low[0]:.6g}, {high[0]:.6g}] × [{low[1]:.6g}, {high[1]:.6g}] on branch "
+                         f"{_signs_text(branches[b])}: {int(mine.sum())} cells not searched: the time limit was reached")
+    return sentences
 
 
 def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int,
@@ -253,10 +276,11 @@ def _require_isolated_roots(compiled: CompiledSystem, branches: np.ndarray, grid
 
 
 def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: float, samples: int,
-                         flat_stretches: list[str]):
+                         undecided: list[str], deadline: float = math.inf):
     """Candidate roots ``(array([s]), branch)`` of the closure condition on every branch,
     and the approximate roots to polish on the link constraints; a sentence for each
-    stretch where f is flat to rounding is appended to ``flat_stretches``."""
+    stretch where f is flat to rounding, and for the branches left at the ``deadline``
+    (``time.monotonic()``), is appended to ``undecided``."""
     grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
     # below the first sample, samples even in √s down to joints 1e-7 of the largest
     # distance apart (closer, they coincide to same_mode's resolution: coincidence.py):
@@ -271,8 +295,12 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
         failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
     table = compiled.residuals(grid[:, None], branches)[:, :, 0]
     _require_isolated_roots(compiled, branches, grid, table)
-    candidates, near_roots = [], []
+    candidates, near_roots, left = [], [], []
     for b, branch in enumerate(branches):
+        if time.monotonic() > deadline:
+            left.append(_signs_text(branch))
+            continue
+
         def sampled(points: np.ndarray, branch=branch) -> np.ndarray:
             return compiled.residuals(points[:, None], branch[None, :])[0, :, 0]
 
@@ -292,15 +320,16 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
             fine = np.linspace(low, high, REFINEMENT)
             roots += _scan(f, fine, sampled(fine), sampled, near)
         roots, valleys = _merged_flat_valleys(sampled, roots)
-        flat_stretches += [f"{parameter_name(compiled.parameters[0])} in [{low:.10g}, {high:.10g}] on branch "
-                           f"{''.join('+' if s > 0 else '-' for s in branch)}: the closure condition is flat to "
-                           "rounding there; reported as one mode (a singular mode, or modes closer than floating "
-                           "point separates)" for low, high in valleys]
+        undecided += [f"{parameter_name(compiled.parameters[0])} in [{low:.10g}, {high:.10g}] on branch "
+                      f"{_signs_text(branch)}: the closure condition is flat to rounding there; reported as one mode "
+                      "(a singular mode, or modes closer than floating point separates)" for low, high in valleys]
         for root in roots:
             candidates.append((np.array([root]), branch))
         candidates += _roots_at_folds(compiled, branch, edges)
         candidates += _roots_at_touching_radicands(compiled, branch, grid, failures[b], radicands[b])
         near_roots += [(np.array([x]), branch) for x in near]
+    if left:
+        undecided.append(f"branches {', '.join(left)}: not searched, the time limit was reached")
     return candidates, near_roots
 
 

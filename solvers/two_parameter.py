@@ -26,6 +26,7 @@ time, never a wrong mode. Sampling cannot prove completeness; the exact backend 
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -64,17 +65,21 @@ class Cells:
 
     @staticmethod
     def concatenate(batches: list[Cells]) -> Cells:
+        if not batches:
+            return Cells(np.zeros(0, int), np.zeros((0, 2)), np.zeros((0, 2)))
         return Cells(*(np.concatenate([getattr(b, name) for b in batches]) for name in ("branch", "low", "high")))
 
 
-def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: tuple[float, float]):
+def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: tuple[float, float],
+                        deadline: float = math.inf):
     """Candidate roots ``(array([u, v]), branch)`` of the two closure conditions of
     ``compiled`` on every branch, for (u, v) in (0, upper[0]] × (0, upper[1]]; and the
     points to polish on the link constraints (:mod:`baranov.solvers.polish`) as
     ``(points (K, 2), branch indices (K,))``: where Newton stalled close to a root, and
     the best sample of every suspect cell on the domain boundary after BOUNDARY_DEPTH
     levels (a condition behaves like a square root there, so splitting further only
-    multiplies the cells along the boundary).
+    multiplies the cells along the boundary); and the cells left unsearched when the
+    ``deadline`` (``time.monotonic()``) passed between two levels.
 
     Cost: GRID² · B evaluations of the plan for B branches, BOUNDARY_STEPS evaluations per
     grid edge crossing the domain boundary, and SPLIT² per suspect cell and level.
@@ -83,7 +88,7 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
     high = np.array([math.sqrt(bound) for bound in upper])
     whole = Cells(np.arange(len(branches)), np.tile(low, (len(branches), 1)), np.tile(high, (len(branches), 1)))
     interior, boundary, windows, starts = _examine(compiled, branches, whole, GRID - 1, last=False)
-    all_starts, to_polish = [starts], []
+    all_starts, to_polish, unsearched = [starts], [], Cells.concatenate([])
     for depth in range(DEPTH):
         if depth >= BOUNDARY_DEPTH:
             to_polish.append(boundary)
@@ -92,13 +97,16 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
             interior = Cells.concatenate([interior, windows, boundary[1]])
         if len(interior) == 0:
             break
+        if time.monotonic() > deadline:
+            unsearched = interior
+            break
         interior, boundary, windows, starts = _examine(compiled, branches, interior, SPLIT, last=depth == DEPTH - 1)
         all_starts.append(starts)
     to_polish.append(boundary)
     roots, stalled = _newton(compiled, branches, *(np.concatenate(parts) for parts in zip(*all_starts, strict=True)))
     polish_points = np.concatenate([stalled[0]] + [points for points, _ in to_polish])
     polish_branches = np.concatenate([stalled[1]] + [cells.branch for _, cells in to_polish])
-    return roots, (polish_points, polish_branches)
+    return roots, (polish_points, polish_branches), unsearched
 
 
 def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: bool):

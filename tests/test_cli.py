@@ -228,3 +228,12 @@ def test_exact_solve_says_what_it_certifies():
     assert "assembly modes: certified complete" in result.stdout
     data = json.loads(run("solve", str(example), "--method", "exact", "--json").stdout)
     assert data["certificate"] == {"complete": True, "probabilistic": None, "gaps": []}
+
+
+@pytest.mark.parametrize("args", [["--time-limit", "5", "--method", "exact"], ["--time-limit", "0"],
+                                  ["--time-limit", "-1"]])
+def test_time_limit_is_positive_and_numeric_only(args):
+    result = run("solve", str(REPO / "examples" / "7-B1.json"), *args)
+    assert result.returncode == 2
+    assert result.stderr.startswith(f"baranov: error: --time-limit {args[1]}: a positive number of seconds")
+    assert result.stderr.count("\n") == 1 and result.stdout == ""

@@ -244,3 +244,16 @@ def test_coincident_joints_in_coordinates():
     data["links"][0]["joints"]["P2"] = [1, 3]  # on top of P1
     with pytest.raises(SceneError, match=r"link ground: squared distance P1,P2 = 0 must be positive"):
         scene_from_dict(data)
+
+
+def test_time_limit_names_what_was_not_searched():
+    """A numeric solve past its time limit still verifies what it found and lists the
+    branches (coupling 1) or cells (coupling 2) it did not search."""
+    one = solve(load_scene(EXAMPLES / "7-B1.json"), time_limit=0)
+    assert one.assembly_modes == () or all(m.max_residual < 1e-8 for m in one.assembly_modes)
+    assert any("branches +++, ++-" in s and "time limit" in s for s in one.undecided)
+    complete = solve(load_scene(EXAMPLES / "7-B1.json"), time_limit=60)
+    assert len(complete.assembly_modes) == 8 and complete.undecided == ()
+    two = solve(load_scene(EXAMPLES / "9-B28.json"), time_limit=0)
+    assert all(m.max_residual < 1e-8 for m in two.assembly_modes)
+    assert two.undecided and all("cells not searched: the time limit was reached" in s for s in two.undecided)
