@@ -156,9 +156,10 @@ def main() -> None:
     collinear = ROOT / "docs" / "bench" / "collinear-joints.md"
     sections["collinear"] = [collinear.read_text(encoding="utf-8").strip() if collinear.exists()
                              else "(not run: see the command above)"]
-    adversarial = ROOT / "docs" / "bench" / "adversarial.md"
-    sections["adversarial"] = [adversarial.read_text(encoding="utf-8").strip() if adversarial.exists()
-                               else "(not run: see the command above)"]
+    # one report per run (bench/adversarial.py --report): 7 and 9 links, 11 links, earlier commits
+    reports = sorted((ROOT / "docs" / "bench").glob("adversarial*.md"))
+    sections["adversarial"] = ["\n\n".join(f"### {report.stem}\n\n" + report.read_text(encoding="utf-8").strip()
+                                            for report in reports) or "(not run: see the command above)"]
     text = TEMPLATE.format(limit=args.time_limit, elapsed=time.perf_counter() - start,
                            **{k: "\n".join(v) for k, v in sections.items()})
     (ROOT / "docs" / "stability.md.tmp").write_text(text, encoding="utf-8")

@@ -8,7 +8,7 @@ from .characteristic import (
 from .exact import solve_exact
 from .mode_counts import characteristic_degree
 from .modular import characteristic_degree_modulo
-from .modes import AssemblyMode, Solution, SolverError
+from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
 from .numeric import solve_numeric
 from .scene import Scene, SceneError, load_scene, scene_from_dict
 
@@ -23,6 +23,6 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
 
 
 __all__ = [
-    "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "Scene", "SceneError", "Solution", "SolverError",
+    "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "MovableLinkageError", "Scene", "SceneError", "Solution", "SolverError",
     "characteristic_degree", "characteristic_degree_modulo", "characteristic_polynomial", "load_scene", "scene_from_dict", "solve", "solve_exact", "solve_numeric",
 ]

@@ -34,7 +34,7 @@ from .configuration import (
     same_mode,
     sorted_modes,
 )
-from .modes import AssemblyMode, Solution, SolverError
+from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
 from .msolve import find_msolve, msolve_modes
 from .scene import Scene
 
@@ -74,8 +74,13 @@ def solvable_plan(scene: Scene) -> Plan:
     plan = alternative_plan(scene, coincident)
     if plan is None:
         names = ", ".join(sorted(",".join(sorted(pair)) for pair in coincident))
-        raise SolverError(f"joints {names}: coincident (squared distance 0), and none of the {ALTERNATIVE_PLANS} "
-                          "best plans avoids them as a bilateration base")
+        message = (f"joints {names}: coincident (squared distance 0), and none of the {ALTERNATIVE_PLANS} best "
+                   "plans avoids them as a bilateration base")
+        if find_msolve() is not None and scene.exact and msolve_modes(scene).status == "infinite":
+            # said rather than only refused (issue 25's 9/N17, two joints of one link at one point)
+            raise MovableLinkageError(f"{message}; msolve: the linkage moves with these dimensions "
+                                      "(a positive-dimensional solution set)")
+        raise SolverError(message)
     return plan
 
 

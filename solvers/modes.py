@@ -10,6 +10,12 @@ class SolverError(ValueError):
     """The scene is valid but this method cannot solve it (the message says why)."""
 
 
+class MovableLinkageError(SolverError):
+    """With these dimensions the linkage moves: its configurations form a continuum, not
+    isolated assembly modes (a closure condition vanishing along an interval, or msolve's
+    positive-dimensional answer)."""
+
+
 @dataclass(frozen=True)
 class AssemblyMode:
     """One assembly mode of a linkage.

@@ -57,7 +57,7 @@ from .configuration import (
     placed_from_ground,
     read_back,
 )
-from .modes import AssemblyMode, Solution, SolverError
+from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
 from .polish import polish_configurations
 from .scene import Scene
 from .two_parameter import two_parameter_roots
@@ -250,11 +250,6 @@ def _flat_along_branches(branches: np.ndarray, margins: np.ndarray) -> np.ndarra
     if not flat.any():
         return branches
     return np.unique(np.where(flat, 0, branches), axis=0)
-
-
-class MovableLinkageError(SolverError):
-    """The closure condition vanishes along an interval: with these dimensions the linkage
-    moves, and its configurations there are a continuum, not isolated assembly modes."""
 
 
 def _require_isolated_roots(compiled: CompiledSystem, branches: np.ndarray, grid: np.ndarray,

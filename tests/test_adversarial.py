@@ -22,7 +22,7 @@ from baranov.solvers.adversarial import (
     is_infinitesimally_flexible,
 )
 from baranov.solvers.msolve import compare_modes, find_msolve, msolve_modes
-from baranov.solvers.numeric import MovableLinkageError
+from baranov.solvers import MovableLinkageError
 
 REGRESSIONS = Path(__file__).resolve().parent / "regressions"
 needs_msolve = pytest.mark.skipif(find_msolve() is None, reason="msolve binary not installed (make installs it)")
@@ -105,6 +105,16 @@ def test_a_movable_linkage_is_reported_as_such(name):
         solve(scene)
     certificate = solve(scene, method="exact").certificate
     assert not certificate.complete and ("movable" in certificate.summary() or "may move" in certificate.summary())
+
+
+@needs_msolve
+def test_a_movable_linkage_no_plan_can_solve_is_reported_as_such():
+    """9/N17 drawn with two joints of one link at one point: no plan avoids that pair, so
+    both backends refuse the scene, and say it moves (msolve: positive-dimensional)."""
+    scene = load_scene(REGRESSIONS / "movable" / "9-N17-coincident-in-link.json")
+    for method in ("numeric", "exact"):
+        with pytest.raises(MovableLinkageError, match="P1,P9: coincident .* msolve: the linkage moves"):
+            solve(scene, method=method)
 
 
 def _adversarial_finds() -> list:
