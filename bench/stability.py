@@ -242,14 +242,22 @@ modes at double roots and at coincidences, and running over 300 s on five instan
 (rounding noise where a triangle is flat along a branch or the linkage moves). Each cause
 is explained in docs/exact.md (step 9) and docs/numeric.md ("Adversarial instances"), one
 instance of each saved in tests/regressions/ (tests/test_adversarial.py checks them
-against msolve). Still open after the run below (its instances saved under
-tests/regressions/open/ where pinned): the numeric backend reporting
-near-copies of a singular mode that are flat to rounding (9/N15; 12 extra modes on a
-9/N22 instance), missing a mode on 9/N21 and 9/N24 (kind domain-edge), and taking 189 s
-and 86 s on two coupling-2 instances of 9/N18 (small box), where the time bound
-(p99 ≤ 10 × median per truss) fails; 9/N17 drawn with two joints of one link at one point
-is refused by both backends (no plan avoids that pair) although msolve finds it movable.
-(The run's one exact miss, 9/N27 with a mode at s1,11 = 0, is fixed since: docs/exact.md.)
+against msolve).
+
+A second run at commit cf3048e (3100 instances, 7 and 9 links, 20 per truss and kind; report
+`adversarial-cf3048e` below) found four more, each fixed since with its instance saved:
+a tangential root beside a simple one and a root below the first sample (numeric,
+9/N6 and 9/N7: docs/numeric.md), a genuine factor left undecided by flint's branch cut
+(exact, not certified, 9/N13: docs/exact.md step 4), and 9/N17 drawn with two joints of
+one link at one point, which no plan can solve — both backends now say it moves (msolve:
+positive-dimensional) instead of only refusing it. The fixes before that run: noise roots
+in a flat valley around a singular mode are one mode, reported as *undecided* (9/N15,
+9/N22), a root 8.7e-8 past a domain edge (9/N24), two triangles flat at one touching point
+(9/N21), and the coupling-2 slow cases (9/N18: Newton retried failed steps on 10⁵ starts,
+candidates were verified one at a time): its two slowest small-box instances took 46 and
+36 s before, 18 and 13 s after (one bench worker running beside both measurements). Runs
+at the current commit: `adversarial` (7 and 9 links) and `adversarial-11` (a sample of
+eleven-link trusses, one instance per truss and kind).
 
 {adversarial}
 

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from baranov.enumerate import check_link_count
 from baranov.solvers import load_scene
+from baranov.solvers.modes import signs_text
 from baranov.solvers import solve as solve_scene
 from baranov.topology import natural_sort_key
 
@@ -119,7 +120,7 @@ def run_solve(args: argparse.Namespace) -> int:
     rows = []
     for number, mode in enumerate(modes, 1):
         rows.append([str(number), *(f"{v:.6g}" for v in mode.parameters.values()),
-                     "".join("+" if s > 0 else "-" if s < 0 else "0" for s in mode.signs),
+                     signs_text(mode.signs),
                      *(f"({mode.joints[j][0]:.4f}, {mode.joints[j][1]:.4f})" for j in joints),
                      f"{mode.max_residual:.1e}"])
     widths = [max(len(header[c]), *(len(r[c]) for r in rows)) for c in range(len(header))]

@@ -16,6 +16,11 @@ class MovableLinkageError(SolverError):
     positive-dimensional answer)."""
 
 
+def signs_text(signs) -> str:
+    """A free-sign branch as written in tables: ``(1, -1, 0)`` → ``"+-0"`` (0: flat)."""
+    return "".join("+" if s > 0 else "-" if s < 0 else "0" for s in signs)
+
+
 @dataclass(frozen=True)
 class AssemblyMode:
     """One assembly mode of a linkage.

@@ -57,7 +57,7 @@ from .configuration import (
     placed_from_ground,
     read_back,
 )
-from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
+from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError, signs_text
 from .polish import polish_configurations
 from .scene import Scene
 from .two_parameter import two_parameter_roots
@@ -100,10 +100,6 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
                     plan.free_sign_triangles, modes, undecided=tuple(undecided) + valleys)
 
 
-def _signs_text(branch: np.ndarray) -> str:
-    return "".join("+" if s > 0 else "-" if s < 0 else "0" for s in branch)
-
-
 def _unsearched_cells(compiled: CompiledSystem, branches: np.ndarray, cells) -> list[str]:
     """One sentence per branch with cells of the √ plane left unsearched by the time
     limit: their bounding box in the parameters."""
@@ -113,7 +109,7 @@ def _unsearched_cells(compiled: CompiledSystem, branches: np.ndarray, cells) -> 
         mine = cells.branch == b
         low, high = cells.low[mine].min(axis=0) ** 2, cells.high[mine].max(axis=0) ** 2
         sentences.append(f"{names} in [{low[0]:.6g}, {high[0]:.6g}] × [{low[1]:.6g}, {high[1]:.6g}] on branch "
-                         f"{_signs_text(branches[b])}: {int(mine.sum())} cells not searched: the time limit was reached")
+                         f"{signs_text(branches[b])}: {int(mine.sum())} cells not searched: the time limit was reached")
     return sentences
 
 
@@ -259,14 +255,14 @@ def _require_isolated_roots(compiled: CompiledSystem, branches: np.ndarray, grid
     that often vanishes identically: a continuum of configurations). Issue 25's 7/N2
     instance rotates about P1 = P6 = P8; the bracketing of its rounding noise ran for over
     300 s."""
-    vanishing = (np.abs(np.nan_to_num(table, nan=1.0)) < FLAT_NOISE).sum(axis=1)
-    if (vanishing >= FLAT_SAMPLES).any():
-        b = int(np.argmax(vanishing))
-        where = grid[np.abs(np.nan_to_num(table[b], nan=1.0)) < FLAT_NOISE]
+    vanishing = np.abs(np.nan_to_num(table, nan=1.0)) < FLAT_NOISE
+    if (vanishing.sum(axis=1) >= FLAT_SAMPLES).any():
+        b = int(np.argmax(vanishing.sum(axis=1)))
+        where = grid[vanishing[b]]
         name = parameter_name(compiled.plan.parameters[0])
         raise MovableLinkageError(
             f"the linkage moves with these dimensions: the closure condition vanishes for {name} from "
-            f"{where.min():.6g} to {where.max():.6g} (signs {''.join({1: '+', -1: '-', 0: '0'}[int(s)] for s in branches[b])}), "
+            f"{where.min():.6g} to {where.max():.6g} (signs {signs_text(branches[b])}), "
             "a continuum of configurations rather than isolated assembly modes")
 
 
@@ -293,7 +289,7 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
     candidates, near_roots, left = [], [], []
     for b, branch in enumerate(branches):
         if time.monotonic() > deadline:
-            left.append(_signs_text(branch))
+            left.append(signs_text(branch))
             continue
 
         def sampled(points: np.ndarray, branch=branch) -> np.ndarray:
@@ -316,7 +312,7 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
             roots += _scan(f, fine, sampled(fine), sampled, near)
         roots, valleys = _merged_flat_valleys(sampled, roots)
         undecided += [f"{parameter_name(compiled.parameters[0])} in [{low:.10g}, {high:.10g}] on branch "
-                      f"{_signs_text(branch)}: the closure condition is flat to rounding there; reported as one mode "
+                      f"{signs_text(branch)}: the closure condition is flat to rounding there; reported as one mode "
                       "(a singular mode, or modes closer than floating point separates)" for low, high in valleys]
         for root in roots:
             candidates.append((np.array([root]), branch))
