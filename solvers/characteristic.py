@@ -148,6 +148,9 @@ class CharacteristicPolynomial:
         degenerate: those dropped factors at whose roots the plan is undefined (a base
             distance vanishes: joints coincide), with the joint pairs found coincident;
             the plan cannot tell whether they are assembly modes (thesis §5.1.3.2).
+        vanishing: the norm of the closure condition is identically 0: on some branch
+            the condition holds for every value of the parameter, the linkage moves
+            (``polynomial`` is then only the product of the contents divided out).
     """
 
     variable: str
@@ -155,6 +158,7 @@ class CharacteristicPolynomial:
     factors: tuple[tuple[flint.fmpz_poly, int], ...]
     extraneous: tuple[tuple[flint.fmpz_poly, int], ...]
     degenerate: tuple[tuple[flint.fmpz_poly, frozenset[frozenset[str]]], ...] = ()
+    vanishing: bool = False
 
     @property
     def degree(self) -> int:
@@ -388,7 +392,7 @@ def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> Charact
     if polynomial.degree() > 0 and polynomial.coeffs()[-1] < 0:
         polynomial = -polynomial
     return CharacteristicPolynomial(parameter_name(plan.parameters[0]), polynomial, tuple(kept), tuple(dropped),
-                                    tuple(degenerate))
+                                    tuple(degenerate), vanishing=norm == 0)
 
 
 def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | frozenset[frozenset[str]]:

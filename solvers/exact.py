@@ -114,10 +114,13 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
-    if polynomial is not None and not polynomial.factors:
-        # every closure condition is a power of the parameter times a constant: on issue 25's
-        # 9/N20 instance (movable: msolve finds a positive-dimensional set, the numeric backend
-        # a closure condition vanishing along s10,8 in (0, 68)) this was certified with 8 modes
+    if getattr(polynomial, "vanishing", False):
+        # issue 25's 9/N20 (msolve: positive-dimensional; numeric: the condition vanishes along
+        # s10,8 in (0, 68)): the norm is 0 and only the contents divided out (powers of the
+        # parameter) were left, which had been certified with 8 modes
+        gaps += ("the linkage moves with these dimensions: the norm of the closure condition vanishes "
+                 "identically (on some branch it holds for every value of the parameter)",)
+    elif polynomial is not None and not polynomial.factors:
         gaps += ("the characteristic polynomial has no factor but powers of the parameter: a degenerate "
                  "instance (it may move) that this plan cannot decide",)
     if polynomial is not None:
