@@ -135,7 +135,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--out", type=Path, required=True, help="JSON lines, appended; a rerun resumes")
     parser.add_argument("--report", type=Path, help="write the Markdown summary of --out here")
     parser.add_argument("--failures", type=Path, help="save every failed instance here as a scene file")
+    parser.add_argument("--report-only", action="store_true", help="run nothing: write --report from --out")
+    parser.add_argument("--note", default="", help="a sentence for the report (e.g. the commit of the run)")
     args = parser.parse_args(argv)
+    if args.report_only:
+        rows = [json.loads(line) for line in args.out.read_text().splitlines()]
+        write_report(args, argv, rows, tuple(args.methods.split(",")))
+        return 0
     methods = tuple(args.methods.split(","))
     done = {json.loads(line)["key"] for line in args.out.read_text().splitlines()} if args.out.exists() else set()
     wanted = set(args.trusses.split(",")) if args.trusses else None
@@ -158,16 +164,23 @@ def main(argv: list[str] | None = None) -> int:
                     save_failure(row, args.failures)
             if n % 50 == 0:
                 print(f"{n}/{len(tasks)} done", flush=True)
-    rows = [json.loads(line) for line in args.out.read_text().splitlines()]
+    write_report(args, argv, [json.loads(line) for line in args.out.read_text().splitlines()], methods)
+    return 0
+
+
+def write_report(args: argparse.Namespace, argv: list[str] | None, rows: list[dict], methods: tuple[str, ...]) -> None:
+    """Print the summary of ``rows``; write it with the per-kind table to ``--report``."""
     report = summary(rows, methods)
     print("\n".join(report))
     if args.report is not None:
-        command = "python bench/adversarial.py " + shlex.join(argv if argv is not None else sys.argv[1:])
-        text = "\n".join([f"Command: `{command}` ({len(rows)} instances in {args.out}).", "", *report,
-                          "", *table(rows, methods)]) + "\n"
+        arguments = list(argv if argv is not None else sys.argv[1:])
+        if "--note" in arguments:  # the note is printed on its own
+            del arguments[arguments.index("--note"):arguments.index("--note") + 2]
+        command = "python bench/adversarial.py " + shlex.join(arguments)
+        head = f"{args.note} Command: `{command}` ({len(rows)} instances in {args.out}).".strip()
+        text = "\n".join([head, "", *report, "", *table(rows, methods)]) + "\n"
         args.report.with_suffix(".tmp").write_text(text, encoding="utf-8")
         args.report.with_suffix(".tmp").replace(args.report)
-    return 0
 
 
 def percentile_ratio(times: list[float]) -> float:

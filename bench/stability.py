@@ -229,8 +229,8 @@ rank of the rigidity matrix). Both backends are compared, configuration by confi
 distances), with msolve's real solutions of the Cartesian system
 (`baranov.solvers.msolve`: each rigid link imposed exactly, its orientation included),
 which shares no code with the backends. The report below is written by
-`bench/adversarial.py --report docs/bench/adversarial.md` (`make bench-adversarial`, not
-rerun by this script) and copied here.
+`bench/adversarial.py --report docs/bench/adversarial*.md` (`make bench-adversarial`, not
+rerun by this script), one report per run, and copied here.
 
 The first runs (1156 instances of the same generator — 630 of 7 links, 526 of 9 — before
 the fixes) found, among
@@ -244,7 +244,11 @@ is explained in docs/exact.md (step 9) and docs/numeric.md ("Adversarial instanc
 instance of each saved in tests/regressions/ (tests/test_adversarial.py checks them
 against msolve).
 
-A second run at commit cf3048e (3100 instances, 7 and 9 links, 20 per truss and kind; report
+A run at commit 1321092 (1489 instances, 7 and 9 links, 10 per truss and kind) left these
+open: near-copies of a singular mode flat to rounding (numeric, 9/N15 and 9/N22), a mode
+missed at a domain edge (numeric, 9/N21 and 9/N24), two coupling-2 solves of 9/N18 over a
+minute, and 9/N17 (two joints of one link at one point) refused by both backends. A second
+run at commit cf3048e (3022 of 3100 instances, 20 per truss and kind; report
 `adversarial-cf3048e` below) found four more, each fixed since with its instance saved:
 a tangential root beside a simple one and a root below the first sample (numeric,
 9/N6 and 9/N7: docs/numeric.md), a genuine factor left undecided by flint's branch cut
