@@ -3,6 +3,7 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+INSTANCES ?= 6
 # nauty's geng for the brute-force cross-check; --no-deps keeps it to one ~40 MB wheel.
 GENG_WHEEL := passagemath-nauty==10.8.13
 # msolve (exact polynomial systems): the independent oracle of the adversarial run and the
@@ -46,8 +47,9 @@ bench-timing: $(STAMP)  ## timing and memory medians of each stage
 bench-collinear: $(STAMP)  ## both backends on every 9-link truss drawn with joints in line (issue 28): docs/bench/collinear-joints.md, included in docs/stability.md by `make bench` (about 18 min, 2 cores)
 	$(BIN)/python bench/sweep_collinear.py --links 9 --on-line 3,4 --instances 5 --box 4 --workers 2 --out docs/bench/collinear-joints.md
 
-bench-adversarial: $(STAMP)  ## both backends against msolve on adversarial 7- and 9-link instances (issue 25): docs/bench/adversarial.md, included in docs/stability.md by `make bench`; resumable (bench/results/adversarial.jsonl); 1489 of its 1550 instances took about 38 min on 2 workers
-	$(BIN)/python bench/adversarial.py --links 7,9 --instances 10 --workers 2 --out bench/results/adversarial.jsonl --report docs/bench/adversarial.md
+bench-adversarial: $(STAMP)  ## both backends against msolve on adversarial instances (issue 25), 7 and 9 links and every 56th 11-link truss: docs/bench/adversarial.md, included in docs/stability.md by `make bench`; rows accumulate in bench/results/adversarial.jsonl (committed) while the solving code is unchanged, so a rerun resumes; raise INSTANCES to add more
+	$(BIN)/python bench/adversarial.py --links 7,9 --seed 26 --instances $(INSTANCES) --workers 2 --out bench/results/adversarial.jsonl
+	$(BIN)/python bench/adversarial.py --links 11 --every 56 --instances 1 --workers 2 --timeout 300 --out bench/results/adversarial.jsonl --report docs/bench/adversarial.md
 
 clean:
 	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis

@@ -1,16 +1,17 @@
 """Adversarial completeness run (issue 25): random trusses drawn as a user would type them
 (solvers/adversarial.py: small boxes, joints in line, joints at one point, modes at a
 domain edge, double roots), solved by both backends and by msolve on the Cartesian system
-(baselines/msolve.py, which shares no code with the backends), compared mode for mode.
+(baranov.solvers.msolve, which shares no code with the backends), compared mode for mode.
 
-Every finished instance is appended to ``--out`` (JSON lines), so an interrupted run
-resumes where it stopped; ``--report`` writes the Markdown summary that
-``bench/stability.py`` includes in docs/stability.md; ``--failures`` receives every
-instance a backend got wrong, as a scene file ready for tests/regressions/. The numbers in
-docs/stability.md come from
-
-    python bench/adversarial.py --links 7,9,11 --instances 40 --workers 2 \\
-        --out bench/results/adversarial.jsonl --report docs/bench/adversarial.md
+Every finished instance is appended to ``--out`` (JSON lines) with the version of the
+solving code it ran on (:func:`code_version`: the git trees of the packages a solve
+touches), so an interrupted run resumes where it stopped — in a later session too, from
+the rows committed under bench/results/, as long as that code has not changed; a change
+starts the count again. ``--report`` writes the Markdown summary of the rows of the
+current code version that ``bench/stability.py`` includes in docs/stability.md;
+``--failures`` receives every instance a backend got wrong, as a scene file ready for
+tests/regressions/. (The solvers live in baranov.solvers; msolve in
+baranov.solvers.msolve shares no code with the backends.)
 """
 
 from __future__ import annotations
@@ -18,8 +19,10 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import hashlib
 import shlex
 import signal
+import subprocess
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -34,6 +37,21 @@ from baranov.solvers.adversarial import ADVERSARIAL_KINDS, adversarial_scene
 from baranov.solvers.instances import instance_dict
 
 METHODS = ("numeric", "exact")
+ROOT = Path(__file__).resolve().parents[1]
+#: The packages a solve runs through: rows of one version of these are one run.
+SOLVING_CODE = ("topology", "enumerate", "planner", "closure", "solvers")
+
+
+def code_version() -> str:
+    """A short hash of the committed trees of SOLVING_CODE, with ``-dirty`` if they have
+    uncommitted changes; ``unknown`` outside a git checkout."""
+    trees = subprocess.run(["git", "rev-parse", *(f"HEAD:{folder}" for folder in SOLVING_CODE)], cwd=ROOT,
+                           capture_output=True, text=True)
+    if trees.returncode != 0:
+        return "unknown"
+    dirty = subprocess.run(["git", "status", "--porcelain", "--", *SOLVING_CODE], cwd=ROOT, capture_output=True,
+                           text=True).stdout.strip()
+    return hashlib.sha1(trees.stdout.encode()).hexdigest()[:12] + ("-dirty" if dirty else "")
 
 
 class _Timeout(Exception):
@@ -60,13 +78,14 @@ def timed(function, seconds: float):
 
 
 def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tuple[str, ...],
-        timeout: float) -> dict:
+        timeout: float, code: str = "unknown") -> dict:
     """One instance: msolve's modes, each backend's, and what each backend missed or added."""
     truss = baranov_trusses(links)[index]
     rng = np.random.default_rng([seed, links, index, ADVERSARIAL_KINDS.index(kind), instance])
     scene, coordinates = adversarial_scene(truss, kind, rng)
     row = {"key": f"{links}/N{index + 1}/{kind}/{instance}", "links": links, "truss": f"{links}/N{index + 1}",
-           "kind": kind, "instance": instance, "coupling_degree": coupling_degree(scene.chain)}
+           "kind": kind, "instance": instance, "coupling_degree": coupling_degree(scene.chain), "code": code,
+           "seed": seed}
     oracle = msolve_modes(scene, timeout=timeout)
     row.update(msolve_status=oracle.status, msolve_seconds=oracle.seconds, msolve_modes=len(oracle.configurations),
                msolve_message=oracle.message)
@@ -115,7 +134,7 @@ def failed(row: dict, methods: tuple[str, ...]) -> bool:
 
 def save_failure(row: dict, folder: Path) -> None:
     folder.mkdir(parents=True, exist_ok=True)
-    name = f"{row['truss'].replace('/', '-')}-{row['kind']}-{row['instance']}.json"
+    name = f"{row['truss'].replace('/', '-')}-{row['kind']}-{row['instance']}-seed{row['seed']}.json"
     summary = {k: v for k, v in row.items() if k not in ("scene", "key")}
     text = json.dumps({"comment": f"adversarial run (bench/adversarial.py): {json.dumps(summary)}",
                        **row["scene"]}, indent=1)
@@ -127,6 +146,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--links", default="7,9", help="link counts, comma-separated (default 7,9)")
     parser.add_argument("--kinds", default=",".join(ADVERSARIAL_KINDS))
     parser.add_argument("--trusses", help="only these trusses (e.g. 9/N21,9/N7)")
+    parser.add_argument("--every", type=int, default=1, help="only every K-th truss of each link count (N1, N1+K, …)")
     parser.add_argument("--instances", type=int, default=10, help="instances per truss and kind (default 10)")
     parser.add_argument("--methods", default=",".join(METHODS))
     parser.add_argument("--seed", type=int, default=25)
@@ -137,20 +157,21 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--failures", type=Path, help="save every failed instance here as a scene file")
     parser.add_argument("--report-only", action="store_true", help="run nothing: write --report from --out")
     parser.add_argument("--note", default="", help="a sentence for the report (e.g. the commit of the run)")
+    parser.add_argument("--any-code", action="store_true", help="--report-only: rows of every code version")
     args = parser.parse_args(argv)
+    code = code_version()
     if args.report_only:
-        rows = [json.loads(line) for line in args.out.read_text().splitlines()]
-        write_report(args, argv, rows, tuple(args.methods.split(",")))
+        write_report(args, argv, current_rows(args.out, None if args.any_code else code), tuple(args.methods.split(",")))
         return 0
     methods = tuple(args.methods.split(","))
-    done = {json.loads(line)["key"] for line in args.out.read_text().splitlines()} if args.out.exists() else set()
+    done = {(row["key"], row["seed"]) for row in current_rows(args.out, code)}
     wanted = set(args.trusses.split(",")) if args.trusses else None
-    tasks = [(links, index, kind, instance, args.seed, methods, args.timeout)
+    tasks = [(links, index, kind, instance, args.seed, methods, args.timeout, code)
              for links in map(int, args.links.split(",")) for index in range(len(baranov_trusses(links)))
-             if wanted is None or f"{links}/N{index + 1}" in wanted
+             if (wanted is None or f"{links}/N{index + 1}" in wanted) and index % args.every == 0
              for kind in args.kinds.split(",") for instance in range(args.instances)
-             if f"{links}/N{index + 1}/{kind}/{instance}" not in done]
-    print(f"{len(tasks)} instances to run ({len(done)} already in {args.out})", flush=True)
+             if (f"{links}/N{index + 1}/{kind}/{instance}", args.seed) not in done]
+    print(f"{len(tasks)} instances to run ({len(done)} already in {args.out} for solving code {code})", flush=True)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     with ProcessPoolExecutor(args.workers) as pool, args.out.open("a", encoding="utf-8") as out:
         futures = [pool.submit(run, *task) for task in tasks]
@@ -164,8 +185,16 @@ def main(argv: list[str] | None = None) -> int:
                     save_failure(row, args.failures)
             if n % 50 == 0:
                 print(f"{n}/{len(tasks)} done", flush=True)
-    write_report(args, argv, [json.loads(line) for line in args.out.read_text().splitlines()], methods)
+    write_report(args, argv, current_rows(args.out, code), methods)
     return 0
+
+
+def current_rows(path: Path, code: str | None) -> list[dict]:
+    """The rows of ``path`` whose solving code is ``code`` (all rows for None)."""
+    if not path.exists():
+        return []
+    rows = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+    return [row for row in rows if code is None or row.get("code") == code]
 
 
 def write_report(args: argparse.Namespace, argv: list[str] | None, rows: list[dict], methods: tuple[str, ...]) -> None:
@@ -177,7 +206,9 @@ def write_report(args: argparse.Namespace, argv: list[str] | None, rows: list[di
         if "--note" in arguments:  # the note is printed on its own
             del arguments[arguments.index("--note"):arguments.index("--note") + 2]
         command = "python bench/adversarial.py " + shlex.join(arguments)
-        head = f"{args.note} Command: `{command}` ({len(rows)} instances in {args.out}).".strip()
+        versions = ", ".join(sorted({row.get("code", "unrecorded") for row in rows}))
+        head = (f"{args.note} Command: `{command}` ({len(rows)} instances in {args.out}; solving code "
+                f"{versions}).").strip()
         text = "\n".join([head, "", *report, "", *table(rows, methods)]) + "\n"
         args.report.with_suffix(".tmp").write_text(text, encoding="utf-8")
         args.report.with_suffix(".tmp").replace(args.report)
