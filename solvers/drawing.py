@@ -7,14 +7,11 @@ from __future__ import annotations
 import io
 import math
 
-import matplotlib
+from matplotlib.figure import Figure  # a bare Figure draws to files without pyplot's global backend
+from matplotlib.patches import Polygon
 
-matplotlib.use("Agg")  # files only; no display needed
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.patches import Polygon  # noqa: E402
-
-from .modes import Solution  # noqa: E402
-from .scene import Scene  # noqa: E402
+from .modes import Solution
+from .scene import Scene
 
 
 def _hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
@@ -47,7 +44,8 @@ def render_modes(scene: Scene, solution: Solution, columns: int | None = None) -
         columns = max(4, math.ceil(math.sqrt(count)))
     columns = min(columns, count)
     rows = math.ceil(count / columns)
-    figure, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.6 * rows), squeeze=False)
+    figure = Figure(figsize=(3.6 * columns, 3.6 * rows))
+    axes = figure.subplots(rows, columns, squeeze=False)
     everything = [p for m in modes for p in m.joints.values()] or [(0.0, 0.0)]
     xs, ys = [p[0] for p in everything], [p[1] for p in everything]
     margin = 0.08 * max(max(xs) - min(xs), max(ys) - min(ys), 1.0)
@@ -81,8 +79,5 @@ def render_modes(scene: Scene, solution: Solution, columns: int | None = None) -
     figure.suptitle(f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} (ground hatched)", fontsize=11)
     figure.tight_layout(rect=(0, 0, 1, 1 - 0.6 / (3.6 * rows)))
     buffer = io.BytesIO()
-    try:
-        figure.savefig(buffer, format="png", dpi=110)
-    finally:
-        plt.close(figure)
+    figure.savefig(buffer, format="png", dpi=110)
     return buffer.getvalue()
