@@ -12,7 +12,7 @@ import sys
 from pathlib import Path
 
 from baranov.enumerate import check_link_count
-from baranov.solvers import load_scene
+from baranov.solvers import available_backends, load_scene
 from baranov.solvers.modes import signs_text
 from baranov.solvers import solve as solve_scene
 from baranov.topology import natural_sort_key
@@ -78,7 +78,8 @@ def _parser() -> argparse.ArgumentParser:
     show.add_argument("--catalog", default="catalog", type=Path, help="catalog folder for ids (default catalog/)")
     solve = commands.add_parser("solve", help="every assembly mode of a linkage given as a scene file")
     solve.add_argument("scene", type=Path, help="scene JSON file (see examples/)")
-    solve.add_argument("--method", default="numeric", choices=["numeric", "exact"], help="solving backend")
+    solve.add_argument("--method", default="numeric", choices=available_backends(),
+                       help="solving backend (default numeric; the others: exact, and baselines for comparison)")
     solve.add_argument("--json", action="store_true", help="print the result as JSON")
     solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
     solve.add_argument("--time-limit", type=float, metavar="SECONDS",

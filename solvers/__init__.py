@@ -1,5 +1,6 @@
 """Solving backends: every assembly mode of a concrete linkage (a scene)."""
 
+from .backends import available_backends, backend, register_backend
 from .characteristic import (
     CharacteristicPolynomial,
     ExactMethodError,
@@ -14,15 +15,13 @@ from .scene import Scene, SceneError, load_scene, scene_from_dict
 
 
 def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
-    """All assembly modes of ``scene``; ``method`` is ``"numeric"`` or ``"exact"``."""
-    if method == "numeric":
-        return solve_numeric(scene, **options)
-    if method == "exact":
-        return solve_exact(scene, **options)
-    raise SolverError(f"method {method!r}: available methods are 'numeric' and 'exact'")
+    """All assembly modes of ``scene`` by a registered backend
+    (:func:`~baranov.solvers.backends.available_backends`: ``"numeric"``, ``"exact"`` and
+    the baselines), passing it ``options``."""
+    return backend(method).load()(scene, **options)
 
 
 __all__ = [
     "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "MovableLinkageError", "Scene", "SceneError", "Solution", "SolverError",
-    "characteristic_degree", "characteristic_degree_modulo", "characteristic_polynomial", "load_scene", "scene_from_dict", "solve", "solve_exact", "solve_numeric",
+    "available_backends", "characteristic_degree", "characteristic_degree_modulo", "register_backend", "characteristic_polynomial", "load_scene", "scene_from_dict", "solve", "solve_exact", "solve_numeric",
 ]
