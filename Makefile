@@ -25,7 +25,8 @@ catalog: $(STAMP)  ## main job: regenerate catalog/ for 3-11 links and print its
 catalog-13: $(STAMP)  ## the 13-link class too, with plans (22 min measured on 2 busy cores; not committed)
 	$(BIN)/baranov catalog --links 3-13 --out catalog-13
 
-test: $(STAMP)  ## default test suite (a few minutes)
+test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default test suite (a few minutes)
+	$(BIN)/ruff check .
 	$(BIN)/pytest -q
 
 test-slow: $(STAMP)  ## long checks (about 2 h 40 min, the sum of separately measured parts): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 800 coupling-2 random instances), whole catalog

@@ -11,6 +11,8 @@ reported too: they are the baseline's spurious modes (their residual is 1.0).
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import least_squares
+
 from baranov.solvers import Scene, Solution
 from baranov.solvers.configuration import (
     distance_bound,
@@ -19,7 +21,6 @@ from baranov.solvers.configuration import (
     sorted_modes,
 )
 from baranov.solvers.modes import AssemblyMode
-from scipy.optimize import least_squares
 
 #: A least-squares run has converged when every equation holds to this (relative).
 CONVERGED = 1e-10

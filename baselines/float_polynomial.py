@@ -19,6 +19,7 @@ from fractions import Fraction
 
 import mpmath
 import numpy as np
+
 from baranov.closure import sign_branches
 from baranov.solvers import Scene, Solution, SolverError, characteristic_polynomial
 from baranov.solvers.coincidence import solvable_plan

@@ -26,6 +26,7 @@ import mpmath
 import networkx as nx
 import numpy as np
 import sympy
+
 from baranov.solvers import Scene, Solution, SolverError
 from baranov.solvers.configuration import joint_residual, same_mode, sorted_modes
 from baranov.solvers.modes import AssemblyMode

@@ -17,9 +17,9 @@ baranov.solvers.msolve shares no code with the backends.)
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import math
-import hashlib
 import shlex
 import signal
 import subprocess
@@ -29,12 +29,13 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 import numpy as np
-from baranov.solvers.msolve import compare_modes, match_configurations, msolve_modes
+
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.solvers import MovableLinkageError, solve
 from baranov.solvers.adversarial import ADVERSARIAL_KINDS, adversarial_scene
 from baranov.solvers.instances import instance_dict
+from baranov.solvers.msolve import compare_modes, match_configurations, msolve_modes
 
 METHODS = ("numeric", "exact")
 ROOT = Path(__file__).resolve().parents[1]

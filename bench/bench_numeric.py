@@ -14,6 +14,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.solvers import load_scene, solve

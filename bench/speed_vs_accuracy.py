@@ -28,6 +28,7 @@ from collections import defaultdict
 from pathlib import Path
 
 import numpy as np
+
 from baranov.baselines import (
     cartesian_size,
     loop_size,

@@ -21,6 +21,8 @@ from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
+from speed_vs_accuracy import outcome, timed_run
+
 from baranov.enumerate import baranov_trusses
 from baranov.solvers import (
     Scene,
@@ -39,7 +41,6 @@ from baranov.solvers.hard_instances import (
     perturbed_scene,
 )
 from baranov.solvers.instances import generic_integer_configuration, scene_of
-from speed_vs_accuracy import outcome, timed_run
 
 ROOT = Path(__file__).resolve().parents[1]
 METHODS = ("numeric", "exact", "cartesian-100", "loop-equations", "float64-polynomial", "mpmath100-polynomial")

@@ -19,10 +19,11 @@ import math
 import shlex
 import sys
 import time
-from pathlib import Path
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
 
 import numpy as np
+
 from baranov.enumerate import baranov_trusses
 from baranov.solvers import solve
 from baranov.solvers.configuration import distance_bound, same_mode

@@ -16,6 +16,7 @@ import statistics
 import time
 
 import numpy as np
+
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.solvers import solve

@@ -22,6 +22,8 @@ from collections.abc import Callable, Iterable
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
+from tqdm import tqdm
+
 from baranov.closure import closure_system
 from baranov.enumerate import baranov_link_graphs
 from baranov.enumerate.appendix_a import appendix_a_labelling, link_pairs_required, names_by_closure_conditions
@@ -47,7 +49,6 @@ from baranov.topology import (
 )
 from baranov.topology.automorphisms import link_graph_certificate
 from baranov.topology.realizations import realization_count
-from tqdm import tqdm
 
 from .files import write_atomically
 

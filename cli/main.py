@@ -13,8 +13,8 @@ from pathlib import Path
 
 from baranov.enumerate import check_link_count
 from baranov.solvers import available_backends, load_scene
-from baranov.solvers.modes import signs_text
 from baranov.solvers import solve as solve_scene
+from baranov.solvers.modes import signs_text
 from baranov.topology import natural_sort_key
 
 from .catalog import build_catalog
@@ -126,7 +126,7 @@ def run_solve(args: argparse.Namespace) -> int:
                      f"{mode.max_residual:.1e}"])
     widths = [max(len(header[c]), *(len(r[c]) for r in rows)) for c in range(len(header))]
     for row in [header, *rows]:
-        print("  ".join(cell.rjust(width) for cell, width in zip(row, widths)))
+        print("  ".join(cell.rjust(width) for cell, width in zip(row, widths, strict=True)))
     return 0
 
 

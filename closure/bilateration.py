@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import numpy as np
 
-
 #: A radicand above −this times the squared largest side is rounding noise around 0 (a
 #: flat triangle), not a triangle that does not exist: where a radicand touches 0 (a
 #: double zero, joints in line at a mode), rounding makes it a few ulps negative over a

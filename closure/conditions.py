@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import sympy
+
 from baranov.planner import DistanceKind, Plan
 from baranov.topology import natural_sort_key, thesis_subscript
 

@@ -13,6 +13,7 @@ from collections.abc import Mapping, Sequence
 from itertools import product
 
 import numpy as np
+
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 

@@ -39,7 +39,7 @@ def admissible_slider_sets(chain: KinematicChain) -> np.ndarray:
     admissible = np.ones(1 << joints, dtype=bool)
     for cycle in nx.simple_cycles(graph):
         loop = 0
-        for a, b in zip(cycle, cycle[1:] + cycle[:1]):
+        for a, b in zip(cycle, cycle[1:] + cycle[:1], strict=True):
             loop |= bit[graph.edges[a, b]["joint"]]
         admissible &= (subsets & loop) != loop
     return admissible

@@ -8,8 +8,8 @@ from .characteristic import (
 )
 from .exact import solve_exact
 from .mode_counts import characteristic_degree
-from .modular import characteristic_degree_modulo
 from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
+from .modular import characteristic_degree_modulo
 from .numeric import solve_numeric
 from .scene import Scene, SceneError, load_scene, scene_from_dict
 
@@ -22,6 +22,8 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
 
 
 __all__ = [
-    "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "MovableLinkageError", "Scene", "SceneError", "Solution", "SolverError",
-    "available_backends", "characteristic_degree", "characteristic_degree_modulo", "register_backend", "characteristic_polynomial", "load_scene", "scene_from_dict", "solve", "solve_exact", "solve_numeric",
+    "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "MovableLinkageError", "Scene", "SceneError",
+    "Solution", "SolverError", "available_backends", "characteristic_degree", "characteristic_degree_modulo",
+    "characteristic_polynomial", "load_scene", "register_backend", "scene_from_dict", "solve", "solve_exact",
+    "solve_numeric",
 ]

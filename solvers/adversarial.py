@@ -26,9 +26,10 @@ from fractions import Fraction
 from itertools import combinations
 
 import numpy as np
+from flint import fmpz_mat
+
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
-from flint import fmpz_mat
 
 from .coincidence import solvable_plan
 from .hard_instances import coincident_joints_configuration, collinear_joints_configuration

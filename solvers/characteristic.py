@@ -40,6 +40,7 @@ from fractions import Fraction
 from itertools import combinations, product
 
 import flint
+
 from baranov.planner import Plan
 
 from .coincidence import solvable_plan
@@ -400,8 +401,9 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
     some sign branch with every bilateration defined (base distances and the reference
     distance non-zero). Where no branch confirms it but some could not be evaluated
     because a base distance vanishes there, the plan cannot decide: the joint pairs
-    found coincident are returned instead (see :func:`baranov.solvers.exact.solve_exact`). The plan is evaluated in complex ball arithmetic (flint acb), x and
-    y coordinates separately, since a complex parameter gives complex coordinates.
+    found coincident are returned instead (see :func:`baranov.solvers.exact.solve_exact`).
+    The plan is evaluated in complex ball arithmetic (flint acb), x and y coordinates
+    separately, since a complex parameter gives complex coordinates.
 
     A branch confirms the factor when the closure residual's ball contains 0 and is
     narrower than 2^(-bits/8) of the closure distance; it rules itself out when the ball

@@ -131,12 +131,14 @@ def with_modes_of_coincident_joints(scene: Scene, plan: Plan, pairs: set[frozens
 
 def _with_alternative_modes(scene: Scene, plan: Plan, pairs: set[frozenset[str]], modes: tuple[AssemblyMode, ...],
                             solver: Callable[[Plan], Solution],
-                            accept: Callable[[list[float], AssemblyMode], list[float] | None]) -> tuple[tuple[AssemblyMode, ...], bool]:
+                            accept: Callable[[list[float], AssemblyMode], list[float] | None]
+                            ) -> tuple[tuple[AssemblyMode, ...], bool]:
     """``modes`` and the new modes of ``solver``'s solve with the best plan avoiding
     ``pairs`` that ``accept`` takes: it gets ``plan``'s parameters measured on the
-    configuration and the mode, and returns the parameter values to report, or None. Added modes carry ``plan``'s free-sign orientations (0
-    where flat). Also whether that settles the coincidences: the alternative plan exists
-    and its solve is complete (an exact solve's certificate; a numeric solve counts)."""
+    configuration and the mode, and returns the parameter values to report, or None.
+    Added modes carry ``plan``'s free-sign orientations (0 where flat). Also whether that
+    settles the coincidences: the alternative plan exists and its solve is complete (an
+    exact solve's certificate; a numeric solve counts)."""
     alternative = alternative_plan(scene, pairs)
     if alternative is None:
         return modes, False

@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
 from baranov.closure import CompiledSystem, closure_system
 from baranov.planner import Plan
 from baranov.topology import thesis_subscript

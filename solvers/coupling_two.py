@@ -29,6 +29,7 @@ from fractions import Fraction
 from itertools import product
 
 import flint
+
 from baranov.planner import Plan
 
 from .characteristic import (
@@ -127,7 +128,7 @@ def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, conditi
     for _ in range(10):
         value = flint.fmpq(rng.randrange(1, 10**6), rng.randrange(1, 10**3))
 
-        def points() -> list | None:
+        def points(value=value) -> list | None:
             if curve.degrees()[1] > 0:
                 roots = isolated_roots(column_over_field(curve, flint.fmpz_poly([-value.p, value.q])), flint.acb(value))
                 return None if roots is None else [(flint.acb(value), v) for v in roots]

@@ -32,6 +32,7 @@ from collections.abc import Sequence
 
 import flint
 import numpy as np
+
 from baranov.closure import sign_branches
 from baranov.planner import Plan
 

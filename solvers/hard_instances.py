@@ -9,6 +9,7 @@ from fractions import Fraction
 from itertools import combinations
 
 import numpy as np
+
 from baranov.enumerate import baranov_trusses
 from baranov.topology.graphs import joints_of_links
 

@@ -8,6 +8,7 @@ from fractions import Fraction
 from itertools import combinations
 
 import numpy as np
+
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 

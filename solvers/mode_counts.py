@@ -15,6 +15,7 @@ import zlib
 from typing import Literal
 
 import numpy as np
+
 from baranov.planner import best_plan
 from baranov.topology import KinematicChain
 

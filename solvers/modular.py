@@ -4,10 +4,11 @@ word-size arithmetic, and the polynomial over Q lifted from its images.
 Over Q (:mod:`baranov.solvers.characteristic`) the norm of a closure condition of an
 11-link truss has degree ~2000 and coefficients of ~340 000 bits, and separating its
 genuine factor from the extraneous ones means factoring it (24 s per instance at the
-median, up to 3 min, on 57 sampled coupling-1 trusses). Only the *degree* of the genuine part is needed to count assembly modes, and the
-extraneous factors are known in advance: they vanish where the computed distance's
-denominator D does (clearing denominators brings them in; thesis eqs. 3.6, 3.20, 3.34,
-3.92). So, modulo a random word-size prime p (flint ``nmod_mpoly``/``nmod_poly``):
+median, up to 3 min, on 57 sampled coupling-1 trusses). Only the *degree* of the
+genuine part is needed to count assembly modes, and the extraneous factors are known in
+advance: they vanish where the computed distance's denominator D does (clearing
+denominators brings them in; thesis eqs. 3.6, 3.20, 3.34, 3.92). So, modulo a random
+word-size prime p (flint ``nmod_mpoly``/``nmod_poly``):
 
 * the radical tower and the norms are computed as over Q, coefficients mod p;
 * the norm N of the condition is *saturated* by the norm M of D — every factor it shares
@@ -47,6 +48,7 @@ import random
 from fractions import Fraction
 
 import flint
+
 from baranov.planner import Plan
 
 from .characteristic import ExactMethodError, RadicalTower, eliminate_radicals, radical_tower

@@ -33,9 +33,10 @@ import time
 from itertools import combinations
 
 import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
 from baranov.closure import CompiledSystem, sign_branches
 from baranov.planner import Plan
-from scipy.optimize import brentq, minimize_scalar
 
 from .coincidence import (
     coincidence_possible,

@@ -115,14 +115,14 @@ def resultants_modulo(columns_f, columns_others: list, degrees: list[int], prime
     for index in range(len(points)):
         row = values_at[index * width:(index + 1) * width]
         polynomials = [flint.nmod_poly([int(c) for c in row[start:stop]], prime)
-                       for start, stop in zip(bounds, bounds[1:])]
-        if any(p.degree() != len(group) - 1 for p, group in zip(polynomials, groups)):
+                       for start, stop in zip(bounds, bounds[1:], strict=False)]
+        if any(p.degree() != len(group) - 1 for p, group in zip(polynomials, groups, strict=True)):
             return None  # a leading coefficient vanishes at this point: take other points
         for k, other in enumerate(polynomials[1:]):
             if index <= degrees[k]:
                 values[k].append(int(polynomials[0].resultant(other)))
     images = []
-    for degree, image_values in zip(degrees, values):
+    for degree, image_values in zip(degrees, values, strict=True):
         coefficients = [int(c) for c in _interpolate(points[:degree + 1], image_values, context).coeffs()]
         images.append(coefficients + [0] * (degree + 1 - len(coefficients)))
     return images

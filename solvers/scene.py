@@ -27,6 +27,7 @@ from itertools import combinations
 from pathlib import Path
 
 import networkx as nx
+
 from baranov.topology import (
     KinematicChain,
     TopologyError,

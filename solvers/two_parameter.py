@@ -30,8 +30,9 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from baranov.closure import CompiledSystem
 from scipy.ndimage import maximum_filter, minimum_filter
+
+from baranov.closure import CompiledSystem
 
 from .configuration import distinct_candidates
 

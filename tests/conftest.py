@@ -1,6 +1,7 @@
 """Shared fixtures: the thesis's small trusses with the thesis's joint numbering."""
 
 import pytest
+
 from baranov.topology import chain_from_link_graph
 
 #: The pentad of thesis §2.7 (Fig. 2.5 right): ternary links 0 = {P1,P2,P3} and

@@ -12,9 +12,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
-from baranov.solvers import load_scene, solve
+from baranov.solvers import MovableLinkageError, load_scene, solve
 from baranov.solvers.adversarial import (
     ADVERSARIAL_KINDS,
     adversarial_scene,
@@ -22,7 +23,6 @@ from baranov.solvers.adversarial import (
     is_infinitesimally_flexible,
 )
 from baranov.solvers.msolve import compare_modes, find_msolve, msolve_modes
-from baranov.solvers import MovableLinkageError
 
 REGRESSIONS = Path(__file__).resolve().parent / "regressions"
 needs_msolve = pytest.mark.skipif(find_msolve() is None, reason="msolve binary not installed (make installs it)")

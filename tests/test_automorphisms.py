@@ -4,6 +4,10 @@ import random
 
 import networkx as nx
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from networkx.algorithms.isomorphism import GraphMatcher
+
 from baranov.enumerate import baranov_trusses
 from baranov.topology import (
     are_isomorphic,
@@ -14,9 +18,6 @@ from baranov.topology import (
     link_graph,
     list_automorphisms,
 )
-from hypothesis import given, settings
-from hypothesis import strategies as st
-from networkx.algorithms.isomorphism import GraphMatcher
 
 #: Thesis §2.7.1: the twelve automorphisms of the pentad as joint permutations
 #: (position k holds the image of P(k+1)).
@@ -67,7 +68,7 @@ def test_every_listed_element_is_an_automorphism(links):
         for element in elements:
             images = {tuple(sorted((element.links[u], element.links[v]))) for u, v in graph.edges}
             assert images == {tuple(sorted(e)) for e in graph.edges}
-            for joint, image in zip(truss.joints, element.joints):
+            for joint, image in zip(truss.joints, element.joints, strict=True):
                 mapped = tuple(sorted(element.links[link] for link in joint.links))
                 assert truss.joint(image).links == mapped
 

@@ -2,6 +2,7 @@
 
 import networkx as nx
 import pytest
+
 from baranov.topology import (
     JointKind,
     TopologyError,

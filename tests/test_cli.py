@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 import pytest
+
 from baranov.cli.main import main
 from baranov.enumerate.crosscheck import find_geng
 

@@ -3,6 +3,9 @@
 import numpy as np
 import pytest
 import sympy
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
 from baranov.closure import (
     closure_system,
     compile_from_coordinates,
@@ -23,8 +26,6 @@ from baranov.enumerate import baranov_trusses
 from baranov.enumerate.literature import thesis_truss
 from baranov.planner import best_plan, bilateration_plans, coupling_degree
 from baranov.topology import automorphism_group, list_automorphisms
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
 
 TRUSSES = [t for links in (3, 5, 7, 9) for t in baranov_trusses(links)]
 ELEVEN = baranov_trusses(11)
@@ -40,7 +41,7 @@ def random_configuration(chain, rng):
     names = [j.name for j in chain.joints]
     while True:
         points = rng.uniform(-10, 10, size=(len(names), 2))
-        coordinates = dict(zip(names, points))
+        coordinates = dict(zip(names, points, strict=True))
         if all(abs(cross(points[j] - points[i], points[k] - points[i])) > 0.5
                for i in range(len(names)) for j in range(i + 1, len(names)) for k in range(j + 1, len(names))):
             return coordinates
@@ -66,7 +67,7 @@ def test_pentad_condition_is_thesis_equation_2_25():
 def test_thesis_permutation_example_of_section_2_7_1():
     pentad = thesis_truss("5/B1").chain()
     plan = bilateration_plans(pentad, reference=("P1", "P6"))[0]
-    permutation = dict(zip(["P1", "P2", "P3", "P4", "P5", "P6"], ["P1", "P3", "P2", "P4", "P6", "P5"]))
+    permutation = dict(zip(["P1", "P2", "P3", "P4", "P5", "P6"], ["P1", "P3", "P2", "P4", "P6", "P5"], strict=True))
     assert permutation in [joint_mapping(pentad, a) for a in list_automorphisms(pentad)]
     image = permute_condition(closure_system(plan).conditions[0], permutation)
     assert image.text() == "s3,6 = det(I - Z1,2,3 Z1,5,2 - Z5,4,6 Z5,1,4) s1,5"
@@ -130,7 +131,7 @@ def test_thesis_reference_gives_exactly_the_thesis_formula_for_7b3():
 def test_appendix_a_permutation_gives_the_second_condition_of_9b28():
     chain = thesis_truss("9/B28").chain()
     permutation = dict(zip([f"P{k}" for k in range(1, 13)],
-                           [f"P{k}" for k in (2, 1, 5, 4, 3, 7, 6, 11, 10, 9, 8, 12)]))
+                           [f"P{k}" for k in (2, 1, 5, 4, 3, 7, 6, 11, 10, 9, 8, 12)], strict=True))
     assert permutation in [joint_mapping(chain, a) for a in list_automorphisms(chain)]
     omega1 = THESIS_CONDITIONS[7]
     first = thesis_condition(*THESIS_CONDITIONS[8][1:])

@@ -13,13 +13,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
 from baranov.enumerate import baranov_trusses
 from baranov.solvers import load_scene, solve
 from baranov.solvers.configuration import distance_bound, same_mode
 from baranov.solvers.hard_instances import LINE_DIRECTIONS, collinear_joints_configuration
 from baranov.solvers.instances import scene_of
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
 REGRESSION = Path(__file__).resolve().parent / "regressions" / "9-B28-joints-in-line.json"
 

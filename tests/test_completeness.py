@@ -14,6 +14,7 @@ import os
 
 import numpy as np
 import pytest
+
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.solvers import solve

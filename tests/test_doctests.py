@@ -4,6 +4,8 @@ import doctest
 import importlib
 import pkgutil
 
+import pytest
+
 import baranov.baselines
 import baranov.cli
 import baranov.closure
@@ -11,7 +13,6 @@ import baranov.enumerate
 import baranov.planner
 import baranov.solvers
 import baranov.topology
-import pytest
 
 MODULES = sorted(
     info.name

@@ -10,6 +10,7 @@ from itertools import combinations
 import networkx as nx
 import pynauty
 import pytest
+
 from baranov.enumerate import baranov_link_graphs, baranov_trusses
 from baranov.enumerate.assur import assur_groups
 from baranov.enumerate.crosscheck import baranov_link_graphs_by_filter, find_geng

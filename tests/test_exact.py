@@ -8,6 +8,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from test_solvers import PUBLISHED_EXAMPLES, SOLVABLE
+from test_stability import same_modes
+
 from baranov.enumerate import baranov_trusses
 from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES
 from baranov.planner import bilateration_plans, coupling_degree
@@ -21,10 +26,6 @@ from baranov.solvers import (
 from baranov.solvers.instances import generic_integer_configuration, scene_of
 from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology.realizations import realization_count
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
-from test_solvers import PUBLISHED_EXAMPLES, SOLVABLE
-from test_stability import same_modes
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import flint
 import pytest
-from baranov.solvers.coupling_two import PLANE
-from baranov.solvers.fibers import common_fiber, gcd_over_field, square_free_over_field
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
+from baranov.solvers.coupling_two import PLANE
+from baranov.solvers.fibers import common_fiber, gcd_over_field, square_free_over_field
 
 U, V = PLANE.gens()
 

@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+
 from baranov.enumerate import baranov_trusses
 from baranov.enumerate.literature import (
     THESIS_TRUSSES,

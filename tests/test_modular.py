@@ -4,8 +4,12 @@ over Q, thesis Appendix A and pyrigi's realization counts."""
 import random
 from pathlib import Path
 
+import flint
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
 from baranov.enumerate import baranov_trusses
 from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES
 from baranov.planner import best_plan
@@ -13,18 +17,14 @@ from baranov.solvers import ExactMethodError, characteristic_polynomial, load_sc
 from baranov.solvers.coincidence import solvable_plan
 from baranov.solvers.coupling_two import characteristic_polynomial_two
 from baranov.solvers.instances import generic_integer_configuration, scene_of
+from baranov.solvers.mode_counts import characteristic_degree
 from baranov.solvers.modular import (
     characteristic_degree_modulo,
     lifted_characteristic_polynomial,
     random_prime,
     saturate,
 )
-from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology.realizations import realization_count
-from hypothesis import given, settings
-from hypothesis import strategies as st
-
-import flint
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 SEVEN = baranov_trusses(7)

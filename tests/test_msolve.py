@@ -9,12 +9,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
 from baranov.enumerate import baranov_trusses
 from baranov.solvers import load_scene, scene_from_dict, solve
 from baranov.solvers.instances import scene_of
 from baranov.solvers.msolve import cartesian_system, find_msolve, match_configurations, msolve_modes
-from hypothesis import given
-from hypothesis import strategies as st
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 needs_msolve = pytest.mark.skipif(find_msolve() is None, reason="msolve binary not installed (make installs it)")

@@ -4,6 +4,7 @@ constraints and bad input."""
 import collections
 
 import pytest
+
 from baranov.enumerate import baranov_trusses
 from baranov.enumerate.literature import thesis_truss
 from baranov.planner import StepKind, best_plan, bilateration_plans, coupling_degree
@@ -162,6 +163,7 @@ def test_grubler_chains_with_fixed_inputs():
     plan = best_plan(fixed)
     assert len(plan.closure_pairs) == len(plan.parameters)
     import numpy as np
+
     from baranov.closure import closure_system, compile_from_coordinates
     from baranov.closure.evaluate import true_parameters_and_signs
 

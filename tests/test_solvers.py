@@ -8,12 +8,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.solvers import SceneError, load_scene, scene_from_dict, solve
 from baranov.solvers.instances import generic_integer_configuration, scene_of
-from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -102,7 +103,7 @@ def test_examples_other_orientations_do_not(name):
     rigid = [link for link in data["links"] if "orientation" in link]
     matches = []
     for combination in product(("ccw", "cw"), repeat=len(rigid)):
-        for link, orientation in zip(rigid, combination):
+        for link, orientation in zip(rigid, combination, strict=True):
             link["orientation"] = orientation
         modes = solve(scene_from_dict(data)).assembly_modes
         if sorted(round(squared(m, u, v), 4) for m in modes) == published:

@@ -7,6 +7,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 import pytest
+
 from baranov.solvers import characteristic_polynomial, solve
 from baranov.solvers.configuration import RESIDUAL_TOLERANCE, same_mode
 from baranov.solvers.hard_instances import (

@@ -18,6 +18,7 @@ from pathlib import Path
 
 import flint
 import pytest
+
 from baranov.solvers import ExactMethodError, load_scene, solve
 from baranov.solvers.characteristic import characteristic_polynomial
 

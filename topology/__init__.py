@@ -12,12 +12,20 @@ from .automorphisms import (
     AutomorphismGroup,
     are_isomorphic,
     automorphism_group,
-    list_automorphisms,
     canonical_labelling,
     canonical_link_graph6,
     certificate,
+    list_automorphisms,
 )
-from .chain import Joint, JointKind, KinematicChain, chain_from_link_graph, chain_from_links, natural_sort_key, thesis_subscript
+from .chain import (
+    Joint,
+    JointKind,
+    KinematicChain,
+    chain_from_link_graph,
+    chain_from_links,
+    natural_sort_key,
+    thesis_subscript,
+)
 from .errors import TopologyError
 from .fusion import fuse_links
 from .graphs import degree_sequence, is_planar, joint_graph, joints_of_links, link_graph

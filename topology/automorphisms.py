@@ -133,7 +133,7 @@ def list_automorphisms(chain: KinematicChain) -> list[Automorphism]:
 
 def _orbits_from_representatives(representatives: Sequence[int], items) -> tuple[tuple[int, ...], ...]:
     groups: dict[int, list[int]] = {}
-    for item, rep in zip(items, representatives):
+    for item, rep in zip(items, representatives, strict=True):
         groups.setdefault(rep, []).append(item)
     return tuple(sorted((tuple(sorted(g)) for g in groups.values()), key=lambda orbit: orbit[0]))
 

@@ -202,7 +202,7 @@ def chain_from_link_graph(
         joint_names = [f"P{k + 1}" for k in range(len(edges))]
     elif len(joint_names) != len(edges):
         raise TopologyError(f"{len(joint_names)} joint names given for {len(edges)} joints")
-    joints = tuple(Joint(name, edge) for name, edge in zip(joint_names, edges))
+    joints = tuple(Joint(name, edge) for name, edge in zip(joint_names, edges, strict=True))
     return KinematicChain(len(labels), joints, tuple(labels))
 
 

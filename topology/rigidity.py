@@ -159,7 +159,7 @@ def require_rigid_chain(chain: KinematicChain) -> None:
     >>> require_rigid_chain(chain_from_link_graph([(0, 1), (1, 2), (2, 3), (3, 0), (0, 2)]))
     Traceback (most recent call last):
     ...
-    baranov.topology.errors.TopologyError: mobility F = 3(L-1) - 2J = -1 with L = 4 links and J = 5 joints; a rigid chain needs F = 0
+    baranov.topology.errors.TopologyError: mobility F = 3(L-1) - 2J = -1 with L = 4 links and J = 5 joints; ...
     """
     _require_zero_mobility(chain, "a rigid chain")
     over = smallest_overconstrained_subchain(chain)
