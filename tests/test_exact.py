@@ -10,8 +10,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from test_solvers import PUBLISHED_EXAMPLES, SOLVABLE
-from test_stability import same_modes
+from shared import PUBLISHED_EXAMPLES, SOLVABLE, same_modes
 
 from baranov.enumerate import baranov_trusses
 from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES

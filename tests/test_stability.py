@@ -7,9 +7,10 @@ from __future__ import annotations
 from fractions import Fraction
 
 import pytest
+from shared import same_modes
 
 from baranov.solvers import characteristic_polynomial, solve
-from baranov.solvers.configuration import RESIDUAL_TOLERANCE, same_mode
+from baranov.solvers.configuration import RESIDUAL_TOLERANCE
 from baranov.solvers.hard_instances import (
     SINGULAR_BASE,
     SINGULAR_PLATFORM,
@@ -18,10 +19,6 @@ from baranov.solvers.hard_instances import (
     collinear_platform_scene,
     merging_scene,
 )
-
-
-def same_modes(scene, first, second) -> bool:
-    return len(first) == len(second) and all(any(same_mode(m, n, scene) for n in second) for m in first)
 
 
 def modes_near_singular_pose(solution) -> int:
