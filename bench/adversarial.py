@@ -159,8 +159,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--report-only", action="store_true", help="run nothing: write --report from --out")
     parser.add_argument("--note", default="", help="a sentence for the report (e.g. the commit of the run)")
     parser.add_argument("--any-code", action="store_true", help="--report-only: rows of every code version")
+    parser.add_argument("--code", help="--report-only: rows of this code version (default: the checkout's)")
     args = parser.parse_args(argv)
-    code = code_version()
+    code = args.code or code_version()
     if args.report_only:
         write_report(args, argv, current_rows(args.out, None if args.any_code else code), tuple(args.methods.split(",")))
         return 0
@@ -191,11 +192,18 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def current_rows(path: Path, code: str | None) -> list[dict]:
-    """The rows of ``path`` whose solving code is ``code`` (all rows for None)."""
+    """The rows of ``path`` whose solving code is ``code`` (all rows for None), each
+    instance once."""
     if not path.exists():
         return []
-    rows = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
-    return [row for row in rows if code is None or row.get("code") == code]
+    rows, seen = [], set()
+    for line in path.read_text().splitlines():
+        row = json.loads(line) if line.strip() else None
+        if row is None or (code is not None and row.get("code") != code) or (row["key"], row.get("seed")) in seen:
+            continue  # another code version, or an instance run twice (two processes on one file): the first counts
+        seen.add((row["key"], row.get("seed")))
+        rows.append(row)
+    return rows
 
 
 def write_report(args: argparse.Namespace, argv: list[str] | None, rows: list[dict], methods: tuple[str, ...]) -> None:
