@@ -260,9 +260,21 @@ in a flat valley around a singular mode are one mode, reported as *undecided* (9
 9/N22), a root 8.7e-8 past a domain edge (9/N24), two triangles flat at one touching point
 (9/N21), and the coupling-2 slow cases (9/N18: Newton retried failed steps on 10⁵ starts,
 candidates were verified one at a time): its two slowest small-box instances took 46 and
-36 s before, 18 and 13 s after (one bench worker running beside both measurements). Runs
-at the current commit: `adversarial` (7 and 9 links) and `adversarial-11` (a sample of
-eleven-link trusses, one instance per truss and kind).
+36 s before, 18 and 13 s after (one bench worker running beside both measurements).
+
+The third run (`adversarial` below: `make bench-adversarial`, 930 new instances of 7 and 9
+links and 44 of eleven-link trusses, at commit e0f302d) found no miss on 7 and 9 links,
+but the time bound fails there: a coupling-1 instance of 9/N10 drawn at a flexible
+configuration took the numeric backend 198 s (p99/median 409 on that truss), where the
+closure condition is noise over long stretches and every noise sign change was bracketed
+(profile: 16 470 Brent brackets, 500 773 plan evaluations; 81 s since the re-sampling
+beside roots is capped — open, `tests/regressions/open/9-N10-noise-brackets.json`); and
+the exact backend ran over its 300 s limit on 8 of the 14 coupling-2 eleven-link instances
+(issue 24: the coupling-2 lifting is 100× slower than msolve there). On 11/N561 (coupling
+2, double-root) the numeric backend placed one of 11 modes wrongly (1 missed, 1 spurious;
+open, `tests/regressions/open/11-N561-double-root.json`). Both issue-25 targets — 10⁴
+instances with no miss, and p99 ≤ 10 × median — are not met yet; rows accumulate in
+bench/results/adversarial.jsonl while the solving code is unchanged.
 
 {adversarial}
 
