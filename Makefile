@@ -25,7 +25,7 @@ catalog: $(STAMP)  ## main job: regenerate catalog/ for 3-11 links and print its
 catalog-13: $(STAMP)  ## the 13-link class too, with plans (22 min measured on 2 busy cores; not committed)
 	$(BIN)/baranov catalog --links 3-13 --out catalog-13
 
-test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default test suite (a few minutes)
+test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default test suite (about 7 min on 2 cores)
 	$(BIN)/ruff check .
 	$(BIN)/pytest -q
 
