@@ -308,7 +308,7 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
         roots = [edge for edge, value in edges if abs(value) < 1e-7]
         near: list[float] = []
         roots += _scan(f, points, values, sampled, near)
-        for low, high in _next_to_roots(points, roots) + _suspicious_minima(points, values):
+        for low, high in _next_to_roots(points, roots) + _suspicious_minima(points, values)[:MAX_MINIMA]:
             fine = np.linspace(low, high, REFINEMENT)
             roots += _scan(f, fine, sampled(fine), sampled, near)
         roots, valleys = _merged_flat_valleys(sampled, roots)
@@ -538,7 +538,9 @@ def _merge(points: np.ndarray, values: np.ndarray, more_points: np.ndarray, more
 MINIMUM_DEPTH = 1e-10
 
 
-#: At most this many local minima of |f| are minimised per scan, the deepest first: next
+#: At most this many local minima of |f| are minimised per scan, and re-sampled per
+#: branch, the deepest first (uncapped re-sampling took 50 of 81 s on issue 25's 9/N10 at a
+#: flexible configuration, now 32 s: tests/regressions/open/9-N10-noise-brackets.json): next
 #: to a singular mode f is flat to rounding over a stretch and a fine re-sampling showed
 #: 100–150 "minima" per cell (issue 25's 9/N8 instance drawn at a flexible configuration:
 #: 12 000 evaluations, 36 s where its siblings take 0.6 s).
