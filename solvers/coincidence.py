@@ -205,7 +205,7 @@ def with_modes_where_undefined(scene: Scene, plan: Plan, pairs: set[frozenset[st
     modes, whether msolve listed them, and what neither settled (one sentence each; a
     sentence with "movable" where msolve found a continuum, which no plan would see)."""
     found, by_msolve, unsettled = with_modes_from_msolve(scene, plan, pairs, modes)
-    if by_msolve and not unsettled or any("movable" in gap for gap in unsettled):
+    if (by_msolve and not unsettled) or any("movable" in gap for gap in unsettled):
         return found, by_msolve, unsettled
     found, covered = alternative(found)
     if covered:

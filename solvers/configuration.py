@@ -24,6 +24,9 @@ RESIDUAL_TOLERANCE = 1e-8
 #: the float radicand loses digits to cancellation (joints 1e-4 apart among sides ~10:
 #: residual ~1e-6, docs/stability.md) although the candidate is next to a true mode.
 POLISH_LIMIT = 1e-3
+#: Two configurations are one mode when every joint agrees to this (relative to the
+#: linkage's size): :func:`same_mode`, :func:`first_of_each_mode`.
+SAME_MODE = 1e-6
 #: Relative doubled area below which :func:`read_back` calls a triangle flat (sign 0).
 FLAT_AREA = 1e-10
 
@@ -111,7 +114,7 @@ def first_of_each_mode(points: np.ndarray, scene: Scene) -> np.ndarray:
     """Indices of the configurations (complex (K, J)) that do not repeat an earlier one:
     the first of each group placing every joint within 1e-6 of the linkage's size
     (:func:`same_mode`). Cost O(K · n · J) for n distinct configurations."""
-    tolerance = 1e-6 * max(1.0, distance_bound(scene))
+    tolerance = SAME_MODE * max(1.0, distance_bound(scene))
     first: list[int] = []
     for k in range(len(points)):
         if not first or (np.abs(points[first] - points[k]).max(axis=1) >= tolerance).all():
@@ -150,7 +153,7 @@ def merged_clusters(scene: Scene, compiled: CompiledSystem,
         if not any(same_mode(mode, other, scene) for other in kept):
             kept.append(mode)
     groups = _valley_groups(scene, kept)
-    undecided = tuple(_valley_sentence(scene, [kept[i] for i in group]) for group in groups if len(group) > 1)
+    undecided = tuple(_valley_sentence([kept[i] for i in group]) for group in groups if len(group) > 1)
     return sorted_modes([_valley_representative([kept[i] for i in group]) for group in groups]), undecided
 
 
@@ -158,9 +161,7 @@ def _close_pairs(scene: Scene, modes, within: float) -> list[tuple[int, int]]:
     """Pairs of modes placing every joint within ``within`` of the linkage's size."""
     if len(modes) < 2:
         return []
-    joints = sorted(modes[0].joints)
-    points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in modes])
-    distance = np.abs(points[:, None, :] - points[None, :, :]).max(axis=-1)
+    distance = _joint_distances(modes)
     first, second = np.nonzero(np.triu(distance < within * max(1.0, distance_bound(scene)), k=1))
     return list(zip(first.tolist(), second.tolist(), strict=True))
 
@@ -206,20 +207,23 @@ def _valley_representative(modes: list[AssemblyMode]) -> AssemblyMode:
     flat = [mode for mode in modes if 0 in mode.signs]
     if flat:
         return min(flat, key=lambda mode: mode.max_residual)
-    joints = sorted(modes[0].joints)
-    points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in modes])
-    spread = np.abs(points[:, None, :] - points[None, :, :]).max(axis=(1, 2))
-    return modes[int(np.argmin(spread))]
+    return modes[int(np.argmin(_joint_distances(modes).max(axis=1)))]
 
 
-def _valley_sentence(scene: Scene, modes: list[AssemblyMode]) -> str:
+def _valley_sentence(modes: list[AssemblyMode]) -> str:
     names = sorted(modes[0].parameters)
     ranges = ", ".join(f"{name} in [{min(m.parameters[name] for m in modes):.8g}, "
                        f"{max(m.parameters[name] for m in modes):.8g}]" for name in names)
-    return (f"{len(modes)} verified configurations within "
-            f"{max(math.dist(a.joints[j], b.joints[j]) for a in modes for b in modes for j in a.joints):.1e} of "
-            f"each other ({ranges}) lie in one valley of the residual, flat to rounding: reported as one mode "
-            "(a singular mode, or modes closer than floating point separates)")
+    return (f"{len(modes)} verified configurations within {_joint_distances(modes).max():.1e} of each other "
+            f"({ranges}) lie in one valley of the residual, flat to rounding: reported as one mode (a singular "
+            "mode, or modes closer than floating point separates)")
+
+
+def _joint_distances(modes) -> np.ndarray:
+    """For n modes, the (n, n) largest distance of a joint between two of them."""
+    joints = sorted(modes[0].joints)
+    points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in modes])
+    return np.abs(points[:, None, :] - points[None, :, :]).max(axis=-1)
 
 
 #: A free-sign triangle of a verified mode whose doubled area is below this (relative to
@@ -361,5 +365,5 @@ def same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:
     """Whether two modes place every joint within 1e-6 of the linkage's size."""
     scale = max(1.0, distance_bound(scene))
     return all(
-        math.dist(first.joints[j], second.joints[j]) < 1e-6 * scale for j in first.joints
+        math.dist(first.joints[j], second.joints[j]) < SAME_MODE * scale for j in first.joints
     )

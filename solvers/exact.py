@@ -115,7 +115,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
-    if getattr(polynomial, "vanishing", False):
+    if polynomial is not None and polynomial.vanishing:
         # issue 25's 9/N20 (msolve: positive-dimensional; numeric: the condition vanishes along
         # s10,8 in (0, 68)): the norm is 0 and only the contents divided out (powers of the
         # parameter) were left, which had been certified with 8 modes
@@ -163,12 +163,14 @@ def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicP
     for value, coincident in undefined:
         pairs |= coincident
         roots.append(value)
-    by_msolve, unsettled = False, bool(roots)
-    if roots and coincidences:
+    if not roots:
+        return modes, tuple(gaps), False
+    by_msolve, unsettled = False, ("not examined",)
+    if coincidences:
         modes, by_msolve, unsettled = with_modes_where_undefined(
             scene, plan, pairs, modes, lambda found: with_coincident_modes(
                 scene, plan, pairs, roots, found, lambda other: solve_exact(scene, other, coincidences=False)))
-    if by_msolve:
+    if by_msolve:  # msolve's own sentences (a continuum, a failure)
         gaps += unsettled
     elif unsettled:
         gaps.append(f"{name} ≈ {', '.join(f'{r:.6g}' for r in roots)}: the plan is undefined there "

@@ -340,7 +340,8 @@ def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list
     FLAT_NOISE is the estimate (31.99994 there). Where the noise is larger than FLAT_NOISE
     (next to a fold: 1e-8 on 9/N22) the modes are merged later, by
     :func:`~baranov.solvers.configuration.merged_clusters`."""
-    roots = [r for n, r in enumerate(sorted(roots)) if n == 0 or r - sorted(roots)[n - 1] > 1e-12 * abs(r)]
+    ordered = sorted(roots)
+    roots = [r for n, r in enumerate(ordered) if n == 0 or r - ordered[n - 1] > 1e-12 * abs(r)]
     kept, valleys, start = [], [], 0
     for n in range(1, len(roots) + 1):
         if n < len(roots) and _flat(sampled, roots[n - 1], roots[n]):
@@ -562,9 +563,10 @@ def _next_to_roots(grid: np.ndarray, roots: list[float]) -> list[tuple[float, fl
             merged.append([low, high])
     # where f is noise, every sample flips its sign and brackets a "root": beside those the
     # re-sampling only finds more noise (issue 25's 9/N10 drawn at a flexible configuration,
-    # seed 26: 16 470 brackets, 198 s); the few stretches with the fewest roots are kept
-    return [(low, high) for low, high in merged][:MAX_MINIMA] if len(merged) <= MAX_MINIMA else [
-        (low, high) for low, high in merged if sum(low <= r <= high for r in roots) == 1][:MAX_MINIMA]
+    # seed 26: 16 470 brackets, 198 s); past MAX_MINIMA stretches only lone roots are kept
+    if len(merged) > MAX_MINIMA:
+        merged = [cell for cell in merged if sum(cell[0] <= r <= cell[1] for r in roots) == 1]
+    return [(low, high) for low, high in merged[:MAX_MINIMA]]
 
 
 def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float, float]]:

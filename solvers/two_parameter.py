@@ -277,7 +277,7 @@ def _newton(compiled: CompiledSystem, branches: np.ndarray, start: np.ndarray, b
             pending[index[better]] = False
             scale[pending] /= 2
         x[active], f[active] = xa, fa
-        stuck[np.flatnonzero(active)[pending]] = True
+        stuck[np.flatnonzero(active)[pending | ~usable]] = True
     norm = np.max(np.abs(f), axis=1)
     good = np.isfinite(norm) & (norm < CANDIDATE_TOLERANCE)
     roots = distinct_candidates(x[good], branches[branch[good]])
