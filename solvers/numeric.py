@@ -76,6 +76,8 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
+    if time_limit is not None and not time_limit >= 0:
+        raise SolverError(f"time_limit {time_limit}: must be a number of seconds, 0 or more")
     deadline = time.monotonic() + time_limit if time_limit is not None else math.inf
     undecided: list[str] = []
     if degree == 0:

@@ -234,3 +234,9 @@ def test_time_limit_names_what_was_not_searched():
     two = solve(load_scene(EXAMPLES / "9-B28.json"), time_limit=0)
     assert all(m.max_residual < 1e-8 for m in two.assembly_modes)
     assert two.undecided and all("cells not searched: the time limit was reached" in s for s in two.undecided)
+
+
+@pytest.mark.parametrize("bad", [-1.0, float("nan")])
+def test_time_limit_must_be_seconds(bad):
+    with pytest.raises(ValueError, match=f"time_limit {bad}: must be a number of seconds"):
+        solve(load_scene(EXAMPLES / "5-B1.json"), time_limit=bad)
