@@ -267,9 +267,9 @@ links and 44 of eleven-link trusses, at commit e0f302d) found no miss on 7 and 9
 but the time bound fails there: a coupling-1 instance of 9/N10 drawn at a flexible
 configuration took the numeric backend 198 s (p99/median 409 on that truss), where the
 closure condition is noise over long stretches and every noise sign change was bracketed
-(profile: 16 470 Brent brackets, 500 773 plan evaluations; 32 s since the re-sampling
-beside roots and of local minima is capped, 4 222 brackets of noise sign changes remain —
-open, `tests/regressions/open/9-N10-noise-brackets.json`); and
+(profile: 16 470 Brent brackets, 500 773 plan evaluations; 32 s once the re-sampling
+beside roots and of local minima was capped, 1.4 s since sign changes and minima that
+rounding decides are one stretch — docs/numeric.md, `tests/regressions/9-N10-noise-brackets.json`); and
 the exact backend ran over its 300 s limit on 8 of the 14 coupling-2 eleven-link instances
 (issue 24: the coupling-2 lifting is 100× slower than msolve there). On 11/N561 (coupling
 2, double-root) the numeric backend placed one of 11 modes wrongly (1 missed, 1 spurious;

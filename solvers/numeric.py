@@ -309,14 +309,20 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
         points, values, edges = _with_edges(points, values, sampled)
         roots = [edge for edge, value in edges if abs(value) < 1e-7]
         near: list[float] = []
-        roots += _scan(f, points, values, sampled, near)
+        noise: list[tuple[float, float, int]] = []
+        roots += _scan(f, points, values, sampled, near, noise, RESOLUTION * upper)
         for low, high in _next_to_roots(points, roots) + _suspicious_minima(points, values)[:MAX_MINIMA]:
             fine = np.linspace(low, high, REFINEMENT)
-            roots += _scan(f, fine, sampled(fine), sampled, near)
+            roots += _scan(f, fine, sampled(fine), sampled, near, noise, RESOLUTION * upper)
         roots, valleys = _merged_flat_valleys(sampled, roots)
-        undecided += [f"{parameter_name(compiled.parameters[0])} in [{low:.10g}, {high:.10g}] on branch "
-                      f"{signs_text(branch)}: the closure condition is flat to rounding there; reported as one mode "
-                      "(a singular mode, or modes closer than floating point separates)" for low, high in valleys]
+        name = parameter_name(compiled.parameters[0])
+        undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition "
+                      "is flat to rounding there; reported as one mode (a singular mode, or modes closer than "
+                      "floating point separates)" for low, high in valleys]
+        undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition's "
+                      f"sign is rounding noise there ({changes} sign changes); reported as one mode"
+                      for low, high, changes in _merged_stretches(noise)
+                      if not any(a <= low and high <= b for a, b in valleys)]  # said already
         for root in roots:
             candidates.append((np.array([root]), branch))
         candidates += _roots_at_folds(compiled, branch, edges)
@@ -325,6 +331,20 @@ def _one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: 
     if left:
         undecided.append(f"branches {', '.join(left)}: not searched, the time limit was reached")
     return candidates, near_roots
+
+
+def _merged_stretches(stretches: list[tuple[float, float, int]]) -> list[tuple[float, float, int]]:
+    """(low, high, sign changes) stretches merged where they overlap or the gap between
+    them is narrower than the wider of the two (the coarse scan and the re-samplings
+    meet the same noise in pieces)."""
+    merged: list[list] = []
+    for low, high, changes in sorted(stretches):
+        if merged and low - merged[-1][1] <= max(high - low, merged[-1][1] - merged[-1][0]):
+            merged[-1][1] = max(merged[-1][1], high)
+            merged[-1][2] += changes
+        else:
+            merged.append([low, high, changes])
+    return [(low, high, changes) for low, high, changes in merged]
 
 
 #: Samples of f between two neighbouring roots, and of a flat stretch's extent.
@@ -365,19 +385,31 @@ def _flat(sampled, low: float, high: float) -> bool:
 
 def _flat_stretch(sampled, low: float, high: float) -> tuple[float, float]:
     """The stretch around [low, high] (flat) where |f| stays below FLAT_NOISE, sampled
-    outwards over windows of growing width, to VALLEY_SAMPLES⁻¹ of the last window."""
+    outwards over windows of growing width, then across the last sample step twice more
+    (to VALLEY_SAMPLES⁻³ of the last window: the middle of the stretch is the mode's
+    estimate, and a coarse end moved it by 2e-4 on 9/N15)."""
     ends = []
     for direction, end in ((-1, low), (1, high)):
         width = high - low
         for _ in range(8):
-            points = end + direction * np.linspace(0, width, VALLEY_SAMPLES)
-            flat = np.abs(np.nan_to_num(sampled(points), nan=np.inf)) <= FLAT_NOISE
-            if not flat.all():
-                end = float(points[np.argmin(flat)] - direction * width / (VALLEY_SAMPLES - 1))
+            end, width, inside = _last_flat(sampled, end, direction, width)
+            if not inside:
                 break
-            end, width = float(points[-1]), width * 4
+        for _ in range(2):
+            end, width, _ = _last_flat(sampled, end, direction, width / (VALLEY_SAMPLES - 1))
         ends.append(end)
     return ends[0], ends[1]
+
+
+def _last_flat(sampled, start: float, direction: int, width: float) -> tuple[float, float, bool]:
+    """The last of VALLEY_SAMPLES samples from ``start`` over ``width`` in ``direction``
+    before |f| first exceeds FLAT_NOISE, and whether none did (then the next window is 4
+    times wider)."""
+    points = start + direction * np.linspace(0, width, VALLEY_SAMPLES)
+    flat = np.abs(np.nan_to_num(sampled(points), nan=np.inf)) <= FLAT_NOISE
+    if flat.all():
+        return float(points[-1]), width * 4, True
+    return float(points[max(int(np.argmin(flat)) - 1, 0)]), width, False
 
 
 #: A failing radicand whose coarse-grid local maximum is below −this (relative to the
@@ -622,24 +654,34 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
     return (*_merge(points, values, np.concatenate(extra_points), np.concatenate(extra_values)), edges)
 
 
-def _scan(f, grid: np.ndarray, values: np.ndarray, sampled=None, near: list | None = None) -> list[float]:
+def _scan(f, grid: np.ndarray, values: np.ndarray, sampled, near: list | None = None,
+          noise: list | None = None, resolution: float = 0.0, resample: bool = True) -> list[float]:
     """Roots of f on sampled ``grid``: exact zeros, sign changes (Brent), and tangential
     roots at local minima of |f| (bounded minimisation). A sign change across an
     undefined gap narrower than the cell (Brent meets NaN) is re-sampled finely, with its
-    domain edges, once (``sampled`` given)."""
+    domain edges, once (``resample``). A run of sign changes across samples whose sign is
+    rounding noise at the parameter's ``resolution`` (:func:`_noise_runs`) gives one
+    root, the run's middle, and its stretch is appended to ``noise``."""
     finite = np.isfinite(values)
     both = finite[:-1] & finite[1:]
     roots: list[float] = [float(grid[i]) for i in np.flatnonzero(finite & (values == 0))]
-    for i in np.flatnonzero(both & (values[:-1] * values[1:] < 0)):
+    cells = np.flatnonzero(both & (values[:-1] * values[1:] < 0))
+    single, runs = _noise_runs(sampled, grid, values, cells, resolution)
+    for first, last in runs:
+        low, high = float(grid[first]), float(grid[last + 1])
+        roots.append((low + high) / 2)
+        if noise is not None:
+            noise.append((low, high, last - first + 1))
+    for i in single:
         try:
             roots.append(brentq(f, grid[i], grid[i + 1], xtol=1e-14 * grid[i + 1], rtol=1e-15, maxiter=200))
         except ValueError:  # f is undefined somewhere inside the bracket
-            if sampled is not None:
+            if resample:
                 fine = np.linspace(grid[i], grid[i + 1], REFINEMENT)
                 points, fine_values, edges = _with_edges(fine, sampled(fine), sampled)
                 roots += [edge for edge, value in edges if abs(value) < 1e-7]
-                roots += _scan(f, points, fine_values, near=near)
-    for low, high in _suspicious_minima(grid, values)[:MAX_MINIMA]:
+                roots += _scan(f, points, fine_values, sampled, near, noise, resolution, resample=False)
+    for low, high in _above_noise(sampled, grid, values, _suspicious_minima(grid, values), resolution):
         found = minimize_scalar(lambda s: abs(f(s)), bounds=(low, high), method="bounded",
                                 options={"xatol": 1e-14 * high})
         if found.success and abs(f(found.x)) < 1e-7:
@@ -647,6 +689,72 @@ def _scan(f, grid: np.ndarray, values: np.ndarray, sampled=None, near: list | No
         elif near is not None and found.success and abs(f(found.x)) < NEAR_ROOT:
             near.append(float(found.x))
     return roots
+
+
+#: Offsets, in units of the parameter's resolution, at which a sample is re-evaluated
+#: to tell its sign from rounding noise.
+JITTER = np.array([-4.0, -3.0, -2.0, -1.0, 1.0, 2.0, 3.0, 4.0])
+#: The parameter's resolution relative to its upper bound: s enters sums with squared
+#: distances up to that bound, so f cannot resolve s more finely than a few ulps of it.
+RESOLUTION = 2.0 ** -48
+
+
+def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tuple[float, float]],
+                 resolution: float) -> list[tuple[float, float]]:
+    """The first MAX_MINIMA of ``minima`` (cells around a local minimum of |f| at their
+    middle sample) whose dip below both neighbours exceeds the spread of f re-evaluated at
+    offsets JITTER × ``resolution`` from the minimum: where f is rounding noise every
+    other sample is a "minimum" (issue 25's 9/N10: 972 bounded minimisations near s10,5 =
+    1e-10, 8 of its 9.5 s). One vectorised evaluation of 8 points per minimum looked at."""
+    if resolution <= 0 or not minima:
+        return minima[:MAX_MINIMA]
+    minima = minima[:4 * MAX_MINIMA]
+    index = np.searchsorted(grid, [low for low, _ in minima]) + 1  # a cell is (grid[i − 1], grid[i + 1])
+    centres = grid[index][:, None]
+    jittered = sampled((centres + JITTER * np.minimum(resolution, np.abs(centres) / 8)).ravel())
+    spread = np.ptp(jittered.reshape(len(index), len(JITTER)), axis=1)
+    magnitude = np.abs(values)
+    dip = np.minimum(magnitude[index - 1], magnitude[index + 1]) - magnitude[index]
+    kept = [cell for cell, keep in zip(minima, dip > spread, strict=True) if keep]
+    return kept[:MAX_MINIMA]
+
+
+#: Noisy sign-change cells at most this many cells apart belong to one noise stretch.
+NOISE_GAP = 8
+
+
+def _noise_runs(sampled, grid: np.ndarray, values: np.ndarray, cells: np.ndarray, resolution: float):
+    """Split the sign-change cells ``cells`` (f(grid[i]) f(grid[i+1]) < 0) into lone cells,
+    to bracket, and stretches of cells whose sign rounding decides: f re-evaluated at
+    offsets JITTER × ``resolution`` (at most an eighth of the sample) from an end of the
+    cell takes both signs. Noisy cells at most NOISE_GAP cells apart form one stretch;
+    a noisy cell alone (a root on a sample) is bracketed as usual. Where f is below its
+    own rounding noise every few samples flip its sign, and each flip bracketed a
+    "root" (issue 25's 9/N10 drawn at a flexible configuration: f ≈ c s^0.2 near s10,5 =
+    0, where P10 and P5 coincide; re-sampled every 5e-14 near s = 3e-11, it flipped
+    between ±2e-4: 4 222 Brent brackets, 39 of its 51 s). Returns (lone cells,
+    [(first cell, last cell)] of the stretches). Cost: one vectorised evaluation of 8
+    points per end of a sign-change cell."""
+    if len(cells) < 2 or resolution <= 0:
+        return cells, []
+    ends = np.unique(np.concatenate([cells, cells + 1]))
+    centres = grid[ends][:, None]
+    points = (centres + JITTER * np.minimum(resolution, np.abs(centres) / 8)).ravel()
+    jittered = sampled(points).reshape(len(ends), len(JITTER))
+    noisy_ends = ends[~(np.sign(jittered) == np.sign(values[ends])[:, None]).all(axis=1)]
+    noisy = np.isin(cells, noisy_ends) | np.isin(cells + 1, noisy_ends)
+    single, runs = [int(i) for i in cells[~noisy]], []
+    group: list[int] = []
+    for i in cells[noisy].tolist() + [None]:
+        if group and (i is None or i - group[-1] > NOISE_GAP):
+            if len(group) > 1:
+                runs.append((group[0], group[-1]))
+            else:
+                single.append(group[0])
+            group = []
+        if i is not None:
+            group.append(i)
+    return sorted(single), runs
 
 
 def _domain_edge(sampled, lo: float, hi: float, inside_low: bool):
