@@ -4,6 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 INSTANCES ?= 6
+INSTANCES_7 ?= $(INSTANCES)
 # nauty's geng for the brute-force cross-check; --no-deps keeps it to one ~40 MB wheel.
 GENG_WHEEL := passagemath-nauty==10.8.13
 # msolve (exact polynomial systems): the independent oracle of the adversarial run and the
@@ -48,8 +49,9 @@ bench-timing: $(STAMP)  ## timing and memory medians of each stage
 bench-collinear: $(STAMP)  ## both backends on every 9-link truss drawn with joints in line (issue 28): docs/bench/collinear-joints.md, included in docs/stability.md by `make bench` (about 18 min, 2 cores)
 	$(BIN)/python bench/sweep_collinear.py --links 9 --on-line 3,4 --instances 5 --box 4 --workers 2 --out docs/bench/collinear-joints.md
 
-bench-adversarial: $(STAMP)  ## both backends against msolve on adversarial instances (issue 25), 7 and 9 links and every 56th 11-link truss: docs/bench/adversarial.md, included in docs/stability.md by `make bench`; rows accumulate in bench/results/adversarial.jsonl (committed) while the solving code is unchanged, so a rerun resumes; raise INSTANCES to add more
-	$(BIN)/python bench/adversarial.py --links 7,9 --seed 26 --instances $(INSTANCES) --workers 2 --out bench/results/adversarial.jsonl
+bench-adversarial: $(STAMP)  ## both backends against msolve on adversarial instances (issue 25), 7 and 9 links and every 56th 11-link truss: docs/bench/adversarial.md, included in docs/stability.md by `make bench`; rows accumulate in bench/results/adversarial.jsonl (committed) while the solving code is unchanged, so a rerun resumes; raise INSTANCES (9 links) and INSTANCES_7 to add more: INSTANCES=40 INSTANCES_7=300 is the 10⁴-instance run of issue 25
+	$(BIN)/python bench/adversarial.py --links 7 --seed 26 --instances $(INSTANCES_7) --workers 2 --out bench/results/adversarial.jsonl
+	$(BIN)/python bench/adversarial.py --links 9 --seed 26 --instances $(INSTANCES) --workers 2 --out bench/results/adversarial.jsonl
 	$(BIN)/python bench/adversarial.py --links 11 --every 56 --instances 1 --workers 2 --timeout 300 --out bench/results/adversarial.jsonl --report docs/bench/adversarial.md
 
 clean:

@@ -272,8 +272,10 @@ beside roots and of local minima was capped, 1.4 s since sign changes and minima
 rounding decides are one stretch — docs/numeric.md, `tests/regressions/9-N10-noise-brackets.json`); and
 the exact backend ran over its 300 s limit on 8 of the 14 coupling-2 eleven-link instances
 (issue 24: the coupling-2 lifting is 100× slower than msolve there). On 11/N561 (coupling
-2, double-root) the numeric backend placed one of 11 modes wrongly (1 missed, 1 spurious;
-open, `tests/regressions/open/11-N561-double-root.json`). Both issue-25 targets — 10⁴
+2, double-root) the numeric backend placed a singular mode 2e-4 from msolve's (1 missed,
+1 spurious): of the 648 verified configurations in its flat valley it reported the one
+nearest all others; now the one nearest the middle of the valley's parameter box, 1.2e-6
+from msolve's (`tests/regressions/11-N561-double-root.json`). Both issue-25 targets — 10⁴
 instances with no miss, and p99 ≤ 10 × median — are not met yet; rows accumulate in
 bench/results/adversarial.jsonl while the solving code is unchanged.
 

@@ -575,7 +575,7 @@ MINIMUM_DEPTH = 1e-10
 
 #: At most this many local minima of |f| are minimised per scan, and re-sampled per
 #: branch, the deepest first (uncapped re-sampling took 50 of 81 s on issue 25's 9/N10 at a
-#: flexible configuration, now 32 s: tests/regressions/open/9-N10-noise-brackets.json): next
+#: flexible configuration, then 32 s: tests/regressions/9-N10-noise-brackets.json): next
 #: to a singular mode f is flat to rounding over a stretch and a fine re-sampling showed
 #: 100–150 "minima" per cell (issue 25's 9/N8 instance drawn at a flexible configuration:
 #: 12 000 evaluations, 36 s where its siblings take 0.6 s).
