@@ -168,10 +168,12 @@ def main(argv: list[str] | None = None) -> int:
     methods = tuple(args.methods.split(","))
     done = {(row["key"], row["seed"]) for row in current_rows(args.out, code)}
     wanted = set(args.trusses.split(",")) if args.trusses else None
+    # instance by instance over all trusses and kinds, so that a run stopped early covers them evenly
     tasks = [(links, index, kind, instance, args.seed, methods, args.timeout, code)
-             for links in map(int, args.links.split(",")) for index in range(len(baranov_trusses(links)))
+             for links in map(int, args.links.split(",")) for instance in range(args.instances)
+             for index in range(len(baranov_trusses(links)))
              if (wanted is None or f"{links}/N{index + 1}" in wanted) and index % args.every == 0
-             for kind in args.kinds.split(",") for instance in range(args.instances)
+             for kind in args.kinds.split(",")
              if (f"{links}/N{index + 1}/{kind}/{instance}", args.seed) not in done]
     print(f"{len(tasks)} instances to run ({len(done)} already in {args.out} for solving code {code})", flush=True)
     args.out.parent.mkdir(parents=True, exist_ok=True)
