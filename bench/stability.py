@@ -275,7 +275,8 @@ the exact backend ran over its 300 s limit on 8 of the 14 coupling-2 eleven-link
 2, double-root) the numeric backend placed a singular mode 2e-4 from msolve's (1 missed,
 1 spurious): of the 648 verified configurations in its flat valley it reported the one
 nearest all others; now the one nearest the middle of the valley's parameter box, 1.2e-6
-from msolve's (`tests/regressions/11-N561-double-root.json`). Both issue-25 targets — 10⁴
+from msolve's, 1.2e-4 after the bilateration kernel changed the rounding (a singular mode
+located coarsely; `tests/regressions/11-N561-double-root.json`). Both issue-25 targets — 10⁴
 instances with no miss, and p99 ≤ 10 × median — are not met yet; rows accumulate in
 bench/results/adversarial.jsonl while the solving code is unchanged.
 

@@ -1,7 +1,15 @@
 """Closure conditions in bilateration matrices: derivation from a plan, symmetric
 variants from automorphisms, text/LaTeX/sympy forms, and compiled numeric evaluators."""
 
-from .bilateration import bilateration_matrix, oriented_area, perpendicular_matrix
+from .bilateration import (
+    bilaterated,
+    bilateration_matrix,
+    oriented_area,
+    perpendicular_matrix,
+    place_joints,
+    squared_distance,
+    triangle_radicand,
+)
 from .conditions import (
     ClosureSystem,
     DistanceCondition,
@@ -34,9 +42,13 @@ __all__ = [
     "symmetric_variants",
     "DistanceCondition",
     "MatrixExpression",
+    "bilaterated",
     "bilateration_matrix",
     "closure_system",
     "oriented_area",
     "perpendicular_matrix",
+    "place_joints",
+    "squared_distance",
     "sympy_condition",
+    "triangle_radicand",
 ]

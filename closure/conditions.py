@@ -22,7 +22,7 @@ from functools import cached_property
 import sympy
 
 from baranov.planner import DistanceKind, Plan
-from baranov.topology import natural_sort_key, thesis_subscript
+from baranov.topology import distance_name, natural_sort_key, thesis_subscript
 
 Triangle = tuple[str, str, str]
 Monomial = tuple[Triangle, ...]  # Z factors, latest step first
@@ -31,10 +31,6 @@ Polynomial = tuple[tuple[Monomial, int], ...]  # sorted (monomial, coefficient) 
 
 def _z_text(triangle: Triangle) -> str:
     return "Z" + ",".join(thesis_subscript(n) for n in triangle)
-
-
-def _s_text(u: str, v: str) -> str:
-    return f"s{thesis_subscript(u)},{thesis_subscript(v)}"
 
 
 def _sorted_polynomial(terms: dict[Monomial, int]) -> Polynomial:
@@ -78,7 +74,7 @@ class DistanceCondition:
 
     def text(self) -> str:
         """e.g. ``s2,5 = det(I - Z1,3,2 Z1,6,3 - Z6,4,5 Z6,1,4) s1,6``."""
-        return f"{_s_text(*self.pair)} = det({self.omega.text()}) {_s_text(*self.reference)}"
+        return f"{distance_name(*self.pair)} = det({self.omega.text()}) {distance_name(*self.reference)}"
 
     def latex(self) -> str:
         u, v = (thesis_subscript(n) for n in self.pair)

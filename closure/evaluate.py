@@ -9,15 +9,16 @@ parameter value — yields NaN, which propagates to the residuals.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from itertools import product
+from typing import NamedTuple
 
 import numpy as np
 
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
-from .bilateration import bilateration_matrix
+from .bilateration import dehomogenised, place_joints, signed_root
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
 
 Triangle = tuple[str, str, str]
@@ -51,6 +52,8 @@ class CompiledSystem:
         self.parameters = self.plan.parameters
         self.free_triangles = self.plan.free_sign_triangles
         self._parameter_index = {frozenset(p): n for n, p in enumerate(self.parameters)}
+        free_steps = [index for index, step in enumerate(self.plan.steps) if step.free_sign]
+        self._free_index = {index: n for n, index in enumerate(free_steps)}
         for step in self.plan.steps:
             if not step.free_sign and step.triangle not in self.fixed_signs:
                 raise ValueError(f"triangle {step.triangle}: orientation sign of a link step missing")
@@ -61,15 +64,15 @@ class CompiledSystem:
         ``parameter_values`` has shape (N, p) (p = number of parameters), ``signs`` shape
         (B, m) (m = free-sign triangles); results have shape (B, N).
         """
-        matrices, s_ref, *_ = self._evaluate(parameter_values, signs)
-        return matrices, s_ref
+        placement = self._evaluate(parameter_values, signs)
+        return placement.matrices(), placement.s_ref
 
     def first_failures(self, parameter_values: np.ndarray, signs: np.ndarray) -> np.ndarray:
         """For every branch and parameter value, the index of the first step whose triangle
         cannot be built (negative radicand), or the number of steps where all can; shape
         (B, N). Where neighbouring values fail at different steps, a feasible window may
         lie between them even if no sample falls inside it."""
-        return self._evaluate(parameter_values, signs)[2]
+        return self._evaluate(parameter_values, signs).failures
 
     def failure_profile(self, parameter_values: np.ndarray,
                         signs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -79,76 +82,76 @@ class CompiledSystem:
         values failing at the same step shows as a local maximum of that radicand; an
         undefined gap between two defined values, as a local minimum of one free-sign
         step's radicand."""
-        _, _, failures, radicands, margins = self._evaluate(parameter_values, signs, profile=True)
-        return failures, radicands, np.stack(margins, axis=-1) if margins else np.zeros((*failures.shape, 0))
+        placement = self._evaluate(parameter_values, signs, profile=True)
+        failures, margins = placement.failures, placement.margins
+        return failures, placement.radicands, np.stack(margins, axis=-1) if margins else np.zeros((*failures.shape, 0))
 
     def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> dict[str, np.ndarray]:
         """M_k for every joint, point n on branch ``signs[n]``; shape (N,)."""
-        matrices, *_ = self._evaluate(parameter_values, signs, paired=True)
+        matrices = self._evaluate(parameter_values, signs, paired=True).matrices()
         return {joint: value[0] for joint, value in matrices.items()}
 
     def paired_residuals(self, parameter_values: np.ndarray, signs: np.ndarray) -> np.ndarray:
         """Relative closure residuals of point n on branch ``signs[n]``: shape (N, c) for
         ``parameter_values`` of shape (N, p) and ``signs`` of shape (N, m) (candidates of
         different branches refined together)."""
-        matrices, s_ref, *_ = self._evaluate(parameter_values, signs, paired=True)
-        return self._closure_residuals(matrices, s_ref)[0]
+        return self._closure_residuals(self._evaluate(parameter_values, signs, paired=True))[0]
 
     def paired_residuals_and_failures(self, parameter_values: np.ndarray,
                                       signs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """In one evaluation, for point n on branch ``signs[n]``: :meth:`paired_residuals`,
         shape (N, c), and :meth:`first_failures`, shape (N,)."""
-        matrices, s_ref, failures, *_ = self._evaluate(parameter_values, signs, paired=True)
-        return self._closure_residuals(matrices, s_ref)[0], failures[0]
+        placement = self._evaluate(parameter_values, signs, paired=True)
+        return self._closure_residuals(placement)[0], placement.failures[0]
 
     def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool = False,
                   paired: bool = False):
+        """The plan placed by the bilateration kernel (:func:`~.bilateration.place_joints`)
+        in numpy floats over all branches × parameter values at once."""
         values = np.asarray(parameter_values, dtype=float)
         if values.ndim == 1:
             values = values[:, None]
         signs = np.asarray(signs, dtype=float)
         shape = (1, values.shape[0]) if paired else (signs.shape[0], values.shape[0])
         parameter = [np.broadcast_to(values[None, :, n], shape) for n in range(values.shape[1])]
-        a, b = self.plan.reference
-        s_ref = self._distance(a, b, parameter, None, {})
-        matrices: dict[str, np.ndarray] = {a: np.zeros(shape, complex), b: np.ones(shape, complex)}
-        failures = np.full(shape, len(self.plan.steps))
+        steps = len(self.plan.steps)
+        failures = np.full(shape, steps)
         radicands = np.full(shape, np.nan)
-        margins = []
-        free = 0
-        for index, step in enumerate(self.plan.steps):
-            i, j = step.base
-            k = step.joint
-            s_ij = self._distance(i, j, parameter, s_ref, matrices)
-            s_ik = self._distance(i, k, parameter, s_ref, matrices)
-            s_jk = self._distance(j, k, parameter, s_ref, matrices)
+        margins: list[np.ndarray] = []
+        relative: list[np.ndarray] = []  # the current step's radicand over its squared largest side
+
+        def known(u: str, v: str):
+            pair = frozenset((u, v))
+            if pair in self.known:
+                return self.known[pair], 1
+            if pair in self._parameter_index:
+                return parameter[self._parameter_index[pair]], 1
+            return None
+
+        def root(index, step, sides, radicand):
             if step.free_sign:
-                sign = signs[:, free][None, :] if paired else signs[:, free][:, None]
-                free += 1
+                column = signs[:, self._free_index[index]]
+                sign = column[None, :] if paired else column[:, None]
             else:
                 sign = self.fixed_signs[step.triangle]
-            z = bilateration_matrix(s_ij, s_ik, s_jk, sign)
-            with np.errstate(invalid="ignore"):  # an undefined step (inf · 0) is NaN: marked failed below
-                matrices[k] = matrices[i] + z * (matrices[j] - matrices[i])
-            failed = ~np.isfinite(matrices[k])
-            newly = (failures == len(self.plan.steps)) & failed
+            if profile:
+                relative[:] = [radicand / np.maximum(np.maximum(sides[0], sides[1]), sides[2]) ** 2]
+                if step.free_sign:
+                    margins.append(relative[0])
+            return signed_root(radicand, sides, sign)
+
+        def after_step(index, step, point):
+            nonlocal failures, radicands
+            newly = (failures == steps) & ~np.isfinite(point[0] + point[1])  # NaN and ±inf survive the sum
             failures = np.where(newly, index, failures)
             if profile:
-                with np.errstate(invalid="ignore"):
-                    scale = np.maximum(np.maximum(s_ij, s_ik), s_jk) ** 2
-                    radicand = ((s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)) / scale
-                radicands = np.where(newly, radicand, radicands)
-                if step.free_sign:
-                    margins.append(radicand)
-        return matrices, s_ref, failures, radicands, margins
+                radicands = np.where(newly, relative[0], radicands)
+            return True
 
-    def _distance(self, u: str, v: str, parameter, s_ref, matrices) -> np.ndarray:
-        pair = frozenset((u, v))
-        if pair in self.known:
-            return self.known[pair]
-        if pair in self._parameter_index:
-            return parameter[self._parameter_index[pair]]
-        return np.abs(matrices[v] - matrices[u]) ** 2 * s_ref
+        with np.errstate(invalid="ignore", divide="ignore"):  # an undefined step (NaN, s_ij = 0) is marked failed
+            points, (s_ref, _), distance = place_joints(self.plan, known, root, reduced_point=dehomogenised,
+                                                        after_step=after_step)
+        return _Placement(points, distance, s_ref, shape, failures, radicands, margins)
 
     def residuals(self, parameter_values: np.ndarray, signs: np.ndarray | None = None) -> np.ndarray:
         """Relative closure residuals (computed s_{u,v} - known s_{u,v}) / known s_{u,v},
@@ -156,18 +159,37 @@ class CompiledSystem:
         values and c conditions. NaN where a radicand is negative."""
         if signs is None:
             signs = sign_branches(len(self.free_triangles))
-        matrices, s_ref = self.matrices(parameter_values, signs)
-        return self._closure_residuals(matrices, s_ref)
+        return self._closure_residuals(self._evaluate(parameter_values, signs))
 
-    def _closure_residuals(self, matrices: dict[str, np.ndarray], s_ref: np.ndarray) -> np.ndarray:
-        shape = np.shape(next(iter(matrices.values())))
+    def _closure_residuals(self, placement: _Placement) -> np.ndarray:
         columns = []
         for u, v in self.plan.closure_pairs:
             target = self.known[frozenset((u, v))]
-            columns.append((np.abs(matrices[v] - matrices[u]) ** 2 * s_ref - target) / target)
+            with np.errstate(invalid="ignore"):
+                columns.append((placement.distance(u, v, computed=True)[0] - target) / target)
         if not columns:
-            return np.zeros((*shape, 0))
-        return np.stack(columns, axis=-1)
+            return np.zeros((*placement.shape, 0))
+        return np.stack(np.broadcast_arrays(*columns), axis=-1)
+
+
+class _Placement(NamedTuple):
+    """A plan placed in numpy floats (:meth:`CompiledSystem._evaluate`): points (x, y, 1)
+    in the frame M_a = 0, M_b = 1, the kernel's distance function, s_ref, the (B, N)
+    shape, first failing steps, and the failure profile (radicands, free-sign margins)."""
+
+    points: dict
+    distance: Callable
+    s_ref: np.ndarray | float
+    shape: tuple[int, int]
+    failures: np.ndarray
+    radicands: np.ndarray
+    margins: list
+
+    def matrices(self) -> dict[str, np.ndarray]:
+        """M_k = x + i y for every joint, shape (B, N) (a step from link sides alone gives
+        scalars: broadcast)."""
+        return {joint: np.broadcast_to(np.asarray(x + 1j * y, complex), self.shape)
+                for joint, (x, y, _) in self.points.items()}
 
 
 def known_distances(chain: KinematicChain, coordinates: Mapping[str, Sequence[float]]) -> dict[Pair, float]:

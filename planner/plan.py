@@ -26,7 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
-from baranov.topology import thesis_subscript
+from baranov.topology import distance_name, thesis_subscript
 
 
 class StepKind(str, Enum):
@@ -152,7 +152,7 @@ class Plan:
         a, b = self.reference
         lines = [f"reference p{thesis_subscript(a)},{thesis_subscript(b)}"]
         if self.parameters:
-            lines.append("parameters " + ", ".join(f"s{thesis_subscript(u)},{thesis_subscript(v)}" for u, v in self.parameters))
+            lines.append("parameters " + ", ".join(distance_name(u, v) for u, v in self.parameters))
         for step in self.steps:
             i, j, k = step.triangle
             how = {StepKind.LINK: f"link L{step.link}, fixed sign", StepKind.CROSS: "free sign",

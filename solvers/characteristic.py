@@ -41,6 +41,7 @@ from itertools import combinations, product
 
 import flint
 
+from baranov.closure.bilateration import dehomogenised, place_joints, squared_distance, triangle_radicand
 from baranov.planner import Plan
 
 from .coincidence import solvable_plan
@@ -214,14 +215,6 @@ def radical_tower(scene: Scene, plan: Plan, prime: int | None = None) -> Radical
     generators = context.gens()
     radicals = generators[:len(free)][::-1]  # r_1, r_2, …
     radicands = []
-    one = context.constant(1)
-    zero = context.constant(0)
-
-    def mul(*factors: flint.fmpq_mpoly) -> flint.fmpq_mpoly:
-        result = factors[0]
-        for factor in factors[1:]:
-            result = _multiply(result, factor, radicals, radicands)
-        return result
 
     def constant(value) -> flint.fmpq_mpoly:
         value = Fraction(value)
@@ -230,48 +223,39 @@ def radical_tower(scene: Scene, plan: Plan, prime: int | None = None) -> Radical
         return context.constant(flint.fmpq(value.numerator, value.denominator))
 
     parameter_of = {frozenset(pair): generators[len(free) + n] for n, pair in enumerate(plan.parameters)}
-    a, b = plan.reference
-    points = {a: (zero, zero, one), b: (one, zero, one)}
 
-    def distance(u: str, v: str, computed: bool = False):
+    def known(u: str, v: str):
         pair = frozenset((u, v))
-        if pair in scene.known and not computed:
-            return constant(scene.known[pair]), one
+        if pair in scene.known:
+            return constant(scene.known[pair]), 1
         if pair in parameter_of:
-            return parameter_of[pair], one
-        xu, yu, du = points[u]
-        xv, yv, dv = points[v]
-        x, y = mul(xv, du) - mul(xu, dv), mul(yv, du) - mul(yu, dv)
-        numerator = mul(mul(x, x) + mul(y, y), reference[0])
-        product = mul(du, dv)
-        denominator = mul(product, product, reference[1])
+            return parameter_of[pair], 1
+        return None
+
+    def signed_root(index, step, sides, radicand):
+        if not step.free_sign:  # a link's three joints: known sides, a rational area
+            return constant(link_area_root(scene, step.triangle))
+        radicands.append(radicand)
+        return radicals[len(radicands) - 1]
+
+    def polynomial(value):
+        return constant(value) if isinstance(value, int) else value
+
+    def reduced_point(point):
+        x, y, d = (polynomial(value) for value in point)
+        common = x.gcd(y).gcd(d)
+        return x / common, y / common, d / common
+
+    def reduced_distance(pair):
+        numerator, denominator = (polynomial(value) for value in pair)
         common = numerator.gcd(denominator)
         return numerator / common, denominator / common
 
-    reference = distance(a, b)  # known or a parameter: no computed distance needs it yet
-    for step in plan.steps:
-        i, j = step.base
-        k = step.joint
-        (s_ij, d_ij), (s_ik, d_ik), (s_jk, d_jk) = distance(i, j), distance(i, k), distance(j, k)
-        first, second, third = mul(s_ij, d_ik, d_jk), mul(s_ik, d_ij, d_jk), mul(s_jk, d_ij, d_ik)
-        total = first + second + third
-        radicand = mul(total, total) - 2 * (mul(first, first) + mul(second, second) + mul(third, third))
-        if step.free_sign:
-            imaginary = radicals[len(radicands)]
-            radicands.append(radicand)
-        else:
-            imaginary = constant(link_area_root(scene, step.triangle))
-        real = first + second - third
-        xi, yi, di = points[i]
-        xj, yj, dj = points[j]
-        u, v = mul(xj, di) - mul(xi, dj), mul(yj, di) - mul(yi, dj)
-        scale = 2 * mul(s_ij, d_ik, d_jk)  # Z = (real + i imaginary) / scale
-        scale_j = mul(scale, dj)
-        x = mul(xi, scale_j) + mul(real, u) - mul(imaginary, v)
-        y = mul(yi, scale_j) + mul(real, v) + mul(imaginary, u)
-        d = mul(scale_j, di)
-        common = x.gcd(y).gcd(d)
-        points[k] = (x / common, y / common, d / common)
+    def multiply(first, second):  # the kernel's small ints (±1 from the reference points) become constants
+        return _multiply(polynomial(first), polynomial(second), radicals, radicands)
+
+    _, _, distance = place_joints(plan, known, signed_root, multiply=multiply, reduced_point=reduced_point,
+                                  reduced_distance=reduced_distance)
     conditions, denominators = [], []
     for u, v in plan.closure_pairs:
         numerator, denominator = distance(u, v, computed=True)
@@ -294,7 +278,7 @@ def link_area_root(scene: Scene, triangle: tuple[str, str, str]) -> Fraction:
     True
     """
     a, b, c = (Fraction(scene.known[frozenset(pair)]) for pair in combinations(triangle, 2))
-    radicand = (a + b + c) ** 2 - 2 * (a * a + b * b + c * c)
+    radicand = triangle_radicand(a, b, c)
     roots = [math.isqrt(part) if part >= 0 else -1 for part in (radicand.numerator, radicand.denominator)]
     if roots[0] < 0 or roots[0] ** 2 != radicand.numerator or roots[1] ** 2 != radicand.denominator:
         raise ExactMethodError(
@@ -457,37 +441,41 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
     known = {pair: flint.acb(flint.fmpq(Fraction(v).numerator, Fraction(v).denominator))
              for pair, v in scene.known.items()}
     values = {frozenset(pair): value for pair, value in zip(plan.parameters, parameters, strict=True)}
-    a, b = plan.reference
-    points = {a: (flint.acb(0), flint.acb(0)), b: (flint.acb(1), flint.acb(0))}
-    reference = flint.acb(1)
 
-    def distance(u: str, v: str) -> flint.acb:
+    def distance(u: str, v: str):
         pair = frozenset((u, v))
-        if pair in known:
-            return known[pair]
-        if pair in values:
-            return values[pair]
-        return computed_distance(points, u, v, reference)
+        value = known.get(pair, values.get(pair))
+        return None if value is None else (value, 1)
 
-    reference = distance(a, b)
+    a, b = plan.reference
+    reference = distance(a, b)[0]
     if reference.contains(0):
         return None, reference, frozenset((a, b))
     free = iter(signs)
-    for step in plan.steps:
-        i, j = step.base
-        s_ij, s_ik, s_jk = distance(i, j), distance(i, step.joint), distance(j, step.joint)
+
+    def signed_root(index, step, sides, radicand):
+        s_ij = sides[0]
         if s_ij.contains(0):
-            return None, reference, frozenset((i, j))
-        radicand = (s_ij + s_ik + s_jk) ** 2 - 2 * (s_ij**2 + s_ik**2 + s_jk**2)
+            raise _Undefined(frozenset(step.base))
         if real_only and radicand.real < 0:
-            return None, reference, None
-        area = _square_root(radicand)
+            raise _Undefined(None)
         sign = next(free) if step.free_sign else scene.orientation(step.triangle)
-        real, imaginary = (s_ij + s_ik - s_jk) / (2 * s_ij), sign * area / (2 * s_ij)
-        (xi, yi), (xj, yj) = points[i], points[j]
-        points[step.joint] = (xi + real * (xj - xi) - imaginary * (yj - yi),
-                              yi + real * (yj - yi) + imaginary * (xj - xi))
-    return points, reference, None
+        return sign * _square_root(radicand)
+
+    try:
+        placed, _, _ = place_joints(plan, distance, signed_root, reduced_point=dehomogenised)
+    except _Undefined as undefined:
+        return None, reference, undefined.pair
+    return {joint: (flint.acb(x), flint.acb(y)) for joint, (x, y, _) in placed.items()}, reference, None
+
+
+class _Undefined(Exception):
+    """A bilateration of :func:`placed_points` cannot be formed (its base's ball contains 0:
+    ``pair``), or its triangle certainly does not exist (``pair`` None)."""
+
+    def __init__(self, pair: frozenset[str] | None):
+        super().__init__(pair)
+        self.pair = pair
 
 
 def _square_root(radicand: flint.acb) -> flint.acb:
@@ -507,7 +495,7 @@ def computed_distance(points: dict[str, tuple[flint.acb, flint.acb]], u: str, v:
     """s_{u,v} = |M_v - M_u|² s_{a,b} from the points of :func:`placed_points` (x and y
     squared separately: complex coordinates)."""
     (xu, yu), (xv, yv) = points[u], points[v]
-    return ((xv - xu) ** 2 + (yv - yu) ** 2) * reference
+    return squared_distance((xu, yu, 1), (xv, yv, 1), (reference, 1))[0]
 
 
 def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], signs,

@@ -10,7 +10,7 @@ import numpy as np
 
 from baranov.closure import CompiledSystem, closure_system
 from baranov.planner import Plan
-from baranov.topology import thesis_subscript
+from baranov.topology import distance_name
 
 from .modes import AssemblyMode
 from .polish import POLISH_STEPS, polish_configurations
@@ -33,7 +33,7 @@ FLAT_AREA = 1e-10
 
 def parameter_name(pair: tuple[str, str]) -> str:
     """``("P1", "P6")`` → ``"s1,6"``."""
-    return "s" + ",".join(thesis_subscript(n) for n in pair)
+    return distance_name(*pair)
 
 
 def compile_scene(scene: Scene, plan: Plan) -> CompiledSystem:

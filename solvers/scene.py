@@ -28,6 +28,7 @@ from pathlib import Path
 
 import networkx as nx
 
+from baranov.closure.bilateration import bilaterated, dehomogenised, triangle_radicand
 from baranov.topology import (
     KinematicChain,
     TopologyError,
@@ -158,11 +159,6 @@ def _pair_key(text: str, link: str, joints: tuple[str, ...]) -> frozenset[str]:
     return frozenset(parts)
 
 
-def _triangle_area16(a: float, b: float, c: float) -> float:
-    """16 A² of a triangle with squared sides a, b, c (Cayley–Menger, thesis eq. 2.7)."""
-    return (a + b + c) ** 2 - 2 * (a * a + b * b + c * c)
-
-
 def _embed(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], Number], orientation: int):
     """Local coordinates from pairwise squared distances (first joint at the origin, second
     on +x, third on the side ``orientation`` says); checks the distances are planar."""
@@ -173,12 +169,13 @@ def _embed(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], 
 
     def place(joint: str, sign: int) -> tuple[float, float]:
         a, b = s[frozenset((first, joint))], s[frozenset((second, joint))]
-        x = (a - b + d * d) / (2 * d)
-        area16 = _triangle_area16(d * d, a, b)
+        area16 = triangle_radicand(d * d, a, b)
         if area16 < -1e-9 * max(d * d, a, b) ** 2:
             raise SceneError(f"link {name}: squared distances of {first}, {second}, {joint} violate the "
                              "triangle inequality")
-        return x, sign * math.sqrt(max(area16, 0.0)) / (2 * d)
+        root = sign * math.sqrt(max(area16, 0.0))
+        x, y, _ = dehomogenised(bilaterated((0, 0, 1), (d, 0, 1), (d * d, a, b), root))
+        return x, y
 
     if len(joints) >= 3:
         local[joints[2]] = place(joints[2], orientation)
@@ -268,7 +265,7 @@ def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
     _require_positive(name, joints, squared)  # coordinates: coincident joints
     for a, b, c in combinations(joints, 3):  # collinear joints are fine (a straight bar)
         sides = [float(squared[frozenset(p)]) for p in ((a, b), (a, c), (b, c))]
-        if _triangle_area16(*sides) < -1e-9 * max(sides) ** 2:
+        if triangle_radicand(*sides) < -1e-9 * max(sides) ** 2:
             raise SceneError(f"link {name}: squared distances of {a}, {b}, {c} violate the triangle inequality")
     return SceneLink(name, joints, squared, local), world, exact
 

@@ -23,6 +23,7 @@ from .chain import (
     KinematicChain,
     chain_from_link_graph,
     chain_from_links,
+    distance_name,
     natural_sort_key,
     thesis_subscript,
 )
@@ -70,5 +71,6 @@ __all__ = [
     "require_rigid_chain",
     "smallest_overconstrained_subchain",
     "smallest_rigid_subchain",
+    "distance_name",
     "thesis_subscript",
 ]

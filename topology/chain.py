@@ -252,6 +252,15 @@ def thesis_subscript(name: str) -> str:
     return name[1:] if name[:1] == "P" and name[1:].isdigit() else name
 
 
+def distance_name(u: str, v: str) -> str:
+    """The squared distance between two joints in the thesis's notation, in the order given.
+
+    >>> distance_name("P1", "P6")
+    's1,6'
+    """
+    return f"s{thesis_subscript(u)},{thesis_subscript(v)}"
+
+
 def natural_sort_key(name: str) -> tuple:
     """Sort key comparing digit runs as numbers: P2 < P10.
 
