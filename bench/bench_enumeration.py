@@ -29,7 +29,7 @@ CASES = {
     ),
     "catalog 3-11 links, fresh folder (2 workers, with cross-check)": (
         "import tempfile, pathlib\n"
-        "from baranov.cli.catalog import build_catalog\n"
+        "from baranov.catalog import build_catalog\n"
         "with tempfile.TemporaryDirectory() as out:\n"
         "    build_catalog([3, 5, 7, 9, 11], pathlib.Path(out), workers=2)"
     ),

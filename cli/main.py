@@ -11,14 +11,14 @@ import os
 import sys
 from pathlib import Path
 
+from baranov.catalog import CATALOG_FOLDER, build_catalog
+from baranov.catalog.files import check_writable_folder, write_atomically
 from baranov.enumerate import check_link_count
 from baranov.solvers import available_backends, load_scene
 from baranov.solvers import solve as solve_scene
 from baranov.solvers.modes import signs_text
 from baranov.topology import natural_sort_key
 
-from .catalog import build_catalog
-from .files import check_writable_folder, write_atomically
 from .show import show
 
 #: The catalog command accepts link counts up to this one (13 links: about 10 s).
@@ -75,7 +75,8 @@ def _parser() -> argparse.ArgumentParser:
     show.add_argument("--reference", help="fix the reference pair, e.g. P1,P6")
     show.add_argument("--parameter", action="append", help="allow this parameter pair (repeatable), e.g. P1,P6")
     show.add_argument("--plans", type=int, default=1, help="show the N best plans (default 1)")
-    show.add_argument("--catalog", default="catalog", type=Path, help="catalog folder for ids (default catalog/)")
+    show.add_argument("--catalog", default=CATALOG_FOLDER, type=Path,
+                      help="catalog folder for names and ids (default: the installed catalog)")
     solve = commands.add_parser("solve", help="every assembly mode of a linkage given as a scene file")
     solve.add_argument("scene", type=Path, help="scene JSON file (see examples/)")
     solve.add_argument("--method", default="numeric", choices=available_backends(),

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from baranov.closure import closure_system
 from baranov.enumerate import baranov_trusses
-from baranov.enumerate.literature import THESIS_TRUSSES, thesis_truss
+from baranov.literature.trusses import THESIS_TRUSSES, thesis_truss
 from baranov.planner import bilateration_plans
 from baranov.topology import (
     KinematicChain,
@@ -17,6 +17,7 @@ from baranov.topology import (
     chain_from_links,
     is_baranov_truss,
     is_planar,
+    natural_sort_key,
 )
 
 CATALOG_NAME = re.compile(r"^(\d+)/([BN])(\d+)$")
@@ -36,7 +37,8 @@ def resolve_chain(argument: str, catalog: Path) -> tuple[str, KinematicChain]:
             published = thesis_truss(argument)
             return f"{argument} — {published.source}", published.chain()
         links = int(match.group(1))
-        for entry in _catalog_entries(links, catalog):
+        entries = _catalog_entries(links, catalog)
+        for entry in entries:
             if argument in (entry["id"], entry["name"]):
                 return f"{entry['id']} ({entry['name']})", chain_from_link_graph(entry["link_graph6"])
         if match.group(2) == "N" and links <= 13 and links % 2:
@@ -44,12 +46,20 @@ def resolve_chain(argument: str, catalog: Path) -> tuple[str, KinematicChain]:
             index = int(match.group(3))
             if 1 <= index <= len(trusses):
                 return argument, trusses[index - 1]
-        raise ShowError(f"{argument}: no such truss in the catalog (names are identified for 3/B1, 5/B1, "
-                        "7/B1-B3 and 9/B28; ids run 7/N1..7/N3, 9/N1..9/N28, 11/N1..11/N562)")
+        raise ShowError(f"{argument}: no such truss in the catalog ({_known_names(entries, links, catalog)})")
     path = Path(argument)
     if path.is_file():
         return str(path), _chain_from_text(path.read_text(encoding="utf-8"), str(path))
     return argument, _chain_from_text(argument, "argument")
+
+
+def _known_names(entries: list[dict], links: int, catalog: Path) -> str:
+    """What the catalog does know at ``links`` links, for an error message."""
+    if not entries:
+        return f"{catalog} has no trusses-{links}.json"
+    names = sorted((e["name"] for e in entries if e["name"] != e["id"]), key=natural_sort_key)
+    named = f"names {', '.join(names[:3])}{' …' if len(names) > 3 else ''}; " if names else ""
+    return f"{named}ids {links}/N1..{links}/N{len(entries)}"
 
 
 def _catalog_entries(links: int, catalog: Path) -> list[dict]:

@@ -111,7 +111,7 @@ class ClosureSystem:
 def closure_system(plan: Plan) -> ClosureSystem:
     """Derive the closure conditions of ``plan`` (thesis §2.7).
 
-    >>> from baranov.enumerate.literature import thesis_truss
+    >>> from baranov.literature.trusses import thesis_truss
     >>> from baranov.planner import bilateration_plans
     >>> plan = bilateration_plans(thesis_truss("5/B1").chain(), reference=("P1", "P6"))[0]
     >>> print(closure_system(plan).text())

@@ -43,7 +43,7 @@ def permute_expression(expression: MatrixExpression, mapping: Mapping[str, str])
 def permute_condition(condition: DistanceCondition, mapping: Mapping[str, str]) -> DistanceCondition:
     """Rename the joints of a condition: the thesis's "application of the permutation".
 
-    >>> from baranov.enumerate.literature import thesis_truss
+    >>> from baranov.literature.trusses import thesis_truss
     >>> from baranov.planner import bilateration_plans
     >>> plan = bilateration_plans(thesis_truss("5/B1").chain(), reference=("P1", "P6"))[0]
     >>> condition = closure_system(plan).conditions[0]
@@ -95,7 +95,7 @@ def symmetric_variants(plan: Plan, chain: KinematicChain) -> list[tuple[Automorp
     |Aut| / |stabiliser| plans, all with the same ranking qualities, among which a solver
     may pick the best conditioned for given dimensions.
 
-    >>> from baranov.enumerate.literature import thesis_truss
+    >>> from baranov.literature.trusses import thesis_truss
     >>> from baranov.planner import bilateration_plans
     >>> pentad = thesis_truss("5/B1").chain()
     >>> plan = bilateration_plans(pentad, reference=("P1", "P6"))[0]
@@ -159,7 +159,7 @@ def symmetric_formulation(chain: KinematicChain, count: int = 10**6) -> Symmetri
     automorphism preserves while moving its first closure condition to another link
     dimension, or ``None`` if there is none.
 
-    >>> from baranov.enumerate.literature import thesis_truss
+    >>> from baranov.literature.trusses import thesis_truss
     >>> found = symmetric_formulation(thesis_truss("9/B28").chain())
     >>> [c.pair for c in found.conditions]
     [('P3', 'P4'), ('P3', 'P8')]

@@ -437,7 +437,7 @@ def bilateration_plans(
     Raises :class:`~baranov.topology.TopologyError` for a chain that is not rigid or is
     over-constrained, or naming a constraint no plan can meet.
 
-    >>> from baranov.enumerate.literature import thesis_truss
+    >>> from baranov.literature.trusses import thesis_truss
     >>> pentad = thesis_truss("5/B1").chain()
     >>> plan = bilateration_plans(pentad, reference=("P1", "P6"))[0]
     >>> print(plan.describe())

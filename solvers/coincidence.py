@@ -79,7 +79,7 @@ def solvable_plan(scene: Scene) -> Plan:
         if find_msolve() is not None and scene.exact and msolve_modes(scene).status == "infinite":
             # said rather than only refused (issue 25's 9/N17, two joints of one link at one point)
             raise MovableLinkageError(f"{message}; msolve: the linkage moves with these dimensions "
-                                      "(a positive-dimensional solution set)")
+                                      "(a positive-dimensional solution set, over the complex numbers)")
         raise SolverError(message)
     return plan
 

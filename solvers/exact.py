@@ -119,8 +119,11 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         # issue 25's 9/N20 (msolve: positive-dimensional; numeric: the condition vanishes along
         # s10,8 in (0, 68)): the norm is 0 and only the contents divided out (powers of the
         # parameter) were left, which had been certified with 8 modes
-        gaps += ("the linkage moves with these dimensions: the norm of the closure condition vanishes "
-                 "identically (on some branch it holds for every value of the parameter)",)
+        # issue 25's 7/N2 drawn with P2 on P7: the norm vanishes too, but no real configuration
+        # moves (msolve: positive-dimensional over C; a complex curve through an isolated real mode)
+        gaps += ("the norm of the closure condition vanishes identically: on some branch, possibly complex, it "
+                 "holds for every value of the parameter, so the linkage moves or a complex curve of solutions "
+                 "passes through its real ones; the real modes are not certified",)
     elif polynomial is not None and not polynomial.factors:
         gaps += ("the characteristic polynomial has no factor but powers of the parameter: a degenerate "
                  "instance (it may move) that this plan cannot decide",)

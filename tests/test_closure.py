@@ -23,7 +23,7 @@ from baranov.closure.evaluate import (
 from baranov.closure.notation import canonical_form
 from baranov.closure.symmetry import joint_mapping
 from baranov.enumerate import baranov_trusses
-from baranov.enumerate.literature import thesis_truss
+from baranov.literature.trusses import thesis_truss
 from baranov.planner import best_plan, bilateration_plans, coupling_degree
 from baranov.topology import automorphism_group, list_automorphisms
 

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from shared import PUBLISHED_EXAMPLES, SOLVABLE, same_modes
 
 from baranov.enumerate import baranov_trusses
-from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES
+from baranov.literature.trusses import APPENDIX_A_ASSEMBLY_MODES
 from baranov.planner import bilateration_plans, coupling_degree
 from baranov.solvers import (
     ExactMethodError,

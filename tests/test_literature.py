@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from baranov.enumerate import baranov_trusses
-from baranov.enumerate.literature import (
+from baranov.literature.trusses import (
     THESIS_TRUSSES,
     thesis_joint_names,
     thesis_name,
@@ -85,7 +85,7 @@ def test_nine_link_names_by_invariants():
     truss's signature; all 28 names are given, once each."""
     from collections import Counter
 
-    from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES, nine_link_signature
+    from baranov.literature.trusses import APPENDIX_A_ASSEMBLY_MODES, nine_link_signature
 
     entries = json.loads((Path(__file__).resolve().parents[1] / "catalog" / "trusses-9.json").read_text())
     ours = Counter((e["realization_count"], e["coupling_degree"], e["planar"]) for e in entries)
@@ -100,7 +100,7 @@ def test_appendix_a_transcription_is_a_vector_identity():
     """s_{u,v} = det(Ω) s_ref holds at any point configuration when Ω is transcribed
     right (a wrong index breaks the vector sum it stands for)."""
     from baranov.closure.evaluate import condition_residual_at_configuration
-    from baranov.enumerate.appendix_a import APPENDIX_A_CONDITIONS, appendix_a_conditions
+    from baranov.literature.appendix_a import APPENDIX_A_CONDITIONS, appendix_a_conditions
 
     rng = np.random.default_rng(5)
     assert sorted(APPENDIX_A_CONDITIONS, key=lambda n: int(n[3:])) == [f"9/B{n}" for n in range(1, 29)]
@@ -113,7 +113,7 @@ def test_appendix_a_transcription_is_a_vector_identity():
 def test_appendix_a_conditions_of_9b1_to_9b24_fit_one_truss_each():
     """Each coupling-1 thesis truss's conditions fit exactly one catalog truss, and no two
     fit the same one: the names do not depend on the invariants."""
-    from baranov.enumerate.appendix_a import appendix_a_labelling
+    from baranov.literature.appendix_a import appendix_a_labelling
 
     trusses = baranov_trusses(9)
     fits = {f"9/B{n}": [i for i, t in enumerate(trusses) if appendix_a_labelling(t, f"9/B{n}")] for n in range(1, 25)}
@@ -124,7 +124,7 @@ def test_appendix_a_conditions_of_9b1_to_9b24_fit_one_truss_each():
 def test_appendix_a_labelling_is_consistent_with_the_catalog():
     """The catalog's thesis joint names are a labelling under which the named truss's
     Appendix A conditions fit (known pairs on links, unknown ones not)."""
-    from baranov.enumerate.appendix_a import link_pairs_required
+    from baranov.literature.appendix_a import link_pairs_required
 
     entries = json.loads((Path(__file__).resolve().parents[1] / "catalog" / "trusses-9.json").read_text())
     trusses = baranov_trusses(9)
@@ -142,7 +142,7 @@ def test_appendix_a_labelling_is_consistent_with_the_catalog():
 
 
 def test_appendix_a_unknown_name():
-    from baranov.enumerate.appendix_a import appendix_a_conditions
+    from baranov.literature.appendix_a import appendix_a_conditions
 
     with pytest.raises(ValueError, match="9/B29"):
         appendix_a_conditions("9/B29")

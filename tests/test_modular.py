@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from baranov.enumerate import baranov_trusses
-from baranov.enumerate.literature import APPENDIX_A_ASSEMBLY_MODES
+from baranov.literature.trusses import APPENDIX_A_ASSEMBLY_MODES
 from baranov.planner import best_plan
 from baranov.solvers import ExactMethodError, characteristic_polynomial, load_scene
 from baranov.solvers.coincidence import solvable_plan

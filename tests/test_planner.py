@@ -6,7 +6,7 @@ import collections
 import pytest
 
 from baranov.enumerate import baranov_trusses
-from baranov.enumerate.literature import thesis_truss
+from baranov.literature.trusses import thesis_truss
 from baranov.planner import StepKind, best_plan, bilateration_plans, coupling_degree
 from baranov.topology import TopologyError, chain_from_link_graph
 

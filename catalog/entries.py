@@ -1,0 +1,140 @@
+"""One catalog entry per Baranov truss: its invariants, plan, closure conditions,
+assembly-mode count and thesis name with the evidence for it (thesis ch. 2–3)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from baranov.closure import closure_system
+from baranov.enumerate.sliders import count_slider_chains
+from baranov.literature.appendix_a import appendix_a_labelling, link_pairs_required, names_by_closure_conditions
+from baranov.literature.trusses import name_by_invariants, nine_link_signature, thesis_joint_names, thesis_name
+from baranov.planner import best_plan
+from baranov.solvers.configuration import parameter_name
+from baranov.solvers.mode_counts import characteristic_degree
+from baranov.topology import KinematicChain, automorphism_group, chain_from_link_graph, is_planar
+from baranov.topology.realizations import realization_count
+
+#: Slider chains are counted over all 2^J joint subsets; done up to this many links.
+SLIDER_CHAINS_MAX_LINKS = 11
+
+ENTRY_FIELDS = (
+    "id", "name", "name_evidence", "thesis_joint_names", "link_graph6", "links", "joints", "link_degrees",
+    "automorphism_group_order", "coupling_degree", "plan", "closure_conditions",
+    "link_orbits", "joint_orbits", "planar", "assur_groups", "slider_chains",
+    "assembly_modes", "assembly_modes_evidence", "realization_count",
+)
+
+#: Assembly modes are counted up to this many links (coupling degrees 1 and 2), as the
+#: degree of the characteristic polynomial modulo a prime (:mod:`baranov.solvers.modular`).
+#: Per 11-link truss (two instances; bench/sweep_assembly_modes.py): coupling 1 median
+#: 0.21 s, max 0.76 s; coupling 2 median 5.0 s, max 70 s. 13 links (thousands of trusses)
+#: are left to a separate run.
+ASSEMBLY_MODES_MAX_LINKS = 11
+
+def nine_link_name(chain: KinematicChain, identifier: str,
+                   signature: tuple[int, int, bool]) -> tuple[str, str | None, dict[str, str] | None]:
+    """(name, evidence, {joint: thesis joint}) of a nine-link truss that is not isomorphic
+    to a recorded one: the thesis name whose Appendix A closure conditions fit it
+    (:func:`~baranov.literature.appendix_a.appendix_a_labelling`) among those with its
+    (assembly modes, coupling degree, planarity), when exactly one does; else the name
+    those invariants alone single out; else the project id."""
+    count, coupling, planar = signature
+    invariants = (f"{count} assembly modes (Appendix A), coupling degree {coupling} (§3.4.2) and a "
+                  f"{'planar' if planar else 'non-planar (§3.4.1)'} link graph")
+    fitting = [n for n in names_by_closure_conditions(chain) if nine_link_signature(n) == signature]
+    by_invariants = name_by_invariants(count, coupling, planar)
+    if len(fitting) == 1:
+        name = fitting[0]
+        on_link, off_link = link_pairs_required(name)
+        labelling = {joint: thesis for thesis, joint in appendix_a_labelling(chain, name).items()}
+        evidence = (f"thesis Appendix A closure conditions of {name}: under the joint labelling "
+                    f"thesis_joint_names, the {len(on_link)} distances they take as known are link dimensions "
+                    f"and their {len(off_link)} parameters and computed distances are not; among the thesis "
+                    f"trusses with {invariants}, only {name}'s conditions fit")
+        if by_invariants == name:
+            evidence += f"; it is also the only thesis truss with {invariants}"
+        if len(labelling) < len(chain.joints):
+            evidence += f" (the conditions mention {len(labelling)} of the {len(chain.joints)} joints, which alone are named)"
+        return name, evidence, {joint.name: labelling[joint.name] for joint in chain.joints if joint.name in labelling}
+    if by_invariants:
+        return by_invariants, f"the only nine-link thesis truss with {invariants}", None
+    return identifier, None, None
+
+
+def truss_entry(item: tuple[str, str]) -> dict:
+    """The catalog object of one truss, from its project id and canonical graph6.
+
+    ``name`` is the thesis name where the truss is isomorphic to one recorded in
+    :mod:`baranov.literature.trusses`, or for nine links where the Appendix A closure
+    conditions or invariants single it out (:func:`nine_link_name`); ``name_evidence``
+    says how. Otherwise the project id.
+    """
+    identifier, graph6 = item
+    chain = chain_from_link_graph(graph6)
+    group = automorphism_group(chain)
+    sliders = count_slider_chains(chain, group) if chain.number_of_links <= SLIDER_CHAINS_MAX_LINKS else None
+    published = thesis_name(chain)
+    plan = best_plan(chain)
+    if plan.number_of_parameters in (1, 2) and chain.number_of_links <= ASSEMBLY_MODES_MAX_LINKS:
+        modes, degrees = characteristic_degree(chain)
+        evidence = (f"degree of the characteristic polynomial in {parameter_name(plan.parameters[0])} modulo a random "
+                    f"62-bit prime, on random integer-coordinate instances: {', '.join(map(str, degrees))}")
+        if plan.number_of_parameters == 2:
+            evidence += (f" (after eliminating {parameter_name(plan.parameters[1])} by resultants; common points on "
+                         "different sign branches, undefined points and points at infinity removed)")
+    elif plan.number_of_parameters == 0:
+        modes = 2 ** len(plan.free_sign_triangles)
+        evidence = "coupling degree 0: one configuration per sign branch of the free triangles"
+    else:
+        modes = None
+        evidence = f"not derived: more than {ASSEMBLY_MODES_MAX_LINKS} links"
+    count, planar = realization_count(chain), is_planar(chain)
+    name, name_evidence = identifier, None
+    joint_names = thesis_joint_names(chain, published) if published else None
+    if published:
+        name, name_evidence = published.name, f"isomorphic to the truss of {published.source}"
+    elif chain.number_of_links == 9:
+        name, name_evidence, joint_names = nine_link_name(chain, identifier, (count, plan.number_of_parameters, planar))
+    return {
+        "id": identifier,
+        "name": name,
+        "name_evidence": name_evidence,
+        "thesis_joint_names": joint_names,
+        "link_graph6": graph6,
+        "links": chain.number_of_links,
+        "joints": {joint.name: list(joint.links) for joint in chain.joints},
+        "link_degrees": list(chain.link_degrees),
+        "automorphism_group_order": group.order,
+        "coupling_degree": plan.number_of_parameters,
+        "plan": plan.to_dict(),
+        "closure_conditions": closure_system(plan).text().splitlines(),
+        "link_orbits": [list(orbit) for orbit in group.link_orbits],
+        "joint_orbits": [list(orbit) for orbit in group.joint_orbits],
+        "planar": planar,
+        "assur_groups": len(group.link_orbits),
+        "slider_chains": sliders,
+        "assembly_modes": modes,
+        "assembly_modes_evidence": evidence,
+        "realization_count": count,
+    }
+
+
+def dump_entries(entries: list[dict]) -> str:
+    """JSON list with one truss per line (compact, diff-friendly, deterministic)."""
+    lines = [json.dumps(entry, separators=(",", ":"), ensure_ascii=False) for entry in entries]
+    return "[\n" + ",\n".join(lines) + "\n]\n"
+
+
+def load_entries(path: Path) -> list[dict] | None:
+    """The entries of an existing catalog file, or None if absent, unreadable or incomplete."""
+    try:
+        entries = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(entries, list) or not entries:
+        return None
+    if not all(isinstance(e, dict) and all(field in e for field in ENTRY_FIELDS) for e in entries):
+        return None
+    return entries
