@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import least_squares
 
-from baranov.solvers import Scene, Solution
+from baranov.scene import Scene
+from baranov.solvers import Solution
 from baranov.solvers.configuration import (
     distance_bound,
     joint_residual,
@@ -39,7 +40,7 @@ def solve_cartesian(scene: Scene, starts: int = 100, seed: int = 0) -> Solution:
     the link diameters). Modes carry no parameters or signs; mirrored links are not
     filtered out (see the module docstring).
 
-    >>> from baranov.solvers import load_scene
+    >>> from baranov.scene import load_scene
     >>> pentad = load_scene("examples/5-B1.json")
     >>> modes = solve_cartesian(pentad, starts=100).assembly_modes
     >>> sum(m.max_residual < 1e-8 for m in modes), sum(m.max_residual == 1.0 for m in modes)  # modes, mirrored

@@ -21,7 +21,8 @@ import mpmath
 import numpy as np
 
 from baranov.closure import sign_branches
-from baranov.solvers import Scene, Solution, SolverError, characteristic_polynomial
+from baranov.scene import Scene
+from baranov.solvers import Solution, SolverError, characteristic_polynomial
 from baranov.solvers.coincidence import solvable_plan
 from baranov.solvers.configuration import (
     compile_scene,

@@ -27,7 +27,8 @@ import networkx as nx
 import numpy as np
 import sympy
 
-from baranov.solvers import Scene, Solution, SolverError
+from baranov.scene import Scene
+from baranov.solvers import Solution, SolverError
 from baranov.solvers.configuration import joint_residual, same_mode, sorted_modes
 from baranov.solvers.modes import AssemblyMode
 
@@ -45,7 +46,7 @@ def loop_equations(scene: Scene) -> tuple[list[sympy.Poly], list[sympy.Symbol], 
     variables ``x_<link>`` (one per moving link), and what places the joints from a
     solution (used by :func:`solve_loop_equations`).
 
-    >>> from baranov.solvers import load_scene
+    >>> from baranov.scene import load_scene
     >>> equations, variables, _ = loop_equations(load_scene("examples/5-B1.json"))
     >>> len(equations), len(variables)
     (4, 4)

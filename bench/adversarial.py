@@ -32,9 +32,9 @@ import numpy as np
 
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
+from baranov.scene.instances import instance_dict
 from baranov.solvers import MovableLinkageError, solve
 from baranov.solvers.adversarial import ADVERSARIAL_KINDS, adversarial_scene
-from baranov.solvers.instances import instance_dict
 from baranov.solvers.msolve import compare_modes, match_configurations, msolve_modes
 
 METHODS = ("numeric", "exact")

@@ -17,8 +17,9 @@ import numpy as np
 
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
-from baranov.solvers import load_scene, solve
-from baranov.solvers.instances import generic_integer_configuration, scene_of
+from baranov.scene import load_scene
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers import solve
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -38,10 +38,11 @@ from baranov.baselines import (
 )
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
-from baranov.solvers import Scene, SolverError, load_scene, solve
+from baranov.scene import Scene, load_scene
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers import SolverError, solve
 from baranov.solvers.coincidence import solvable_plan
 from baranov.solvers.configuration import RESIDUAL_TOLERANCE, same_mode
-from baranov.solvers.instances import generic_integer_configuration, scene_of
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "docs" / "bench"

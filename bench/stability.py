@@ -24,11 +24,9 @@ import numpy as np
 from speed_vs_accuracy import outcome, timed_run
 
 from baranov.enumerate import baranov_trusses
-from baranov.solvers import (
-    Scene,
-    characteristic_polynomial,
-    load_scene,
-)
+from baranov.scene import Scene, load_scene
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers import characteristic_polynomial
 from baranov.solvers.coincidence import solvable_plan
 from baranov.solvers.configuration import RESIDUAL_TOLERANCE, distance_bound, same_mode
 from baranov.solvers.hard_instances import (
@@ -40,7 +38,6 @@ from baranov.solvers.hard_instances import (
     merging_scene,
     perturbed_scene,
 )
-from baranov.solvers.instances import generic_integer_configuration, scene_of
 
 ROOT = Path(__file__).resolve().parents[1]
 METHODS = ("numeric", "exact", "cartesian-100", "loop-equations", "float64-polynomial", "mpmath100-polynomial")

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from baranov.enumerate import baranov_trusses
+from baranov.scene.instances import scene_of
 from baranov.solvers import solve
 from baranov.solvers.configuration import distance_bound, same_mode
 from baranov.solvers.hard_instances import (
@@ -32,7 +33,6 @@ from baranov.solvers.hard_instances import (
     coincident_joints_configuration,
     collinear_joints_configuration,
 )
-from baranov.solvers.instances import scene_of
 
 
 def contains_configuration(scene, modes, coordinates) -> bool:

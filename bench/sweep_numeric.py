@@ -19,8 +19,8 @@ import numpy as np
 
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
+from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import solve
-from baranov.solvers.instances import generic_integer_configuration, scene_of
 
 
 def main() -> None:

@@ -14,7 +14,8 @@ from pathlib import Path
 from baranov.catalog import CATALOG_FOLDER, build_catalog
 from baranov.catalog.files import check_writable_folder, write_atomically
 from baranov.enumerate import check_link_count
-from baranov.solvers import available_backends, load_scene
+from baranov.scene import load_scene
+from baranov.solvers import available_backends
 from baranov.solvers import solve as solve_scene
 from baranov.solvers.modes import signs_text
 from baranov.topology import natural_sort_key

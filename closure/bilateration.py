@@ -17,7 +17,7 @@ places a plan's joints step by step, :func:`triangle_radicand`, :func:`bilaterat
 backends use — numpy float arrays (closure residuals, :mod:`.evaluate`), flint complex
 balls (certified placements, ``solvers/characteristic.py: placed_points``), polynomials
 over the exact radical tower (``radical_tower``, also modulo primes) and plain floats
-(a link's own frame, ``solvers/scene.py``). Points are homogeneous (x, y, w) so that the
+(a link's own frame, ``scene/model.py``). Points are homogeneous (x, y, w) so that the
 tower needs no division; floats and balls divide through after each step
 (:func:`dehomogenised`). An arithmetic supplies only its product (the tower's keeps
 normal form), the signed square root of a step's radicand, and its lowest terms. A new

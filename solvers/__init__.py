@@ -1,5 +1,7 @@
 """Solving backends: every assembly mode of a concrete linkage (a scene)."""
 
+from baranov.scene import Scene
+
 from .backends import available_backends, backend, register_backend
 from .characteristic import (
     CharacteristicPolynomial,
@@ -11,7 +13,6 @@ from .mode_counts import characteristic_degree
 from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
 from .modular import characteristic_degree_modulo
 from .numeric import solve_numeric
-from .scene import Scene, SceneError, load_scene, scene_from_dict
 
 
 def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
@@ -22,8 +23,8 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
 
 
 __all__ = [
-    "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "MovableLinkageError", "Scene", "SceneError",
+    "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "MovableLinkageError",
     "Solution", "SolverError", "available_backends", "characteristic_degree", "characteristic_degree_modulo",
-    "characteristic_polynomial", "load_scene", "register_backend", "scene_from_dict", "solve", "solve_exact",
+    "characteristic_polynomial", "register_backend", "solve", "solve_exact",
     "solve_numeric",
 ]

@@ -28,14 +28,14 @@ from itertools import combinations
 import numpy as np
 from flint import fmpz_mat
 
+from baranov.scene import Scene, SceneError
+from baranov.scene.instances import scene_of
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
 from .coincidence import solvable_plan
 from .hard_instances import coincident_joints_configuration, collinear_joints_configuration
-from .instances import scene_of
 from .modes import SolverError
-from .scene import Scene, SceneError
 
 ADVERSARIAL_KINDS = ("small-box", "collinear", "coincident", "domain-edge", "double-root")
 

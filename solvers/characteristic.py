@@ -43,11 +43,11 @@ import flint
 
 from baranov.closure.bilateration import dehomogenised, place_joints, squared_distance, triangle_radicand
 from baranov.planner import Plan
+from baranov.scene import Scene
 
 from .coincidence import solvable_plan
 from .configuration import parameter_name
 from .modes import SolverError
-from .scene import Scene
 
 #: Precisions (bits) of the genuineness test of a factor, tried in turn.
 TEST_BITS = (256, 1024, 4096)
@@ -270,7 +270,7 @@ def link_area_root(scene: Scene, triangle: tuple[str, str, str]) -> Fraction:
     distances (thesis eq. 2.7), exactly; raises :class:`ExactMethodError` unless it is
     rational.
 
-    >>> from baranov.solvers import load_scene
+    >>> from baranov.scene import load_scene
     >>> from pathlib import Path
     >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
     >>> link = next(link for link in scene.links if len(link.joints) == 3)
@@ -344,7 +344,7 @@ def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> Charact
     """The characteristic polynomial of ``scene`` in the parameter of ``plan`` (default:
     the best plan), coupling degree 1.
 
-    >>> from baranov.solvers import load_scene
+    >>> from baranov.scene import load_scene
     >>> from pathlib import Path
     >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
     >>> characteristic_polynomial(scene).degree   # thesis §3.3.1: 14 assembly modes

@@ -25,6 +25,7 @@ import math
 from collections.abc import Callable, Iterable
 
 from baranov.planner import Plan, best_plan, bilateration_plans
+from baranov.scene import Scene
 
 from .configuration import (
     RESIDUAL_TOLERANCE,
@@ -36,7 +37,6 @@ from .configuration import (
 )
 from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
 from .msolve import find_msolve, msolve_modes
-from .scene import Scene
 
 #: How many of the best plans are searched for one defined where the joints coincide.
 ALTERNATIVE_PLANS = 50

@@ -10,11 +10,11 @@ import numpy as np
 
 from baranov.closure import CompiledSystem, closure_system
 from baranov.planner import Plan
+from baranov.scene import Scene
 from baranov.topology import distance_name
 
 from .modes import AssemblyMode
 from .polish import POLISH_STEPS, polish_configurations
-from .scene import Scene
 
 #: A candidate is an assembly mode when every link dimension holds to this (relative).
 RESIDUAL_TOLERANCE = 1e-8

@@ -31,6 +31,7 @@ from itertools import product
 import flint
 
 from baranov.planner import Plan
+from baranov.scene import Scene
 
 from .characteristic import (
     TEST_BITS,
@@ -44,7 +45,6 @@ from .configuration import parameter_name
 from .fibers import Fiber, column_over_field, common_fiber, isolated_roots
 from .modular import lifted_characteristic_polynomial
 from .resultant import coefficients_in_v, resultant_by_primes
-from .scene import Scene
 
 #: The bivariate ring of the two parameters (u = first plan parameter, v = second).
 PLANE = flint.fmpz_mpoly_ctx.get(("u", "v"), "lex")

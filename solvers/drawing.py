@@ -10,8 +10,9 @@ import math
 from matplotlib.figure import Figure  # a bare Figure draws to files without pyplot's global backend
 from matplotlib.patches import Polygon
 
+from baranov.scene import Scene
+
 from .modes import Solution
-from .scene import Scene
 
 
 def _hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:

@@ -35,6 +35,7 @@ import numpy as np
 
 from baranov.closure import sign_branches
 from baranov.planner import Plan
+from baranov.scene import Scene
 
 from .characteristic import (
     TEST_BITS,
@@ -67,7 +68,6 @@ from .configuration import (
 from .coupling_two import characteristic_polynomial_two, common_points
 from .fibers import Fiber
 from .modes import AssemblyMode, Certificate, Solution
-from .scene import Scene
 
 #: A branch is a candidate at a real root when its closure residual's ball there contains
 #: 0 and is narrower than this (relative; the configuration is then verified to 1e-8 on

@@ -11,11 +11,11 @@ from itertools import combinations
 import numpy as np
 
 from baranov.enumerate import baranov_trusses
+from baranov.scene import Scene, scene_from_dict
+from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.topology.graphs import joints_of_links
 
 from .coincidence import solvable_plan
-from .instances import generic_integer_configuration, scene_of
-from .scene import Scene, scene_from_dict
 
 
 def pentad(base: dict, platform: dict, legs: dict | None = None) -> Scene:
@@ -103,7 +103,7 @@ def collinear_joints_configuration(truss, rng: np.random.Generator, on_line: int
     the characteristic polynomial's curves meet at a singular point (docs/exact.md,
     "Flat triangles in a mode"). No two joints coincide and every link of three or more
     joints keeps a non-zero area; the configuration is a mode of its scene
-    (:func:`~baranov.solvers.instances.scene_of`).
+    (:func:`~baranov.scene.instances.scene_of`).
 
     >>> from baranov.enumerate import baranov_trusses
     >>> truss = baranov_trusses(7)[0]

@@ -17,11 +17,11 @@ from typing import Literal
 import numpy as np
 
 from baranov.planner import best_plan
+from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.topology import KinematicChain
 
 from .characteristic import characteristic_polynomial
 from .coupling_two import characteristic_polynomial_two
-from .instances import generic_integer_configuration, scene_of
 from .modular import characteristic_degree_modulo, random_prime
 
 #: Instances that must agree, and the most that are drawn.

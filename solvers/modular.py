@@ -50,10 +50,10 @@ from fractions import Fraction
 import flint
 
 from baranov.planner import Plan
+from baranov.scene import Scene
 
 from .characteristic import ExactMethodError, RadicalTower, eliminate_radicals, radical_tower
 from .resultant import chinese_remainder, coefficients_in_v, resultants_modulo
-from .scene import Scene
 
 #: Primes are drawn from [2^61, 2^62): word-size for flint's nmod types.
 PRIME_BITS = 62
@@ -185,7 +185,7 @@ def characteristic_degree_modulo(scene: Scene, plan: Plan, prime: int, seed: int
     """The degree of :func:`characteristic_polynomial_modulo`: the number of assembly
     modes over C, or fewer for an unlucky prime (see the module docstring).
 
-    >>> from baranov.solvers import load_scene
+    >>> from baranov.scene import load_scene
     >>> from baranov.solvers.coincidence import solvable_plan
     >>> from pathlib import Path
     >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
@@ -225,7 +225,7 @@ def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0,
     method tests each at a root in ball arithmetic). On the 9/B28 example: degree 58,
     coefficients of 1418 bits, 47 primes, about 19 s (the resultant route: 174 s).
 
-    >>> from baranov.solvers import load_scene
+    >>> from baranov.scene import load_scene
     >>> from baranov.solvers.coincidence import solvable_plan
     >>> from pathlib import Path
     >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")

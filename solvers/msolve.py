@@ -40,7 +40,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 
-from .scene import Scene
+from baranov.scene import Scene
 
 #: Bits to which msolve isolates every coordinate of a real solution.
 PRECISION = 128
@@ -216,7 +216,7 @@ def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISIO
     which the joints of each pair of ``coincident`` coincide, if given. Raises
     :class:`MsolveUnavailable` without a binary.
 
-    >>> from baranov.solvers import load_scene
+    >>> from baranov.scene import load_scene
     >>> result = msolve_modes(load_scene("examples/5-B1.json"))  # doctest: +SKIP
     >>> result.status, len(result.configurations)  # doctest: +SKIP
     ('finite', 6)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .scene import Scene
+from baranov.scene import Scene
 
 #: Gauss–Newton iterations.
 POLISH_STEPS = 30

@@ -15,7 +15,8 @@ import pytest
 
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
-from baranov.solvers import MovableLinkageError, load_scene, solve
+from baranov.scene import load_scene
+from baranov.solvers import MovableLinkageError, solve
 from baranov.solvers.adversarial import (
     ADVERSARIAL_KINDS,
     adversarial_scene,

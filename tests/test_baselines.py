@@ -15,7 +15,8 @@ from baranov.baselines import (
     solve_float_polynomial,
     solve_loop_equations,
 )
-from baranov.solvers import load_scene, solve
+from baranov.scene import load_scene
+from baranov.solvers import solve
 from baranov.solvers.configuration import RESIDUAL_TOLERANCE, same_mode
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

@@ -17,10 +17,10 @@ from hypothesis import strategies as st
 from baranov.closure import bilaterated, place_joints, squared_distance, triangle_radicand
 from baranov.closure.evaluate import true_parameters_and_signs
 from baranov.enumerate import baranov_trusses
+from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers.characteristic import characteristic_polynomial, closure_residuals, radical_tower
 from baranov.solvers.coincidence import solvable_plan
 from baranov.solvers.configuration import compile_scene
-from baranov.solvers.instances import generic_integer_configuration, scene_of
 
 TRUSSES = [(links, index) for links in (3, 5, 7, 9) for index in range(len(baranov_trusses(links)))]
 
@@ -73,7 +73,7 @@ def test_exact_tower_vanishes_at_the_generating_configuration(truss):
 
 
 def test_link_frames_keep_every_distance():
-    """A link's own frame (solvers/scene.py, plain floats) reproduces its squared distances."""
+    """A link's own frame (scene/model.py, plain floats) reproduces its squared distances."""
     scene, *_ = _instance(9, 27, 5)
     for link in scene.links:
         for (u, p), (v, q) in ((a, b) for a in link.local.items() for b in link.local.items() if a[0] < b[0]):

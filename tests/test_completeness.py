@@ -17,9 +17,9 @@ import pytest
 
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
+from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import solve
 from baranov.solvers.configuration import same_mode
-from baranov.solvers.instances import generic_integer_configuration, scene_of
 
 #: Random instances per truss, by coupling degree, and how many one worker task takes
 #: (coupling-2 instances cost 5-30 s each: small tasks keep both workers busy).

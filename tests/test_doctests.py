@@ -7,18 +7,20 @@ import pkgutil
 import pytest
 
 import baranov.baselines
+import baranov.catalog
 import baranov.cli
 import baranov.closure
 import baranov.enumerate
 import baranov.literature
 import baranov.planner
+import baranov.scene
 import baranov.solvers
 import baranov.topology
 
 MODULES = sorted(
     info.name
     for package in (baranov.topology, baranov.enumerate, baranov.literature, baranov.planner, baranov.closure,
-                    baranov.solvers, baranov.baselines, baranov.cli)
+                    baranov.scene, baranov.solvers, baranov.baselines, baranov.catalog, baranov.cli)
     for info in pkgutil.walk_packages(package.__path__, package.__name__ + ".")
     if not info.name.endswith("__main__")
 ) + ["baranov.topology", "baranov.enumerate"]

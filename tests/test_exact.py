@@ -15,14 +15,9 @@ from shared import PUBLISHED_EXAMPLES, SOLVABLE, same_modes
 from baranov.enumerate import baranov_trusses
 from baranov.literature.trusses import APPENDIX_A_ASSEMBLY_MODES
 from baranov.planner import bilateration_plans, coupling_degree
-from baranov.solvers import (
-    ExactMethodError,
-    characteristic_polynomial,
-    load_scene,
-    scene_from_dict,
-    solve,
-)
-from baranov.solvers.instances import generic_integer_configuration, scene_of
+from baranov.scene import load_scene, scene_from_dict
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers import ExactMethodError, characteristic_polynomial, solve
 from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology.realizations import realization_count
 

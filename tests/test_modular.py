@@ -13,10 +13,11 @@ from hypothesis import strategies as st
 from baranov.enumerate import baranov_trusses
 from baranov.literature.trusses import APPENDIX_A_ASSEMBLY_MODES
 from baranov.planner import best_plan
-from baranov.solvers import ExactMethodError, characteristic_polynomial, load_scene
+from baranov.scene import load_scene
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers import ExactMethodError, characteristic_polynomial
 from baranov.solvers.coincidence import solvable_plan
 from baranov.solvers.coupling_two import characteristic_polynomial_two
-from baranov.solvers.instances import generic_integer_configuration, scene_of
 from baranov.solvers.mode_counts import characteristic_degree
 from baranov.solvers.modular import (
     characteristic_degree_modulo,

@@ -13,8 +13,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from baranov.enumerate import baranov_trusses
-from baranov.solvers import load_scene, scene_from_dict, solve
-from baranov.solvers.instances import scene_of
+from baranov.scene import load_scene, scene_from_dict
+from baranov.scene.instances import scene_of
+from baranov.solvers import solve
 from baranov.solvers.msolve import cartesian_system, find_msolve, match_configurations, msolve_modes
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

@@ -14,8 +14,9 @@ from shared import PUBLISHED_EXAMPLES, SEVEN_LINK_EXAMPLES, SOLVABLE
 
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
-from baranov.solvers import SceneError, load_scene, scene_from_dict, solve
-from baranov.solvers.instances import generic_integer_configuration, scene_of
+from baranov.scene import SceneError, load_scene, scene_from_dict
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers import solve
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

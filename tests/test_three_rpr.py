@@ -19,7 +19,8 @@ from pathlib import Path
 import flint
 import pytest
 
-from baranov.solvers import ExactMethodError, load_scene, solve
+from baranov.scene import load_scene
+from baranov.solvers import ExactMethodError, solve
 from baranov.solvers.characteristic import characteristic_polynomial
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

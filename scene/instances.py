@@ -12,7 +12,7 @@ import numpy as np
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
-from .scene import Scene, scene_from_dict
+from .model import Scene, scene_from_dict
 
 
 def scene_of(truss: KinematicChain, coordinates, ground: int = 0) -> Scene:

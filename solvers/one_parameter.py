@@ -1,0 +1,640 @@
+"""The numeric backend's one-parameter root finder (coupling degree 1): every root of the
+closure condition f(s) on every free-sign branch, with the rules that make it complete
+on degenerate-prone instances (domain edges, windows narrower than the grid, tangential
+roots, flat valleys, rounding noise, touching radicands, folds, critical values).
+
+1. sample f on a grid uniform in the distance √s over (0, D²], D the sum of all link
+   diameters (no two joints can be farther apart), all branches at once (numpy);
+2. where neighbouring samples both fail, at different steps, a feasible window narrower
+   than the grid may lie between them: re-sample there, level by level;
+3. find the ends of the feasible domain (a triangle of zero area, where f stops being
+   real) and add them to the samples; an end where f vanishes is a root;
+4. roots with a sign change: Brent's method on each bracketing pair of samples (a bracket
+   that hides an undefined gap is re-sampled finely instead);
+5. roots without a sign change (tangential, or two roots in one cell): every local minimum
+   of |f| is refined by bounded minimisation, and its cell re-sampled finely.
+
+docs/numeric.md explains each rule with the miss that required it.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from itertools import combinations
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from baranov.closure import CompiledSystem, sign_branches
+from baranov.planner import Plan
+from baranov.scene import Scene
+
+from .configuration import parameter_name
+from .modes import MovableLinkageError, signs_text
+
+#: A local minimum of |f| below this but not below 1e-7 (a root where f is not smooth:
+#: f ≈ c√|s − s0| at a singular mode, issue 25's 7/N3 instance at s1,9 = 13 with P6 = P9
+#: and P8 P3 P4 in line) is polished on the link constraints and verified.
+NEAR_ROOT = 1e-4
+
+#: A local minimum of |f| between samples is re-sampled this finely: two close simple
+#: roots inside one cell show no sign change on the coarse grid (a saved regression:
+#: tests/regressions/9-close-roots.json, roots 3636 and 3637.34 in a cell 26 wide).
+REFINEMENT = 400
+
+
+#: Feasible windows narrower than the grid are searched where neighbouring samples fail
+#: at different steps, WINDOW_SAMPLES at a time, WINDOW_DEPTH levels deep (a saved
+#: regression: tests/regressions/9-missed-2.json, a window 0.6 wide in a cell 7 wide).
+WINDOW_SAMPLES = 64
+WINDOW_DEPTH = 6
+
+
+def critical_values(scene: Scene, plan: Plan) -> list[float]:
+    """Parameter values where a triangle of the plan with the parameter as one side and
+    two known sides d_a, d_b is flat: (d_a ± d_b)². There a radicand vanishes, the
+    feasible domain may end or shrink to a point, and a root may sit on it — the double
+    root T = 49 of thesis §5.1.3.1, where both free-sign triangles are flat and the
+    feasible domain is that single value, which sampling cannot find."""
+    parameter = frozenset(plan.parameters[0])
+    values = []
+    for step in plan.steps:
+        sides = [frozenset(pair) for pair in combinations(step.triangle, 2)]
+        if parameter in sides:
+            known = [scene.known.get(side) for side in sides if side != parameter]
+            if all(value is not None for value in known):
+                a, b = (math.sqrt(float(value)) for value in known)
+                values += [(a - b) ** 2, (a + b) ** 2]
+    return sorted(set(v for v in values if v > 0))
+
+
+def roots_at_critical_values(compiled: CompiledSystem, branches: np.ndarray, values: list[float]):
+    """The (value, branch) pairs among the critical values where the closure residual
+    vanishes (relative 1e-9), on every branch and on every branch with its nearly flat
+    free-sign triangles (relative radicand below FLAT_MARGIN) taken flat: the critical
+    value, (a ± b)² in floats, can miss the exact one by an ulp, and a radicand that
+    vanishes there then comes out negative (issue 25's 7/N1 instance: a mode at s4,5 = 2,
+    where one radicand turns positive as another turns negative — the feasible domain is
+    that single point)."""
+    if not values:
+        return []
+    points = np.array(values)[:, None]
+    _, _, margins = compiled.failure_profile(points, branches)  # (B, N, free)
+    flat = np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN
+    variants = np.where(flat, 0, branches[:, None, :])  # (B, N, free)
+    found = []
+    for n, value in enumerate(values):
+        tried = np.unique(np.concatenate([branches, variants[:, n]]), axis=0)
+        residuals = np.abs(compiled.residuals(points[n:n + 1], tried)[:, 0, 0])
+        found += [(np.array([value]), tried[b]) for b in np.flatnonzero(residuals < 1e-9)]
+    return found
+
+
+#: A free-sign triangle whose relative radicand is within FLAT_NOISE of 0 at FLAT_SAMPLES
+#: grid samples or more is flat along its branch (:func:`_flat_along_branches`).
+FLAT_NOISE = 1e-12
+FLAT_SAMPLES = 16
+
+
+def _flat_along_branches(branches: np.ndarray, margins: np.ndarray) -> np.ndarray:
+    """``branches`` with sign 0 for each free-sign triangle that stays flat along the
+    parameter (its radicand is 0 at FLAT_SAMPLES samples: a polynomial in the parameter
+    that vanishes that often vanishes identically on the branch). Rounding then makes the
+    radicand flip between ±1e-16, and the feasible domain between defined and undefined,
+    at every sample: issue 25's 7/N3 instance drawn with P8, P3, P4 in line, whose
+    alternative plan keeps s8,3 constant on a branch, ran for over 300 s in edge searches
+    and Brent brackets across that noise. Flat, the branch is one smooth curve."""
+    flat = (np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_NOISE).sum(axis=1) >= FLAT_SAMPLES
+    if not flat.any():
+        return branches
+    return np.unique(np.where(flat, 0, branches), axis=0)
+
+
+def _require_isolated_roots(compiled: CompiledSystem, branches: np.ndarray, grid: np.ndarray,
+                            table: np.ndarray) -> None:
+    """Raise :class:`MovableLinkageError` where a branch's closure residual is within
+    FLAT_NOISE of 0 at FLAT_SAMPLES samples or more (a polynomial condition that vanishes
+    that often vanishes identically: a continuum of configurations). Issue 25's 7/N2
+    instance rotates about P1 = P6 = P8; the bracketing of its rounding noise ran for over
+    300 s."""
+    vanishing = np.abs(np.nan_to_num(table, nan=1.0)) < FLAT_NOISE
+    if (vanishing.sum(axis=1) >= FLAT_SAMPLES).any():
+        b = int(np.argmax(vanishing.sum(axis=1)))
+        where = grid[vanishing[b]]
+        name = parameter_name(compiled.plan.parameters[0])
+        raise MovableLinkageError(
+            f"the linkage moves with these dimensions: the closure condition vanishes for {name} from "
+            f"{where.min():.6g} to {where.max():.6g} (signs {signs_text(branches[b])}), "
+            "a continuum of configurations rather than isolated assembly modes")
+
+
+def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: float, samples: int,
+                         undecided: list[str], deadline: float = math.inf):
+    """Candidate roots ``(array([s]), branch)`` of the closure condition on every branch,
+    and the approximate roots to polish on the link constraints; a sentence for each
+    stretch where f is flat to rounding, and for the branches left at the ``deadline``
+    (``time.monotonic()``), is appended to ``undecided``."""
+    grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
+    # below the first sample, samples even in √s down to joints 1e-7 of the largest
+    # distance apart (closer, they coincide to same_mode's resolution: coincidence.py):
+    # a root at s11,5 = 5.8e-7 (issue 25's 9/N7, P11 and P5 7.6e-4 apart) lay below the
+    # first sample, 1e-4
+    below = grid[0] * 4.0 ** -np.arange(EDGE_LEVELS, 0, -1)
+    grid = np.concatenate([below[below >= 1e-14 * upper], grid])
+    failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
+    flattened = _flat_along_branches(branches, margins)
+    if flattened.shape != branches.shape or (flattened != branches).any():
+        branches = flattened
+        failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
+    table = compiled.residuals(grid[:, None], branches)[:, :, 0]
+    _require_isolated_roots(compiled, branches, grid, table)
+    candidates, near_roots, left = [], [], []
+    for b, branch in enumerate(branches):
+        if time.monotonic() > deadline:
+            left.append(signs_text(branch))
+            continue
+
+        def sampled(points: np.ndarray, branch=branch) -> np.ndarray:
+            return compiled.residuals(points[:, None], branch[None, :])[0, :, 0]
+
+        def f(s: float, sampled=sampled) -> float:
+            return float(sampled(np.array([s]))[0])
+
+        def failing(points: np.ndarray, branch=branch) -> np.ndarray:
+            return compiled.first_failures(points[:, None], branch[None, :])[0]
+
+        points, values = _with_windows(grid, table[b], failures[b], radicands[b], margins[b], sampled, failing,
+                                       len(compiled.plan.steps))
+        points, values, edges = _with_edges(points, values, sampled)
+        roots = [edge for edge, value in edges if abs(value) < 1e-7]
+        near: list[float] = []
+        noise: list[tuple[float, float, int]] = []
+        roots += _scan(f, points, values, sampled, near, noise, RESOLUTION * upper)
+        for low, high in _next_to_roots(points, roots) + _suspicious_minima(points, values)[:MAX_MINIMA]:
+            fine = np.linspace(low, high, REFINEMENT)
+            roots += _scan(f, fine, sampled(fine), sampled, near, noise, RESOLUTION * upper)
+        roots, valleys = _merged_flat_valleys(sampled, roots)
+        name = parameter_name(compiled.parameters[0])
+        undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition "
+                      "is flat to rounding there; reported as one mode (a singular mode, or modes closer than "
+                      "floating point separates)" for low, high in valleys]
+        undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition's "
+                      f"sign is rounding noise there ({changes} sign changes); reported as one mode"
+                      for low, high, changes in _merged_stretches(noise)
+                      if not any(a <= low and high <= b for a, b in valleys)]  # said already
+        for root in roots:
+            candidates.append((np.array([root]), branch))
+        candidates += _roots_at_folds(compiled, branch, edges)
+        candidates += _roots_at_touching_radicands(compiled, branch, grid, failures[b], radicands[b])
+        near_roots += [(np.array([x]), branch) for x in near]
+    if left:
+        undecided.append(f"branches {', '.join(left)}: not searched, the time limit was reached")
+    return candidates, near_roots
+
+
+def _merged_stretches(stretches: list[tuple[float, float, int]]) -> list[tuple[float, float, int]]:
+    """(low, high, sign changes) stretches merged where they overlap or the gap between
+    them is narrower than the wider of the two (the coarse scan and the re-samplings
+    meet the same noise in pieces)."""
+    merged: list[list] = []
+    for low, high, changes in sorted(stretches):
+        if merged and low - merged[-1][1] <= max(high - low, merged[-1][1] - merged[-1][0]):
+            merged[-1][1] = max(merged[-1][1], high)
+            merged[-1][2] += changes
+        else:
+            merged.append([low, high, changes])
+    return [(low, high, changes) for low, high, changes in merged]
+
+
+#: Samples of f between two neighbouring roots, and of a flat stretch's extent.
+VALLEY_SAMPLES = 64
+
+
+def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list[tuple[float, float]]]:
+    """``roots`` with each run of neighbours between which |f| stays below FLAT_NOISE
+    replaced by the middle of that flat stretch, and the stretches. Next to a singular
+    mode of high multiplicity f ≈ c (s − s0)^m is flat to rounding over a whole stretch,
+    its sign flips with the noise and every flip brackets a "root": issue 25's 9/N15
+    (tests/regressions/9-N15-flat-valley.json) gave four modes between s10,8 = 31.9974
+    and 32.0043 around the true one at 32, |f| < 1e-14 on [31.99, 32.01]. |f| is
+    symmetric about s0 to first order, so the middle of the stretch where it stays below
+    FLAT_NOISE is the estimate (31.99994 there). Where the noise is larger than FLAT_NOISE
+    (next to a fold: 1e-8 on 9/N22) the modes are merged later, by
+    :func:`~baranov.solvers.configuration.merged_clusters`."""
+    ordered = sorted(roots)
+    roots = [r for n, r in enumerate(ordered) if n == 0 or r - ordered[n - 1] > 1e-12 * abs(r)]
+    kept, valleys, start = [], [], 0
+    for n in range(1, len(roots) + 1):
+        if n < len(roots) and _flat(sampled, roots[n - 1], roots[n]):
+            continue
+        if n - start > 1:
+            low, high = _flat_stretch(sampled, roots[start], roots[n - 1])
+            kept.append((low + high) / 2)
+            valleys.append((low, high))
+        else:
+            kept.append(roots[start])
+        start = n
+    return kept, valleys
+
+
+def _flat(sampled, low: float, high: float) -> bool:
+    values = sampled(np.linspace(low, high, VALLEY_SAMPLES))
+    return bool(np.isfinite(values).all() and (np.abs(values) <= FLAT_NOISE).all())
+
+
+def _flat_stretch(sampled, low: float, high: float) -> tuple[float, float]:
+    """The stretch around [low, high] (flat) where |f| stays below FLAT_NOISE, sampled
+    outwards over windows of growing width, then across the last sample step twice more
+    (to VALLEY_SAMPLES⁻³ of the last window: the middle of the stretch is the mode's
+    estimate, and a coarse end moved it by 2e-4 on 9/N15)."""
+    ends = []
+    for direction, end in ((-1, low), (1, high)):
+        width = high - low
+        for _ in range(8):
+            end, width, inside = _last_flat(sampled, end, direction, width)
+            if not inside:
+                break
+        for _ in range(2):
+            end, width, _ = _last_flat(sampled, end, direction, width / (VALLEY_SAMPLES - 1))
+        ends.append(end)
+    return ends[0], ends[1]
+
+
+def _last_flat(sampled, start: float, direction: int, width: float) -> tuple[float, float, bool]:
+    """The last of VALLEY_SAMPLES samples from ``start`` over ``width`` in ``direction``
+    before |f| first exceeds FLAT_NOISE, and whether none did (then the next window is 4
+    times wider)."""
+    points = start + direction * np.linspace(0, width, VALLEY_SAMPLES)
+    flat = np.abs(np.nan_to_num(sampled(points), nan=np.inf)) <= FLAT_NOISE
+    if flat.all():
+        return float(points[-1]), width * 4, True
+    return float(points[max(int(np.argmin(flat)) - 1, 0)]), width, False
+
+
+#: A failing radicand whose coarse-grid local maximum is below −this (relative to the
+#: squared largest side) is not searched for a touching point.
+TOUCH_SEARCH = 1e-2
+#: A radicand maximum above −this (relative) counts as touching 0: its triangle is flat.
+TOUCH_TOLERANCE = 1e-12
+
+
+def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, grid: np.ndarray,
+                                 failures: np.ndarray, radicands: np.ndarray):
+    """Candidates where a free-sign radicand touches 0 from below: the branch's feasible
+    domain there is a single point, which no sample can hit (joints in line: on 9/N6 the
+    triangle P11 P1 P2 is flat only at s10,3 = 26 and its radicand ≈ −c(s − 26)² around,
+    docs/stability.md; thesis §5.1.3.1's T = 49 is the case with known sides, handled by
+    :func:`critical_values`). At every local maximum of a failing free-sign radicand
+    among the coarse samples (above −TOUCH_SEARCH, both neighbours failing at the same
+    step, a parabola through the three reaching near 0: :func:`_may_touch_zero`), the
+    radicand is maximised (bounded Brent); where the maximum reaches −TOUCH_TOLERANCE the point is a candidate with that
+    triangle flat (sign 0), verified like every other."""
+    free_index = {}
+    for index, step in enumerate(compiled.plan.steps):
+        if step.free_sign:
+            free_index[index] = len(free_index)
+    found = []
+    for i in _radicand_bumps(failures, radicands, len(compiled.plan.steps)):
+        step = int(failures[i])
+        if (step not in free_index or radicands[i] < -TOUCH_SEARCH or failures[i - 1] != step
+                or failures[i + 1] != step or not _may_touch_zero(grid, radicands, i)):
+            continue  # a bump next to a defined sample is a domain edge, the edge search's business
+        k = free_index[step]
+
+        def negative_margin(s: float, k=k) -> float:
+            margin = compiled.failure_profile(np.array([[s]]), branch[None, :])[2][0, 0, k]
+            return -margin if np.isfinite(margin) else 10.0  # |relative radicand| ≤ 3: 10 is "undefined"
+
+        low, high = float(grid[i - 1]), float(grid[i + 1])
+        best = minimize_scalar(negative_margin, bounds=(low, high), method="bounded", options={"xatol": 1e-14 * high})
+        if best.success and best.fun <= TOUCH_TOLERANCE:
+            flat = branch.copy()
+            flat[k] = 0
+            # another free-sign triangle may turn flat at the same point (a domain edge:
+            # issue 25's 9/N21, where P11 P3 P4 touches flat at s10,8 = 10 exactly as
+            # P9 P5 P6 folds); by a rounding error it fails there, so it is taken flat too
+            margins = compiled.failure_profile(np.array([[best.x]]), flat[None, :])[2][0, 0]
+            flat[np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN] = 0
+            found.append((np.array([float(best.x)]), flat))
+    return found
+
+
+#: A free-sign triangle counts as flat at a domain edge when its radicand, relative to its
+#: squared largest side, is below this: the triangle that ends the domain (~1e-15 there)
+#: and any whose radicand vanishes with it like √δ (two joints in line with a third).
+FLAT_MARGIN = 1e-4
+
+
+def _roots_at_folds(compiled: CompiledSystem, branch: np.ndarray, edges: list[tuple[float, float]]):
+    """Candidates at domain edges where free-sign triangles are flat and the residual has
+    opposite signs on branches that differ only in those triangles' signs. Across the
+    fold those branches are one curve, f(e ± δ) ≈ V ± W√δ, so opposite signs at the edge
+    found (δ ≈ 1e-14 of the cell) mean V ≈ 0: a mode with those triangles flat, where no
+    branch changes sign and none reaches |f| < 1e-7 at δ (joints in line: docs/stability.md;
+    on 9/N1 two triangles were flat at once). The candidate is placed with the flat
+    triangles' signs 0 (their joints on the line) and polished like every other."""
+    found = []
+    for edge, value in edges:
+        _, _, margins = compiled.failure_profile(np.array([[edge]]), branch[None, :])
+        flat = np.flatnonzero(np.abs(margins[0, 0]) < FLAT_MARGIN) if margins.size else []
+        if not len(flat) or not np.isfinite(value):
+            continue
+        variants = np.repeat(branch[None, :], 2 ** len(flat), axis=0)
+        variants[:, flat] = sign_branches(len(flat))
+        others = compiled.residuals(np.array([[edge]]), variants)[:, 0, 0]
+        others = others[np.isfinite(others)]
+        if (others > 0).any() and (others < 0).any():
+            folded = branch.copy()
+            folded[flat] = 0
+            found.append((np.array([edge]), folded))
+    return found
+
+
+def _may_touch_zero(grid: np.ndarray, radicands: np.ndarray, i: int) -> bool:
+    """Whether the parabola through the failing radicand's samples i − 1, i, i + 1 (a
+    local maximum) reaches within half their spread of 0: a radicand that touches 0
+    between samples does (up to the cubic term), a maximum well below 0 does not. Keeps
+    the bounded maximisation to the few bumps that matter (on a random 9-link instance,
+    80 bumps cost 2000 plan evaluations, 3.3 s of a 4.7 s solve)."""
+    x, y = grid[i - 1:i + 2], radicands[i - 1:i + 2]
+    a, b, c = np.polyfit(x - x[1], y, 2)
+    top = c - b * b / (4 * a) if a < 0 else y.max()
+    return bool(top > -0.5 * (y.max() - y.min()))
+
+
+def _window_cells(codes: np.ndarray, feasible: int) -> np.ndarray:
+    """Indices i where samples i and i+1 both fail, at different steps: a feasible window
+    may hide between them. (A defined/undefined boundary is left to the edge search.)"""
+    return np.flatnonzero((codes[:-1] != codes[1:]) & (codes[:-1] < feasible) & (codes[1:] < feasible))
+
+
+def _radicand_bumps(codes: np.ndarray, radicands: np.ndarray, feasible: int) -> np.ndarray:
+    """Indices i of failing samples whose radicand (of the step they fail at) is a local
+    maximum among the neighbours failing at that same step: the radicand may turn
+    positive between samples, a window whose two sides fail at one step
+    (tests/regressions/11-missed-property.json)."""
+    inner = codes[1:-1]
+    left_ok = (codes[:-2] != inner) | (radicands[1:-1] >= radicands[:-2])
+    right_ok = (codes[2:] != inner) | (radicands[1:-1] >= radicands[2:])
+    return np.flatnonzero((inner < feasible) & left_ok & right_ok) + 1
+
+
+def _radicand_dips(codes: np.ndarray, margins: np.ndarray, feasible: int) -> np.ndarray:
+    """Indices i of defined samples between defined neighbours where some free-sign
+    step's radicand (``margins``, one column per step) is a local minimum: it may turn
+    negative between samples, an undefined gap with a domain edge (and a root next to it)
+    on each side (tests/regressions/9-gap-between-samples.json, found by the completeness
+    test)."""
+    inner = margins[1:-1]
+    defined = (codes[:-2] == feasible) & (codes[1:-1] == feasible) & (codes[2:] == feasible)
+    minimum = ((inner <= margins[:-2]) & (inner <= margins[2:])).any(axis=-1)
+    return np.flatnonzero(defined & minimum) + 1
+
+
+def _with_windows(grid, values, failures, radicands, margins, sampled, failing, feasible):
+    """The grid plus dense samples wherever a feasible window may hide between samples:
+    neighbours failing at different steps, or a local maximum of a failing radicand;
+    refined level by level (all cells of a level in one vectorised evaluation)."""
+    extra = []
+    cells = [(grid[i], grid[i + 1]) for i in _window_cells(failures, feasible)]
+    cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_bumps(failures, radicands, feasible)]
+    cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_dips(failures, margins, feasible)]
+    for _ in range(WINDOW_DEPTH):
+        if not cells:
+            break
+        points = np.concatenate([np.linspace(low, high, WINDOW_SAMPLES) for low, high in cells])
+        codes = failing(points)
+        extra.append(points)
+        following = []
+        for c in range(len(cells)):
+            part = slice(c * WINDOW_SAMPLES, (c + 1) * WINDOW_SAMPLES)
+            following += [(points[part][i], points[part][i + 1]) for i in _window_cells(codes[part], feasible)]
+        cells = following
+    if not extra:
+        return grid, values
+    added = np.unique(np.concatenate(extra))
+    return _merge(grid, values, added, sampled(added))
+
+
+def _merge(points: np.ndarray, values: np.ndarray, more_points: np.ndarray, more_values: np.ndarray):
+    """Samples and further samples as one sorted set, without repeated points."""
+    merged = np.concatenate([points, more_points])
+    order = np.argsort(merged, kind="stable")
+    merged, merged_values = merged[order], np.concatenate([values, more_values])[order]
+    keep = np.concatenate([[True], np.diff(merged) > 0])
+    return merged[keep], merged_values[keep]
+
+
+#: A local minimum of |f| must lie below both neighbours by this (relative to |f| there,
+#: and to 1e-3 at least): where f is flat to rounding, every other sample is a "minimum"
+#: (issue 25's 7/N1 instance: 36 cells of 397 noise minima each, one bounded
+#: minimisation per minimum, over 60 s).
+MINIMUM_DEPTH = 1e-10
+
+
+#: At most this many local minima of |f| are minimised per scan, and re-sampled per
+#: branch, the deepest first (uncapped re-sampling took 50 of 81 s on issue 25's 9/N10 at a
+#: flexible configuration, then 32 s: tests/regressions/9-N10-noise-brackets.json): next
+#: to a singular mode f is flat to rounding over a stretch and a fine re-sampling showed
+#: 100–150 "minima" per cell (issue 25's 9/N8 instance drawn at a flexible configuration:
+#: 12 000 evaluations, 36 s where its siblings take 0.6 s).
+MAX_MINIMA = 8
+
+
+def _next_to_roots(grid: np.ndarray, roots: list[float]) -> list[tuple[float, float]]:
+    """The cells on either side of each root's cell, to re-sample finely: a tangential
+    root next to a simple one hides in the slope towards it (issue 25's 9/N6: f ≈ −c(s −
+    25)² touches 0 at 25 and crosses it at 25.0472; the samples 24.971, 25.047, 25.123
+    read −3e-7, −5e-9, +4e-6, a single crossing)."""
+    merged: list[list[float]] = []
+    for root in sorted(roots):
+        i = int(np.clip(np.searchsorted(grid, root), 1, len(grid) - 1))
+        low, high = float(grid[max(i - 2, 0)]), float(grid[min(i + 1, len(grid) - 1)])
+        if merged and low <= merged[-1][1]:
+            merged[-1][1] = max(merged[-1][1], high)  # neighbouring roots share their cells
+        else:
+            merged.append([low, high])
+    # where f is noise, every sample flips its sign and brackets a "root": beside those the
+    # re-sampling only finds more noise (issue 25's 9/N10 drawn at a flexible configuration,
+    # seed 26: 16 470 brackets, 198 s); past MAX_MINIMA stretches only lone roots are kept
+    if len(merged) > MAX_MINIMA:
+        merged = [cell for cell in merged if sum(cell[0] <= r <= cell[1] for r in roots) == 1]
+    return [(low, high) for low, high in merged[:MAX_MINIMA]]
+
+
+def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float, float]]:
+    """Cells around interior local minima of |f| with no sign change, the smallest |f|
+    first."""
+    finite = np.isfinite(values)
+    magnitude = np.abs(values)
+    dip = MINIMUM_DEPTH * np.maximum(magnitude[1:-1], 1e-3)  # below rounding noise: not a minimum
+    minima = (finite[:-2] & finite[1:-1] & finite[2:] & (magnitude[1:-1] <= magnitude[:-2] - dip)
+              & (magnitude[1:-1] <= magnitude[2:] - dip) & (values[:-2] * values[2:] > 0))
+    index = np.flatnonzero(minima) + 1
+    return [(float(grid[i - 1]), float(grid[i + 1])) for i in index[np.argsort(magnitude[index], kind="stable")]]
+
+
+#: Next to each domain edge, samples at distances 4^-k (k = 1 … EDGE_LEVELS) of the gap to
+#: the nearest sample, down to EDGE_FLOOR of the edge: f is smooth in √δ at distance δ
+#: from an edge, so these are evenly spread in the variable that matters (issue 25's
+#: 9/N24: a root 8.7e-8 from the edge at s11,9 = 18, f ≈ −6e-7 between them, the nearest
+#: sample 7e-6 away).
+EDGE_LEVELS = 24
+EDGE_FLOOR = 1e-10
+
+
+def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
+    """Add the ends of the feasible domain (one per defined/undefined neighbour pair), and
+    the defined samples the edge search made on the way, to the samples: f often turns
+    quickly near an edge, and two roots between the last coarse sample and the edge show
+    no sign change there (tests/regressions/11-missed-21.json); a root 3e-7 from an edge at
+    s = 2811.6 changed sign only between the edge and the last sample before it
+    (tests/regressions/7-root-at-edge.json, found by the completeness test). Also return
+    the edges with their values (a root may sit on an edge). Next to each edge, samples
+    spread evenly in √δ (EDGE_LEVELS)."""
+    finite = np.isfinite(values)
+    edges, extra_points, extra_values = [], [], []
+    for i in np.flatnonzero(finite[:-1] != finite[1:]):
+        edge, seen_points, seen_values = _domain_edge(sampled, points[i], points[i + 1], inside_low=bool(finite[i]))
+        extra_points.append(seen_points)
+        extra_values.append(seen_values)
+        if edge is not None:
+            edges.append((edge, float(sampled(np.array([edge]))[0])))
+            inside = points[i] if finite[i] else points[i + 1]
+            steps = edge + (inside - edge) * 4.0 ** -np.arange(1, EDGE_LEVELS + 1)
+            steps = steps[np.abs(steps - edge) >= EDGE_FLOOR * abs(edge)]
+            extra_points.append(steps)
+            extra_values.append(sampled(steps))
+    if edges:  # the edges are samples too: a root within 1e-10 (relative) of an edge changes sign only there
+        extra_points.append(np.array([edge for edge, _ in edges]))
+        extra_values.append(np.array([value for _, value in edges]))
+    if not extra_points:
+        return points, values, edges
+    return (*_merge(points, values, np.concatenate(extra_points), np.concatenate(extra_values)), edges)
+
+
+def _scan(f, grid: np.ndarray, values: np.ndarray, sampled, near: list | None = None,
+          noise: list | None = None, resolution: float = 0.0, resample: bool = True) -> list[float]:
+    """Roots of f on sampled ``grid``: exact zeros, sign changes (Brent), and tangential
+    roots at local minima of |f| (bounded minimisation). A sign change across an
+    undefined gap narrower than the cell (Brent meets NaN) is re-sampled finely, with its
+    domain edges, once (``resample``). A run of sign changes across samples whose sign is
+    rounding noise at the parameter's ``resolution`` (:func:`_noise_runs`) gives one
+    root, the run's middle, and its stretch is appended to ``noise``."""
+    finite = np.isfinite(values)
+    both = finite[:-1] & finite[1:]
+    roots: list[float] = [float(grid[i]) for i in np.flatnonzero(finite & (values == 0))]
+    cells = np.flatnonzero(both & (values[:-1] * values[1:] < 0))
+    single, runs = _noise_runs(sampled, grid, values, cells, resolution)
+    for first, last in runs:
+        low, high = float(grid[first]), float(grid[last + 1])
+        roots.append((low + high) / 2)
+        if noise is not None:
+            noise.append((low, high, last - first + 1))
+    for i in single:
+        try:
+            roots.append(brentq(f, grid[i], grid[i + 1], xtol=1e-14 * grid[i + 1], rtol=1e-15, maxiter=200))
+        except ValueError:  # f is undefined somewhere inside the bracket
+            if resample:
+                fine = np.linspace(grid[i], grid[i + 1], REFINEMENT)
+                points, fine_values, edges = _with_edges(fine, sampled(fine), sampled)
+                roots += [edge for edge, value in edges if abs(value) < 1e-7]
+                roots += _scan(f, points, fine_values, sampled, near, noise, resolution, resample=False)
+    for low, high in _above_noise(sampled, grid, values, _suspicious_minima(grid, values), resolution):
+        found = minimize_scalar(lambda s: abs(f(s)), bounds=(low, high), method="bounded",
+                                options={"xatol": 1e-14 * high})
+        if found.success and abs(f(found.x)) < 1e-7:
+            roots.append(float(found.x))
+        elif near is not None and found.success and abs(f(found.x)) < NEAR_ROOT:
+            near.append(float(found.x))
+    return roots
+
+
+#: Offsets, in units of the parameter's resolution, at which a sample is re-evaluated
+#: to tell its sign from rounding noise.
+JITTER = np.array([-4.0, -3.0, -2.0, -1.0, 1.0, 2.0, 3.0, 4.0])
+#: The parameter's resolution relative to its upper bound: s enters sums with squared
+#: distances up to that bound, so f cannot resolve s more finely than a few ulps of it.
+RESOLUTION = 2.0 ** -48
+
+
+def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tuple[float, float]],
+                 resolution: float) -> list[tuple[float, float]]:
+    """The first MAX_MINIMA of ``minima`` (cells around a local minimum of |f| at their
+    middle sample) whose dip below both neighbours exceeds the spread of f re-evaluated at
+    offsets JITTER × ``resolution`` from the minimum: where f is rounding noise every
+    other sample is a "minimum" (issue 25's 9/N10: 972 bounded minimisations near s10,5 =
+    1e-10, 8 of its 9.5 s). One vectorised evaluation of 8 points per minimum looked at."""
+    if resolution <= 0 or not minima:
+        return minima[:MAX_MINIMA]
+    minima = minima[:4 * MAX_MINIMA]
+    index = np.searchsorted(grid, [low for low, _ in minima]) + 1  # a cell is (grid[i − 1], grid[i + 1])
+    centres = grid[index][:, None]
+    jittered = sampled((centres + JITTER * np.minimum(resolution, np.abs(centres) / 8)).ravel())
+    spread = np.ptp(jittered.reshape(len(index), len(JITTER)), axis=1)
+    magnitude = np.abs(values)
+    dip = np.minimum(magnitude[index - 1], magnitude[index + 1]) - magnitude[index]
+    kept = [cell for cell, keep in zip(minima, dip > spread, strict=True) if keep]
+    return kept[:MAX_MINIMA]
+
+
+#: Noisy sign-change cells at most this many cells apart belong to one noise stretch.
+NOISE_GAP = 8
+
+
+def _noise_runs(sampled, grid: np.ndarray, values: np.ndarray, cells: np.ndarray, resolution: float):
+    """Split the sign-change cells ``cells`` (f(grid[i]) f(grid[i+1]) < 0) into lone cells,
+    to bracket, and stretches of cells whose sign rounding decides: f re-evaluated at
+    offsets JITTER × ``resolution`` (at most an eighth of the sample) from an end of the
+    cell takes both signs. Noisy cells at most NOISE_GAP cells apart form one stretch;
+    a noisy cell alone (a root on a sample) is bracketed as usual. Where f is below its
+    own rounding noise every few samples flip its sign, and each flip bracketed a
+    "root" (issue 25's 9/N10 drawn at a flexible configuration: f ≈ c s^0.2 near s10,5 =
+    0, where P10 and P5 coincide; re-sampled every 5e-14 near s = 3e-11, it flipped
+    between ±2e-4: 4 222 Brent brackets, 39 of its 51 s). Returns (lone cells,
+    [(first cell, last cell)] of the stretches). Cost: one vectorised evaluation of 8
+    points per end of a sign-change cell."""
+    if len(cells) < 2 or resolution <= 0:
+        return cells, []
+    ends = np.unique(np.concatenate([cells, cells + 1]))
+    centres = grid[ends][:, None]
+    points = (centres + JITTER * np.minimum(resolution, np.abs(centres) / 8)).ravel()
+    jittered = sampled(points).reshape(len(ends), len(JITTER))
+    noisy_ends = ends[~(np.sign(jittered) == np.sign(values[ends])[:, None]).all(axis=1)]
+    noisy = np.isin(cells, noisy_ends) | np.isin(cells + 1, noisy_ends)
+    single, runs = [int(i) for i in cells[~noisy]], []
+    group: list[int] = []
+    for i in cells[noisy].tolist() + [None]:
+        if group and (i is None or i - group[-1] > NOISE_GAP):
+            if len(group) > 1:
+                runs.append((group[0], group[-1]))
+            else:
+                single.append(group[0])
+            group = []
+        if i is not None:
+            group.append(i)
+    return sorted(single), runs
+
+
+def _domain_edge(sampled, lo: float, hi: float, inside_low: bool):
+    """The boundary of the feasible domain between ``lo`` and ``hi``, on the defined side:
+    7 rounds of 64 vectorised samples (resolution 64^-7 of the cell). Returns the edge (or
+    None) and the defined samples of the first two rounds (spread over the cell and over
+    its last 64th; the later rounds crowd at the edge, where rounding noise would only add
+    spurious minima: keeping all seven made the 5/B1 example 300 times slower)."""
+    inside, outside = (lo, hi) if inside_low else (hi, lo)
+    kept_points, kept_values = [], []
+    for round_number in range(7):
+        points = np.linspace(inside, outside, 64)
+        values = sampled(points)
+        defined = np.isfinite(values)
+        if round_number < 2:
+            kept_points.append(points[defined])
+            kept_values.append(values[defined])
+        undefined = np.flatnonzero(~defined)
+        if undefined.size == 0 or undefined[0] == 0:
+            break
+        inside, outside = points[undefined[0] - 1], points[undefined[0]]
+    edge = inside if np.isfinite(sampled(np.array([inside]))[0]) else None
+    return edge, np.concatenate(kept_points), np.concatenate(kept_values)
