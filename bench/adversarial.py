@@ -33,7 +33,7 @@ import numpy as np
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.scene.instances import instance_dict
-from baranov.solvers import MovableLinkageError, solve
+from baranov.solvers import ExactSolution, MovableLinkageError, solve
 from baranov.solvers.adversarial import ADVERSARIAL_KINDS, adversarial_scene
 from baranov.solvers.msolve import compare_modes, match_configurations, msolve_modes
 
@@ -112,7 +112,7 @@ def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tu
         if oracle.status == "finite":
             row[f"{method}_missed"], row[f"{method}_spurious"], row[f"{method}_coarse"] = compare_modes(
                 found, list(oracle.configurations))
-        if solution.certificate is not None:
+        if isinstance(solution, ExactSolution):
             row[f"{method}_certified"] = solution.certificate.complete
             row[f"{method}_gaps"] = list(solution.certificate.gaps)
     if failed(row, methods):

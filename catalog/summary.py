@@ -30,10 +30,17 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
         "Table 3.1 (after Yang & Yao 1994) and thesis ch. 4 (slider chains). Method A: the",
         "library's generator; method B: brute force over nauty's geng output.",
         "",
-        "| links | trusses (method A) | trusses (method B) | trusses (literature) | Assur groups "
-        "| Assur groups (literature) | slider chains | slider chains (literature) |",
-        "|---|---|---|---|---|---|---|---|",
     ]
+    lines += _counts(catalogs, checks) + _invariants(catalogs) + _coupling(catalogs) + _assembly_modes(catalogs)
+    lines += ["", "## Where this differs from the literature", "", *DISCREPANCY_NOTE, ""]
+    return "\n".join(lines)
+
+
+def _counts(catalogs: dict[int, list[dict]], checks: dict[int, dict]) -> list[str]:
+    """Trusses (both methods), Assur groups and slider chains per link count, beside Table 3.1."""
+    lines = ["| links | trusses (method A) | trusses (method B) | trusses (literature) | Assur groups "
+             "| Assur groups (literature) | slider chains | slider chains (literature) |",
+             "|---|---|---|---|---|---|---|---|"]
     for links in sorted(set(catalogs) | set(LITERATURE)):
         entries = catalogs.get(links)
         literature = LITERATURE.get(links, {})
@@ -54,12 +61,14 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
             f"{_cell(assur)} | {_cell(literature.get('assur_groups'))} | {_cell(sliders)} | "
             f"{_cell(literature.get('slider_chains'))} |"
         )
-    lines += ["", "## Invariants per link count", ""]
-    lines += [
-        "| links | non-planar | automorphism group orders (order: trusses) "
-        "| largest link degree (degree: trusses) |",
-        "|---|---|---|---|",
-    ]
+    return lines
+
+
+def _invariants(catalogs: dict[int, list[dict]]) -> list[str]:
+    lines = ["", "## Invariants per link count", "",
+             "| links | non-planar | automorphism group orders (order: trusses) "
+             "| largest link degree (degree: trusses) |",
+             "|---|---|---|---|"]
     for links, entries in sorted(catalogs.items()):
         orders = Counter(e["automorphism_group_order"] for e in entries)
         degrees = Counter(max(e["link_degrees"]) for e in entries)
@@ -70,9 +79,13 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
             + ", ".join(f"{k}: {v}" for k, v in sorted(degrees.items()))
             + " |"
         )
-    lines += ["", "## Coupling degree", "",
-              "Fewest unknown distances of a bilateration plan (`baranov.planner`), as trusses per degree.", "",
-              "| links | this catalog | Yang & Yao (thesis Table 3.1) |", "|---|---|---|"]
+    return lines
+
+
+def _coupling(catalogs: dict[int, list[dict]]) -> list[str]:
+    lines = ["", "## Coupling degree", "",
+             "Fewest unknown distances of a bilateration plan (`baranov.planner`), as trusses per degree.", "",
+             "| links | this catalog | Yang & Yao (thesis Table 3.1) |", "|---|---|---|"]
     for links, entries in sorted(catalogs.items()):
         ours = Counter(e["coupling_degree"] for e in entries)
         theirs = LITERATURE_COUPLING.get(links)
@@ -80,13 +93,17 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
             f"| {links} | " + ", ".join(f"{d}: {n}" for d, n in sorted(ours.items())) + " | "
             + (", ".join(f"{d}: {n}" for d, n in sorted(theirs.items())) if theirs else "—") + " |"
         )
-    lines += ["", "## Assembly modes", "",
-              "Degree of the characteristic polynomial (`assembly_modes`, derived modulo random 62-bit primes on random",
-              "integer-coordinate instances, coupling degrees 1 and 2 up to " + str(ASSEMBLY_MODES_MAX_LINKS) + " links;",
-              "`baranov.solvers.modular`, equal to the degree over Q wherever both were derived) and the realization-count",
-              "identity (`realization_count`, pyrigi; `baranov.topology.realizations`), as count: trusses.", "",
-              "| links | assembly modes (characteristic polynomial) | realization count | trusses where both are known "
-              "| of them equal |", "|---|---|---|---|---|"]
+    return lines
+
+
+def _assembly_modes(catalogs: dict[int, list[dict]]) -> list[str]:
+    lines = ["", "## Assembly modes", "",
+             "Degree of the characteristic polynomial (`assembly_modes`, derived modulo random 62-bit primes on random",
+             "integer-coordinate instances, coupling degrees 1 and 2 up to " + str(ASSEMBLY_MODES_MAX_LINKS) + " links;",
+             "`baranov.solvers.modular`, equal to the degree over Q wherever both were derived) and the realization-count",
+             "identity (`realization_count`, pyrigi; `baranov.topology.realizations`), as count: trusses.", "",
+             "| links | assembly modes (characteristic polynomial) | realization count | trusses where both are known "
+             "| of them equal |", "|---|---|---|---|---|"]
     for links, entries in sorted(catalogs.items()):
         derived = Counter(e["assembly_modes"] for e in entries if e["assembly_modes"] is not None)
         counted = Counter(e["realization_count"] for e in entries)
@@ -107,5 +124,4 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
                   "", "Nine-link thesis names given (`name_evidence` in the catalog says how each was identified): "
                   + ", ".join(sorted((e["name"] for e in catalogs[9] if e["name"].startswith("9/B")),
                                      key=lambda n: int(n[3:]))) + "."]
-    lines += ["", "## Where this differs from the literature", "", *DISCREPANCY_NOTE, ""]
-    return "\n".join(lines)
+    return lines

@@ -15,7 +15,7 @@ from baranov.catalog import CATALOG_FOLDER, build_catalog
 from baranov.catalog.files import check_writable_folder, write_atomically
 from baranov.enumerate import check_link_count
 from baranov.scene import load_scene
-from baranov.solvers import available_backends
+from baranov.solvers import ExactSolution, available_backends
 from baranov.solvers import solve as solve_scene
 from baranov.solvers.modes import signs_text
 from baranov.topology import natural_sort_key
@@ -107,11 +107,11 @@ def run_solve(args: argparse.Namespace) -> int:
     modes = solution.assembly_modes
     print(f"{args.scene}: coupling degree {solution.coupling_degree}, "
           f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} ({solution.method})")
-    if solution.characteristic_polynomial is not None:
-        polynomial = solution.characteristic_polynomial
-        print(f"characteristic polynomial in {polynomial.variable}: degree {polynomial.degree}, "
-              f"{len(polynomial.real_roots())} real roots (isolated in certified enclosures)")
-    if solution.certificate is not None:
+    if isinstance(solution, ExactSolution):
+        if solution.characteristic_polynomial is not None:
+            polynomial = solution.characteristic_polynomial
+            print(f"characteristic polynomial in {polynomial.variable}: degree {polynomial.degree}, "
+                  f"{len(polynomial.real_roots())} real roots (isolated in certified enclosures)")
         print(f"assembly modes: {solution.certificate.summary()}")
     for sentence in solution.undecided:
         print(f"undecided: {sentence}")

@@ -10,7 +10,7 @@ from .characteristic import (
 )
 from .exact import solve_exact
 from .mode_counts import characteristic_degree
-from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
+from .modes import AssemblyMode, Certificate, ExactSolution, MovableLinkageError, Solution, SolverError
 from .modular import characteristic_degree_modulo
 from .numeric import solve_numeric
 
@@ -23,7 +23,7 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
 
 
 __all__ = [
-    "AssemblyMode", "CharacteristicPolynomial", "ExactMethodError", "MovableLinkageError",
+    "AssemblyMode", "Certificate", "CharacteristicPolynomial", "ExactSolution", "ExactMethodError", "MovableLinkageError",
     "Solution", "SolverError", "available_backends", "characteristic_degree", "characteristic_degree_modulo",
     "characteristic_polynomial", "register_backend", "solve", "solve_exact",
     "solve_numeric",

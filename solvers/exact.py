@@ -67,7 +67,7 @@ from .configuration import (
 )
 from .coupling_two import characteristic_polynomial_two, common_points
 from .fibers import Fiber
-from .modes import AssemblyMode, Certificate, Solution
+from .modes import AssemblyMode, Certificate, ExactSolution
 
 #: A branch is a candidate at a real root when its closure residual's ball there contains
 #: 0 and is narrower than this (relative; the configuration is then verified to 1e-8 on
@@ -81,9 +81,10 @@ ROOT_BITS = (64, 256, 1024)
 ROOT_BITS_TWO = (256, 1024, 4096)
 
 
-def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = True) -> Solution:
+def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = True) -> ExactSolution:
     """All assembly modes of ``scene`` (coupling degree 0, 1 or 2) by the exact method;
-    the result carries the characteristic polynomial (in the first parameter).
+    the result (:class:`~baranov.solvers.modes.ExactSolution`) carries the characteristic
+    polynomial (in the first parameter) and the certificate.
     ``coincidences=False`` skips step 4 (used by step 4 itself)."""
     plan = plan or solvable_plan(scene)
     branches = sign_branches(len(plan.free_sign_triangles))
@@ -131,9 +132,9 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         modes, more, by_msolve = _modes_where_undefined(scene, plan, polynomial, undefined, modes, coincidences)
         gaps += more
         notes += [MSOLVE_NOTE] if by_msolve and MSOLVE_NOTE not in notes else []
-    return Solution("exact", plan.number_of_parameters, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, modes, polynomial,
-                    Certificate(not gaps, "; ".join(notes) or None, gaps))
+    return ExactSolution("exact", plan.number_of_parameters, tuple(parameter_name(p) for p in plan.parameters),
+                         plan.free_sign_triangles, modes, characteristic_polynomial=polynomial,
+                         certificate=Certificate(not gaps, "; ".join(notes) or None, gaps))
 
 
 #: What the coupling-2 certificate says of its one Monte Carlo step.

@@ -70,17 +70,16 @@ class Certificate:
 
 @dataclass(frozen=True)
 class Solution:
-    """All assembly modes of a scene found by one method."""
+    """All assembly modes of a scene found by one method. A backend with more to say
+    returns a subclass (the exact one: :class:`ExactSolution`)."""
 
     method: str
     coupling_degree: int
     parameters: tuple[str, ...]
     free_sign_triangles: tuple[tuple[str, str, str], ...]
     assembly_modes: tuple[AssemblyMode, ...]
-    characteristic_polynomial: Any = None  # a CharacteristicPolynomial (exact method)
-    certificate: Certificate | None = None  # exact method
-    #: what the numeric method could not resolve in floating point, one sentence each
-    #: (e.g. a stretch where the closure condition is flat to rounding, reported as one mode)
+    #: what the method could not resolve, one sentence each (numeric: e.g. a stretch where
+    #: the closure condition is flat to rounding, reported as one mode)
     undecided: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
@@ -95,12 +94,25 @@ class Solution:
                 for m in self.assembly_modes
             ],
         }
-        if self.characteristic_polynomial is not None:
-            result["characteristic_polynomial"] = self.characteristic_polynomial.to_dict()
         if self.undecided:
             result["undecided"] = list(self.undecided)
-        if self.certificate is not None:
-            result["certificate"] = {"complete": self.certificate.complete,
-                                     "probabilistic": self.certificate.probabilistic,
-                                     "gaps": list(self.certificate.gaps)}
+        return result
+
+
+@dataclass(frozen=True)
+class ExactSolution(Solution):
+    """The exact backend's result: the modes, the characteristic polynomial they come from
+    (a :class:`~baranov.solvers.characteristic.CharacteristicPolynomial`; None for
+    coupling degree 0) and what is certified about them."""
+
+    characteristic_polynomial: Any = None
+    certificate: Certificate = Certificate(False, None, ("no certificate",))
+
+    def to_dict(self) -> dict:
+        result = super().to_dict()
+        if self.characteristic_polynomial is not None:
+            result["characteristic_polynomial"] = self.characteristic_polynomial.to_dict()
+        result["certificate"] = {"complete": self.certificate.complete,
+                                 "probabilistic": self.certificate.probabilistic,
+                                 "gaps": list(self.certificate.gaps)}
         return result
