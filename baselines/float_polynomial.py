@@ -31,7 +31,7 @@ from baranov.solvers.configuration import (
     same_mode,
     sorted_modes,
 )
-from baranov.solvers.exact import BRANCH_TOLERANCE
+from baranov.solvers.exact.backend import BRANCH_TOLERANCE
 
 #: A computed root is taken as real when |imaginary part| ≤ REAL_TOLERANCE · |root|.
 REAL_TOLERANCE = 1e-8

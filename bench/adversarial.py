@@ -40,7 +40,7 @@ from baranov.solvers.msolve import compare_modes, match_configurations, msolve_m
 METHODS = ("numeric", "exact")
 ROOT = Path(__file__).resolve().parents[1]
 #: The packages a solve runs through: rows of one version of these are one run.
-SOLVING_CODE = ("topology", "enumerate", "planner", "closure", "solvers")
+SOLVING_CODE = ("topology", "enumerate", "planner", "closure", "scene", "solvers")
 
 
 def code_version() -> str:

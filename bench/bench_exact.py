@@ -23,9 +23,9 @@ from baranov.planner import best_plan, coupling_degree
 from baranov.scene import load_scene
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import characteristic_polynomial
-from baranov.solvers.characteristic import eliminate_radicals, radical_tower
 from baranov.solvers.coincidence import solvable_plan
-from baranov.solvers.coupling_two import characteristic_polynomial_two
+from baranov.solvers.exact.characteristic import eliminate_radicals, radical_tower
+from baranov.solvers.exact.coupling_two import characteristic_polynomial_two
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

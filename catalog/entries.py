@@ -27,7 +27,7 @@ ENTRY_FIELDS = (
 )
 
 #: Assembly modes are counted up to this many links (coupling degrees 1 and 2), as the
-#: degree of the characteristic polynomial modulo a prime (:mod:`baranov.solvers.modular`).
+#: degree of the characteristic polynomial modulo a prime (:mod:`baranov.solvers.exact.modular`).
 #: Per 11-link truss (two instances; bench/sweep_assembly_modes.py): coupling 1 median
 #: 0.21 s, max 0.76 s; coupling 2 median 5.0 s, max 70 s. 13 links (thousands of trusses)
 #: are left to a separate run.

@@ -100,7 +100,7 @@ def _assembly_modes(catalogs: dict[int, list[dict]]) -> list[str]:
     lines = ["", "## Assembly modes", "",
              "Degree of the characteristic polynomial (`assembly_modes`, derived modulo random 62-bit primes on random",
              "integer-coordinate instances, coupling degrees 1 and 2 up to " + str(ASSEMBLY_MODES_MAX_LINKS) + " links;",
-             "`baranov.solvers.modular`, equal to the degree over Q wherever both were derived) and the realization-count",
+             "`baranov.solvers.exact.modular`, equal to the degree over Q wherever both were derived) and the realization-count",
              "identity (`realization_count`, pyrigi; `baranov.topology.realizations`), as count: trusses.", "",
              "| links | assembly modes (characteristic polynomial) | realization count | trusses where both are known "
              "| of them equal |", "|---|---|---|---|---|"]

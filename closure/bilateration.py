@@ -15,7 +15,7 @@ This module is the project's one bilateration kernel (issue 16): :func:`place_jo
 places a plan's joints step by step, :func:`triangle_radicand`, :func:`bilaterated` and
 :func:`squared_distance` are the formulas, written once and run in every arithmetic the
 backends use — numpy float arrays (closure residuals, :mod:`.evaluate`), flint complex
-balls (certified placements, ``solvers/characteristic.py: placed_points``), polynomials
+balls (certified placements, ``solvers/exact/characteristic.py: placed_points``), polynomials
 over the exact radical tower (``radical_tower``, also modulo primes) and plain floats
 (a link's own frame, ``scene/model.py``). Points are homogeneous (x, y, w) so that the
 tower needs no division; floats and balls divide through after each step
@@ -194,7 +194,7 @@ def oriented_area(s_ij, s_ik, s_jk, sign):
     """A_{i,j,k} from the three squared distances and the orientation sign (±1), thesis
     eq. (2.7). NaN where the radicand is negative (the triangle does not exist). Sign 0
     takes the triangle as flat (area 0) whatever the radicand: a candidate at a fold of
-    the domain, where rounding leaves the radicand a few ulps below 0 (solvers/numeric.py,
+    the domain, where rounding leaves the radicand a few ulps below 0 (solvers/numeric/backend.py,
     ``_roots_at_folds``). Vectorised over numpy arrays.
 
     >>> float(oriented_area(25.0, 9.0, 16.0, 1))  # 3-4-5 right triangle: area 6

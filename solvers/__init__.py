@@ -3,15 +3,15 @@
 from baranov.scene import Scene
 
 from .backends import available_backends, backend, register_backend
-from .characteristic import (
+from .exact import solve_exact
+from .exact.characteristic import (
     CharacteristicPolynomial,
     ExactMethodError,
     characteristic_polynomial,
 )
-from .exact import solve_exact
+from .exact.modular import characteristic_degree_modulo
 from .mode_counts import characteristic_degree
 from .modes import AssemblyMode, Certificate, ExactSolution, MovableLinkageError, Solution, SolverError
-from .modular import characteristic_degree_modulo
 from .numeric import solve_numeric
 
 

@@ -20,9 +20,9 @@ from baranov.planner import best_plan
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.topology import KinematicChain
 
-from .characteristic import characteristic_polynomial
-from .coupling_two import characteristic_polynomial_two
-from .modular import characteristic_degree_modulo, random_prime
+from .exact.characteristic import characteristic_polynomial
+from .exact.coupling_two import characteristic_polynomial_two
+from .exact.modular import characteristic_degree_modulo, random_prime
 
 #: Instances that must agree, and the most that are drawn.
 AGREEING_INSTANCES = 2
@@ -37,10 +37,10 @@ def characteristic_degree(chain: KinematicChain, seed: int | None = None,
     the result is reproducible.
 
     ``method="modular"`` (default) counts modulo a random 62-bit prime per instance
-    (:func:`~baranov.solvers.modular.characteristic_degree_modulo`: seconds for 11
+    (:func:`~baranov.solvers.exact.modular.characteristic_degree_modulo`: seconds for 11
     links); ``"exact"`` derives the polynomial over Q and keeps its genuine factors
-    (:func:`~baranov.solvers.characteristic.characteristic_polynomial`,
-    :func:`~baranov.solvers.coupling_two.characteristic_polynomial_two`: minutes for a
+    (:func:`~baranov.solvers.exact.characteristic.characteristic_polynomial`,
+    :func:`~baranov.solvers.exact.coupling_two.characteristic_polynomial_two`: minutes for a
     coupling-2 truss of 9 links).
 
     >>> from baranov.enumerate import baranov_trusses

@@ -102,7 +102,7 @@ class Solution:
 @dataclass(frozen=True)
 class ExactSolution(Solution):
     """The exact backend's result: the modes, the characteristic polynomial they come from
-    (a :class:`~baranov.solvers.characteristic.CharacteristicPolynomial`; None for
+    (a :class:`~baranov.solvers.exact.characteristic.CharacteristicPolynomial`; None for
     coupling degree 0) and what is certified about them."""
 
     characteristic_polynomial: Any = None

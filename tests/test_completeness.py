@@ -81,7 +81,7 @@ def test_numeric_modes_are_the_certified_ones_coupling_two(index):
     """One truss per test (measured: 9/B25 705 s, 9/B26 1977 s, 9/B27 1207 s, 9/B28
     2903 s). A first run on 50 instances each found two misses, a mode in a strip of the
     feasible domain narrower than the sampling grid (tests/regressions/9-B25-narrow-strip
-    and 9-B26-narrow-strip, fixed in solvers/two_parameter.py)."""
+    and 9-B26-narrow-strip, fixed in solvers/numeric/two_parameter.py)."""
     assert {task[1] for task in _trusses(2)} == set(COUPLING_TWO)
     disagreements = _all_disagreements([task for task in _trusses(2) if task[1] == index])
     assert not disagreements, "\n".join(message for message, _ in disagreements)

@@ -1,5 +1,5 @@
 """Common points of two plane curves above the roots of an irreducible polynomial
-(solvers/fibers.py), the step that lost issue 28's mode."""
+(solvers/exact/fibers.py), the step that lost issue 28's mode."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from baranov.solvers.coupling_two import PLANE
-from baranov.solvers.fibers import common_fiber, gcd_over_field, square_free_over_field
+from baranov.solvers.exact.coupling_two import PLANE
+from baranov.solvers.exact.fibers import common_fiber, gcd_over_field, square_free_over_field
 
 U, V = PLANE.gens()
 

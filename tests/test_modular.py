@@ -1,4 +1,4 @@
-"""Assembly-mode counts modulo a prime (baranov.solvers.modular) against the degrees
+"""Assembly-mode counts modulo a prime (baranov.solvers.exact.modular) against the degrees
 over Q, thesis Appendix A and pyrigi's realization counts."""
 
 import random
@@ -17,14 +17,14 @@ from baranov.scene import load_scene
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import ExactMethodError, characteristic_polynomial
 from baranov.solvers.coincidence import solvable_plan
-from baranov.solvers.coupling_two import characteristic_polynomial_two
-from baranov.solvers.mode_counts import characteristic_degree
-from baranov.solvers.modular import (
+from baranov.solvers.exact.coupling_two import characteristic_polynomial_two
+from baranov.solvers.exact.modular import (
     characteristic_degree_modulo,
     lifted_characteristic_polynomial,
     random_prime,
     saturate,
 )
+from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology.realizations import realization_count
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"

@@ -21,7 +21,7 @@ import pytest
 
 from baranov.scene import load_scene
 from baranov.solvers import ExactMethodError, solve
-from baranov.solvers.characteristic import characteristic_polynomial
+from baranov.solvers.exact.characteristic import characteristic_polynomial
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

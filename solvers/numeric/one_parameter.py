@@ -30,8 +30,8 @@ from baranov.closure import CompiledSystem, sign_branches
 from baranov.planner import Plan
 from baranov.scene import Scene
 
-from .configuration import parameter_name
-from .modes import MovableLinkageError, signs_text
+from ..configuration import parameter_name
+from ..modes import MovableLinkageError, signs_text
 
 #: A local minimum of |f| below this but not below 1e-7 (a root where f is not smooth:
 #: f ≈ c√|s − s0| at a singular mode, issue 25's 7/N3 instance at s1,9 = 13 with P6 = P9
@@ -287,7 +287,8 @@ def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, g
     docs/stability.md; thesis §5.1.3.1's T = 49 is the case with known sides, handled by
     :func:`critical_values`). At every local maximum of a failing free-sign radicand
     among the coarse samples (above −TOUCH_SEARCH, both neighbours failing at the same
-    step, a parabola through the three reaching near 0: :func:`_may_touch_zero`), the
+    step, or at an earlier one up to where they fail at it: :func:`_failing_at`; a
+    parabola through the three reaching near 0: :func:`_may_touch_zero`), the
     radicand is maximised (bounded Brent); where the maximum reaches −TOUCH_TOLERANCE the point is a candidate with that
     triangle flat (sign 0), verified like every other."""
     free_index = {}
@@ -297,16 +298,21 @@ def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, g
     found = []
     for i in _radicand_bumps(failures, radicands, len(compiled.plan.steps)):
         step = int(failures[i])
-        if (step not in free_index or radicands[i] < -TOUCH_SEARCH or failures[i - 1] != step
-                or failures[i + 1] != step or not _may_touch_zero(grid, radicands, i)):
+        if step not in free_index or radicands[i] < -TOUCH_SEARCH:
+            continue
+        sides = [_failing_at(compiled, branch, step, float(grid[i]), float(grid[n]), int(failures[n]), float(radicands[n]))
+                 for n in (i - 1, i + 1)]
+        if None in sides:
             continue  # a bump next to a defined sample is a domain edge, the edge search's business
+        (low, left), (high, right) = sides
+        if not _may_touch_zero(np.array([low, grid[i], high]), np.array([left, radicands[i], right]), 1):
+            continue
         k = free_index[step]
 
         def negative_margin(s: float, k=k) -> float:
             margin = compiled.failure_profile(np.array([[s]]), branch[None, :])[2][0, 0, k]
             return -margin if np.isfinite(margin) else 10.0  # |relative radicand| ≤ 3: 10 is "undefined"
 
-        low, high = float(grid[i - 1]), float(grid[i + 1])
         best = minimize_scalar(negative_margin, bounds=(low, high), method="bounded", options={"xatol": 1e-14 * high})
         if best.success and best.fun <= TOUCH_TOLERANCE:
             flat = branch.copy()
@@ -318,6 +324,28 @@ def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, g
             flat[np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN] = 0
             found.append((np.array([float(best.x)]), flat))
     return found
+
+
+def _failing_at(compiled: CompiledSystem, branch: np.ndarray, step: int, inside: float, outside: float,
+                failure: int, radicand: float) -> tuple[float, float] | None:
+    """The neighbour of a radicand bump at ``inside`` on the side of ``outside`` (which
+    fails at step ``failure`` with relative radicand ``radicand``): itself if it fails at
+    ``step`` too; if an earlier step fails there, the farthest of WINDOW_SAMPLES samples
+    towards it that still fails at ``step`` (issue 25's 9/N4 drawn at a domain edge: P12
+    P8 P7 touches flat at s1,4 = 58, the sample before it, 57.84, fails at an earlier
+    step, and the bump at 58.06 was skipped); None if it is defined or fails later (an
+    edge, the edge search's business)."""
+    if failure == step:
+        return outside, radicand
+    if failure > step:
+        return None
+    points = np.linspace(inside, outside, WINDOW_SAMPLES)
+    codes, radicands, _ = compiled.failure_profile(points[:, None], branch[None, :])
+    same = np.flatnonzero(codes[0] == step)
+    same = same[same == np.arange(len(same))]  # the run from ``inside``
+    if len(same) < 2:
+        return None
+    return float(points[same[-1]]), float(radicands[0, same[-1]])
 
 
 #: A free-sign triangle counts as flat at a domain edge when its radicand, relative to its

@@ -39,7 +39,7 @@ FieldPolynomial = list
 def column_over_field(curve: flint.fmpz_mpoly, field: flint.fmpz_poly) -> FieldPolynomial:
     """``curve``(u, v) as a polynomial in v over K = Q[u]/(``field``).
 
-    >>> from baranov.solvers.coupling_two import PLANE
+    >>> from baranov.solvers.exact.coupling_two import PLANE
     >>> u, v = PLANE.gens()
     >>> column_over_field((u - 2) * v**2 + u * v + 1, flint.fmpz_poly([-2, 1]))  # at u = 2
     [1, 2]
@@ -208,7 +208,7 @@ def common_fiber(curves: Sequence[flint.fmpz_mpoly], field: flint.fmpz_poly) -> 
     only if neither column separates at ISOLATION_BITS is the gcd taken over K (exact,
     but its coefficients grow: minutes for a 57th-degree field).
 
-    >>> from baranov.solvers.coupling_two import PLANE
+    >>> from baranov.solvers.exact.coupling_two import PLANE
     >>> u, v = PLANE.gens()
     >>> fiber = common_fiber([(v - 1)**2 + (u - 2)**2, v**2 - 1 + u - 2], flint.fmpz_poly([-2, 1]))
     >>> fiber.exact, [str(root.real.mid()) for root in fiber.points(flint.acb(2))]

@@ -1,7 +1,7 @@
 """The characteristic polynomial modulo primes: assembly-mode counts at the cost of
 word-size arithmetic, and the polynomial over Q lifted from its images.
 
-Over Q (:mod:`baranov.solvers.characteristic`) the norm of a closure condition of an
+Over Q (:mod:`baranov.solvers.exact.characteristic`) the norm of a closure condition of an
 11-link truss has degree ~2000 and coefficients of ~340 000 bits, and separating its
 genuine factor from the extraneous ones means factoring it (24 s per instance at the
 median, up to 3 min, on 57 sampled coupling-1 trusses). Only the *degree* of the
@@ -13,7 +13,7 @@ word-size prime p (flint ``nmod_mpoly``/``nmod_poly``):
 * the radical tower and the norms are computed as over Q, coefficients mod p;
 * the norm N of the condition is *saturated* by the norm M of D — every factor it shares
   with M is divided out, with its multiplicity (repeated gcds) — and so is each content
-  removed during the elimination (:func:`~baranov.solvers.characteristic.eliminate_radicals`);
+  removed during the elimination (:func:`~baranov.solvers.exact.characteristic.eliminate_radicals`);
   what remains is the characteristic polynomial mod p, and its degree is counted.
 
 Coupling degree 2 (thesis §3.4.1.3): the saturated norms N_1(u, v), N_2(u, v) of the two
@@ -22,7 +22,7 @@ and condition 2 on another. Those mismatches are removed without factoring: with
 random constant, the norm N_c of F_1 + c·F_2 vanishes at a point where F_1 and F_2 vanish on
 one branch, and generically not at a mismatch. So gcd(Res_v(N_1, N_2), Res_v(N_1, N_c))
 is taken (resultants mod p by evaluation and interpolation,
-:mod:`baranov.solvers.resultant`), saturated by Res_v(N_1, D_k) for each square-free part
+:mod:`baranov.solvers.exact.resultant`), saturated by Res_v(N_1, D_k) for each square-free part
 D_k of the denominators' norms (common points where a distance is 0/0) and by the
 leading coefficient of N_1 in v (common points at infinity); its distinct roots are
 counted.
@@ -36,7 +36,7 @@ largest count over instances drawn with different primes
 
 :func:`lifted_characteristic_polynomial` recovers the polynomial over Q from its monic
 images (Chinese remainder theorem, rational reconstruction); the exact coupling-2 method
-uses it and certifies each factor (:mod:`baranov.solvers.coupling_two`).
+uses it and certifies each factor (:mod:`baranov.solvers.exact.coupling_two`).
 The counts equal the degrees over Q for every truss up to 9 links and the realization
 counts for every truss of 11 links (tests/test_modular.py, the catalog's summary).
 """
@@ -135,7 +135,7 @@ def characteristic_polynomial_modulo(scene: Scene, plan: Plan, prime: int, seed:
     """The characteristic polynomial of ``scene`` in the plan's first parameter (coupling
     degree 1 or 2) modulo ``prime``, monic: for coupling degree 1 with the multiplicities
     of the exact method, for 2 square-free (each genuine factor once, as in
-    :func:`~baranov.solvers.coupling_two.characteristic_polynomial_two`). ``seed`` draws
+    :func:`~baranov.solvers.exact.coupling_two.characteristic_polynomial_two`). ``seed`` draws
     the constant c and the evaluation points of the coupling-2 resultants. Raises
     :class:`ExactMethodError` if ``prime`` divides a denominator of the dimensions.
 
@@ -188,7 +188,7 @@ def characteristic_degree_modulo(scene: Scene, plan: Plan, prime: int, seed: int
     >>> from baranov.scene import load_scene
     >>> from baranov.solvers.coincidence import solvable_plan
     >>> from pathlib import Path
-    >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
+    >>> scene = load_scene(Path(__file__).resolve().parents[2] / "examples" / "7-B1.json")
     >>> characteristic_degree_modulo(scene, solvable_plan(scene), random_prime(random.Random(1)))
     14
     """
@@ -228,7 +228,7 @@ def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0,
     >>> from baranov.scene import load_scene
     >>> from baranov.solvers.coincidence import solvable_plan
     >>> from pathlib import Path
-    >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
+    >>> scene = load_scene(Path(__file__).resolve().parents[2] / "examples" / "7-B1.json")
     >>> lifted_characteristic_polynomial(scene, solvable_plan(scene)).degree()
     14
     """
@@ -259,7 +259,7 @@ def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0,
 def _resultants_in_v(first, others: list, prime: int, rng: random.Random) -> list[flint.nmod_poly]:
     """Res_v(first, other) modulo ``prime`` for each of ``others`` (``nmod_mpoly``
     polynomials in the last two generators (u, v), each of positive degree in v), at
-    shared evaluation points (:func:`~baranov.solvers.resultant.resultants_modulo`)."""
+    shared evaluation points (:func:`~baranov.solvers.exact.resultant.resultants_modulo`)."""
     first_u, first_v = first.degrees()[-2:]
     degrees = [first_u * other.degrees()[-1] + first_v * other.degrees()[-2] for other in others]
     columns = [coefficients_in_v(other) for other in others]

@@ -3,8 +3,8 @@
 For coupling degree 0 every branch is evaluated directly. For coupling degree 1 the
 closure condition f(s) = 0 of the best plan is solved on each branch (thesis §3.2–3.3:
 "the roots can be quickly obtained for the combinations of signs ... using a standard
-numerical procedure"; :mod:`baranov.solvers.one_parameter`). For coupling degree 2
-the two conditions are solved together (:mod:`baranov.solvers.two_parameter`), and points
+numerical procedure"; :mod:`baranov.solvers.numeric.one_parameter`). For coupling degree 2
+the two conditions are solved together (:mod:`baranov.solvers.numeric.two_parameter`), and points
 where Newton stalls next to the domain boundary are polished on the link constraints
 (:mod:`baranov.solvers.polish`).
 
@@ -24,7 +24,7 @@ from baranov.closure import CompiledSystem, sign_branches
 from baranov.planner import Plan
 from baranov.scene import Scene
 
-from .coincidence import (
+from ..coincidence import (
     coincidence_possible,
     computed_base_pairs,
     solvable_plan,
@@ -32,7 +32,7 @@ from .coincidence import (
     with_modes_of_coincident_joints,
     with_modes_where_undefined,
 )
-from .configuration import (
+from ..configuration import (
     NEARLY_FLAT,
     RESIDUAL_TOLERANCE,
     assembly_modes,
@@ -44,9 +44,9 @@ from .configuration import (
     placed_from_ground,
     read_back,
 )
-from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError, signs_text
+from ..modes import AssemblyMode, MovableLinkageError, Solution, SolverError, signs_text
+from ..polish import polish_configurations
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
-from .polish import polish_configurations
 from .two_parameter import two_parameter_roots
 
 

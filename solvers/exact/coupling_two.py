@@ -1,7 +1,7 @@
 """The exact method for coupling degree 2 (thesis §3.4.1.3–3.4.1.4, the 9/B28 truss).
 
 A plan with two parameters u, v has two closure conditions. Each is cleared of radicals
-like a one-parameter condition (:func:`~baranov.solvers.characteristic.eliminate_radicals`),
+like a one-parameter condition (:func:`~baranov.solvers.exact.characteristic.eliminate_radicals`),
 giving a polynomial N_i(u, v) that vanishes on the solutions of every sign branch; N_i and
 the contents divided out on the way are factored over Q (flint) and their *curves* are
 kept whose points solve condition i on some branch (tested on one generic line, in ball
@@ -11,10 +11,10 @@ The u of every assembly mode is a root of the *candidate polynomial*: the gcd of
 Res_v(N_1, N_2) and Res_v(N_1, N_c), N_c the norm of F_1 + c·F_2, which keeps every
 common point on one branch and drops most mismatched ones (thesis §3.4.1.3: "a resultant
 of degree 1826" of which "a factor of degree 58" is characteristic). It is lifted from
-its images modulo primes (:mod:`baranov.solvers.modular`), without the saturations that
+its images modulo primes (:mod:`baranov.solvers.exact.modular`), without the saturations that
 the mode *count* uses, since they remove whole values of u. Each irreducible factor is
 kept when at one of its roots a common point of G_1 and G_2 — computed exactly above that
-root (:mod:`baranov.solvers.fibers`) — solves both conditions on one branch. The product
+root (:mod:`baranov.solvers.exact.fibers`) — solves both conditions on one branch. The product
 of the kept factors is the characteristic polynomial in u; its degree is the number of
 assembly modes over C for generic dimensions. ``route="resultant"`` takes the factors of
 Res_v(G_1, G_2) over Q instead (slower; independent of the modular code).
@@ -33,6 +33,7 @@ import flint
 from baranov.planner import Plan
 from baranov.scene import Scene
 
+from ..configuration import parameter_name
 from .characteristic import (
     TEST_BITS,
     CharacteristicPolynomial,
@@ -41,7 +42,6 @@ from .characteristic import (
     radical_tower,
     residual_verdict,
 )
-from .configuration import parameter_name
 from .fibers import Fiber, column_over_field, common_fiber, isolated_roots
 from .modular import lifted_characteristic_polynomial
 from .resultant import coefficients_in_v, resultant_by_primes
@@ -64,7 +64,7 @@ def plane_polynomial(norm: flint.fmpq_mpoly) -> flint.fmpz_mpoly:
 def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditions: Sequence[int],
                   bits: int, coincident: set | None = None) -> bool | None:
     """Whether on some sign branch every closure condition in ``conditions`` holds at the
-    parameter values ``values`` (:func:`~baranov.solvers.characteristic.residual_verdict`
+    parameter values ``values`` (:func:`~baranov.solvers.exact.characteristic.residual_verdict`
     with tolerance 2^(-bits/8)): True if one branch confirms, False if every branch rules
     itself out, None (undecided) otherwise. A branch on which the plan is undefined (a
     base distance's ball contains 0) is undecided, and its joint pair is added to
@@ -146,11 +146,11 @@ def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, conditi
 
 def _factor_is_genuine(fiber: Fiber, scene: Scene, plan: Plan) -> bool | frozenset:
     """Whether at one root u of the irreducible factor ``fiber.field`` some common point of
-    the curves (:mod:`baranov.solvers.fibers`, exact above every root) solves both
+    the curves (:mod:`baranov.solvers.exact.fibers`, exact above every root) solves both
     closure conditions on one branch. One root suffices: the modes form a set defined
     over Q, so the Galois conjugates of a mode are modes (on other branches). Where no
     precision decides or the plan is undefined at a common point, the joint pairs found
-    coincident are returned instead (as :func:`~baranov.solvers.characteristic._is_genuine`
+    coincident are returned instead (as :func:`~baranov.solvers.exact.characteristic._is_genuine`
     does for coupling degree 1)."""
     if fiber.field.degree() < 1:
         return False
@@ -171,13 +171,13 @@ def common_points(fiber: Fiber, u: flint.acb) -> list[tuple[flint.acb, flint.acb
 def characteristic_polynomial_two(scene: Scene, plan: Plan, route: str = "lifted") -> tuple[
         CharacteristicPolynomial, tuple[Fiber, ...]]:
     """The characteristic polynomial of a coupling-2 plan in its first parameter, and for
-    each of its irreducible factors the :class:`~baranov.solvers.fibers.Fiber` of the
+    each of its irreducible factors the :class:`~baranov.solvers.exact.fibers.Fiber` of the
     genuine curves G_1, G_2 above its roots (for the second parameter).
 
     ``route="lifted"`` (default): the candidate polynomial — every u at which the curves
     meet on one branch, *including* the u that share a point at infinity or an undefined
     point (``saturated=False``) — is lifted from its images modulo primes
-    (:func:`~baranov.solvers.modular.lifted_characteristic_polynomial`, which never forms
+    (:func:`~baranov.solvers.exact.modular.lifted_characteristic_polynomial`, which never forms
     the resultant over Q) and each irreducible factor is kept if it passes
     :func:`_factor_is_genuine`. ``route="resultant"``: Res_v(G_1, G_2) by primes,
     factored, every factor tested (9/B28 example: 174 s, against about 20 s lifted)."""
@@ -209,7 +209,7 @@ def characteristic_polynomial_two(scene: Scene, plan: Plan, route: str = "lifted
 
 def genuine_curves(scene: Scene, plan: Plan) -> tuple[flint.fmpz_mpoly, flint.fmpz_mpoly]:
     """G_1, G_2: the product of the distinct irreducible curves of each condition's norm,
-    and of the contents divided out on the way (:func:`~baranov.solvers.characteristic.eliminate_radicals`),
+    and of the contents divided out on the way (:func:`~baranov.solvers.exact.characteristic.eliminate_radicals`),
     that solve the condition on some branch (:func:`_curve_is_genuine`)."""
     tower = radical_tower(scene, plan)
     curves = []

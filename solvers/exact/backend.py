@@ -3,7 +3,7 @@ polynomial (thesis §3.2–3.6: "the coefficients had to be computed in exact ra
 arithmetic").
 
 1. derive the characteristic polynomial of the best plan in exact rational arithmetic
-   (:func:`baranov.solvers.characteristic.characteristic_polynomial`);
+   (:func:`baranov.solvers.exact.characteristic.characteristic_polynomial`);
 2. isolate its real roots with certified enclosures (flint/arb);
 3. map every real root to the sign branches on which the radical closure condition holds
    there, in ball arithmetic (flint arb) from the exact dimensions, and build the
@@ -16,9 +16,9 @@ arithmetic").
    (:mod:`baranov.solvers.coincidence`).
 
 Coupling degree 0 needs no polynomial: every branch is a candidate. Coupling degree 2
-(thesis §3.4.1.3) eliminates the second parameter (:mod:`baranov.solvers.coupling_two`);
+(thesis §3.4.1.3) eliminates the second parameter (:mod:`baranov.solvers.exact.coupling_two`);
 the second parameter of a mode is a real common root of the two genuine curves above the
-first, computed exactly (:mod:`baranov.solvers.fibers`).
+first, computed exactly (:mod:`baranov.solvers.exact.fibers`).
 
 Every solve carries a :class:`~baranov.solvers.modes.Certificate`: complete when each step
 above was exact or checked on the instance, with the gaps listed otherwise (docs/exact.md,
@@ -37,15 +37,7 @@ from baranov.closure import sign_branches
 from baranov.planner import Plan
 from baranov.scene import Scene
 
-from .characteristic import (
-    TEST_BITS,
-    CharacteristicPolynomial,
-    ExactMethodError,
-    characteristic_polynomial,
-    closure_residuals,
-    residual_verdict,
-)
-from .coincidence import (
+from ..coincidence import (
     MSOLVE_NOTE,
     coincidence_possible,
     computed_base_pairs,
@@ -55,7 +47,7 @@ from .coincidence import (
     with_modes_of_coincident_joints,
     with_modes_where_undefined,
 )
-from .configuration import (
+from ..configuration import (
     RESIDUAL_TOLERANCE,
     assembly_modes,
     compile_scene,
@@ -65,9 +57,17 @@ from .configuration import (
     same_mode,
     sorted_modes,
 )
+from ..modes import AssemblyMode, Certificate, ExactSolution
+from .characteristic import (
+    TEST_BITS,
+    CharacteristicPolynomial,
+    ExactMethodError,
+    characteristic_polynomial,
+    closure_residuals,
+    residual_verdict,
+)
 from .coupling_two import characteristic_polynomial_two, common_points
 from .fibers import Fiber
-from .modes import AssemblyMode, Certificate, ExactSolution
 
 #: A branch is a candidate at a real root when its closure residual's ball there contains
 #: 0 and is narrower than this (relative; the configuration is then verified to 1e-8 on
@@ -187,11 +187,11 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
                                                                         list[tuple[float, frozenset]]]:
     """The verified assembly modes at the positive real roots of ``polynomial``; for
     coupling degree 2, at the real common points (u, v > 0) of the two genuine curves
-    above each root u, one :class:`~baranov.solvers.fibers.Fiber` per factor (exact).
+    above each root u, one :class:`~baranov.solvers.exact.fibers.Fiber` per factor (exact).
 
     Each root is enclosed at ROOT_BITS[0] bits (ROOT_BITS_TWO for coupling 2) and every
     branch's closure residuals are evaluated over the enclosure in ball arithmetic from
-    the exact dimensions (:func:`~baranov.solvers.characteristic.closure_residuals`): a
+    the exact dimensions (:func:`~baranov.solvers.exact.characteristic.closure_residuals`): a
     branch where a ball excludes 0 is ruled out (rigorously); where every ball contains 0
     and is narrower than BRANCH_TOLERANCE of its closure distance, the configuration (the
     balls' midpoints of the same placement) is built and verified to RESIDUAL_TOLERANCE on every link dimension. Branches still
@@ -298,7 +298,7 @@ def _parameter_points(root: flint.arb, fiber: Fiber | None, zero: bool) -> list[
 def _ball_configuration(scene: Scene, points: dict, parameters: tuple[flint.acb, ...], signs: tuple[int, ...],
                         names: tuple[str, ...]) -> AssemblyMode:
     """The configuration from the plan's points placed in ball arithmetic
-    (:func:`~baranov.solvers.characteristic.placed_points`) at ``parameters``."""
+    (:func:`~baranov.solvers.exact.characteristic.placed_points`) at ``parameters``."""
     matrices = {joint: np.array([complex(float(x.real.mid()), float(y.real.mid()))])
                 for joint, (x, y) in points.items()}
     placed = {joint: complex(value[0]) for joint, value in placed_from_ground(scene, matrices).items()}

@@ -45,9 +45,9 @@ from baranov.closure.bilateration import dehomogenised, place_joints, squared_di
 from baranov.planner import Plan
 from baranov.scene import Scene
 
-from .coincidence import solvable_plan
-from .configuration import parameter_name
-from .modes import SolverError
+from ..coincidence import solvable_plan
+from ..configuration import parameter_name
+from ..modes import SolverError
 
 #: Precisions (bits) of the genuineness test of a factor, tried in turn.
 TEST_BITS = (256, 1024, 4096)
@@ -196,7 +196,7 @@ class CharacteristicPolynomial:
 def radical_tower(scene: Scene, plan: Plan, prime: int | None = None) -> RadicalTower:
     """The closure conditions of ``plan`` for the dimensions of ``scene``, exactly, or
     their images modulo ``prime`` (a word-size prime; polynomials then in flint
-    ``nmod_mpoly``, see :mod:`baranov.solvers.modular`).
+    ``nmod_mpoly``, see :mod:`baranov.solvers.exact.modular`).
 
     Every point is kept as (X + iY) / d with X, Y, d polynomials in normal form (see
     :class:`RadicalTower`), common factors cancelled (flint gcd) after each step. Raises
@@ -272,7 +272,7 @@ def link_area_root(scene: Scene, triangle: tuple[str, str, str]) -> Fraction:
 
     >>> from baranov.scene import load_scene
     >>> from pathlib import Path
-    >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
+    >>> scene = load_scene(Path(__file__).resolve().parents[2] / "examples" / "7-B1.json")
     >>> link = next(link for link in scene.links if len(link.joints) == 3)
     >>> abs(link_area_root(scene, tuple(link.joints))) > 0
     True
@@ -346,7 +346,7 @@ def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> Charact
 
     >>> from baranov.scene import load_scene
     >>> from pathlib import Path
-    >>> scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / "7-B1.json")
+    >>> scene = load_scene(Path(__file__).resolve().parents[2] / "examples" / "7-B1.json")
     >>> characteristic_polynomial(scene).degree   # thesis §3.3.1: 14 assembly modes
     14
     """
@@ -385,7 +385,7 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
     some sign branch with every bilateration defined (base distances and the reference
     distance non-zero). Where no branch confirms it but some could not be evaluated
     because a base distance vanishes there, the plan cannot decide: the joint pairs
-    found coincident are returned instead (see :func:`baranov.solvers.exact.solve_exact`).
+    found coincident are returned instead (see :func:`baranov.solvers.exact.backend.solve_exact`).
     The plan is evaluated in complex ball arithmetic (flint acb), x and y coordinates
     separately, since a complex parameter gives complex coordinates.
 
