@@ -259,7 +259,7 @@ in a flat valley around a singular mode are one mode, reported as *undecided* (9
 candidates were verified one at a time): its two slowest small-box instances took 46 and
 36 s before, 18 and 13 s after (one bench worker running beside both measurements).
 
-The third run (`adversarial` below: `make bench-adversarial`, 930 new instances of 7 and 9
+The third run (`adversarial-e0f302d` below: `make bench-adversarial`, 930 new instances of 7 and 9
 links and 44 of eleven-link trusses, at commit e0f302d) found no miss on 7 and 9 links,
 but the time bound fails there: a coupling-1 instance of 9/N10 drawn at a flexible
 configuration took the numeric backend 198 s (p99/median 409 on that truss), where the
@@ -273,9 +273,27 @@ the exact backend ran over its 300 s limit on 8 of the 14 coupling-2 eleven-link
 1 spurious): of the 648 verified configurations in its flat valley it reported the one
 nearest all others; now the one nearest the middle of the valley's parameter box, 1.2e-6
 from msolve's, 1.2e-4 after the bilateration kernel changed the rounding (a singular mode
-located coarsely; `tests/regressions/11-N561-double-root.json`). Both issue-25 targets — 10⁴
-instances with no miss, and p99 ≤ 10 × median — are not met yet; rows accumulate in
-bench/results/adversarial.jsonl while the solving code is unchanged.
+located coarsely; `tests/regressions/11-N561-double-root.json`).
+
+The fourth run (`adversarial-6b7e07d` below: 4500 seven-link instances, 300 per truss and
+kind, and the first 1582 of 5600 nine-link ones, instance by instance over all trusses
+and kinds, at the solving code of commit 6b7e07d) found one miss in 6059 finite
+instances, numeric, none exact: 9/N4 drawn at a domain edge, a triangle touching flat
+beside a sample failing at an earlier step (fixed, `9-N4-touching-beside-earlier-failure.json`).
+It counted as a failure an instance that is not one: 7/N2 drawn with P2 on P7, where
+msolve finds a positive-dimensional solution set but the linkage does not move — a
+complex curve passes through an isolated real mode, which the numeric backend reports
+(`7-N2-complex-curve.json`; the bench now tests such modes for a real motion). Its time
+bound fails on four nine-link trusses: p99/median 34.4 (9/N18) and 28.0 (9/N28), both
+coupling 2, where one movable 9/N18 instance (four joints at one point) ran past 300 s
+and is open (`tests/regressions/open/9-N18-movable-coupling-two.json`: the coupling-2
+search has no test for two conditions sharing a curve), and 18.5 (9/N17) and 17.4
+(9/N8), coupling 1, whose slowest instances spent their time on shallow minima and
+crowded noise (11.4 → 3.1 s and 14.1 → 1.9 s alone since: docs/numeric.md). The run
+was stopped once the solving code had changed; a fifth, at the solving code of 2026-11-24's last commit,
+has begun (rows in bench/results/adversarial.jsonl, resumed from a worktree of that
+commit). Both issue-25 targets — 10⁴ instances with no miss, and p99 ≤ 10 × median —
+are not met yet.
 
 {adversarial}
 

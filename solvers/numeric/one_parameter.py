@@ -173,7 +173,7 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
         roots += _scan(f, points, values, sampled, near, noise, RESOLUTION * upper)
         for low, high in _next_to_roots(points, roots) + _suspicious_minima(points, values)[:MAX_MINIMA]:
             fine = np.linspace(low, high, REFINEMENT)
-            roots += _scan(f, fine, sampled(fine), sampled, near, noise, RESOLUTION * upper)
+            roots += _scan(f, fine, sampled(fine), sampled, near, noise, RESOLUTION * upper, refined=True)
         roots, valleys = _merged_flat_valleys(sampled, roots)
         name = parameter_name(compiled.parameters[0])
         undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition "
@@ -386,9 +386,22 @@ def _may_touch_zero(grid: np.ndarray, radicands: np.ndarray, i: int) -> bool:
     the bounded maximisation to the few bumps that matter (on a random 9-link instance,
     80 bumps cost 2000 plan evaluations, 3.3 s of a 4.7 s solve)."""
     x, y = grid[i - 1:i + 2], radicands[i - 1:i + 2]
-    a, b, c = np.polyfit(x - x[1], y, 2)
-    top = c - b * b / (4 * a) if a < 0 else y.max()
+    bottom = _parabola_minimum(x, -y)  # the radicand's maximum
+    top = -bottom if bottom is not None else y.max()
     return bool(top > -0.5 * (y.max() - y.min()))
+
+
+def _parabola_minimum(x: np.ndarray, y: np.ndarray) -> float | None:
+    """The minimum value of the parabola through three points (x sorted), or None if it
+    opens downwards (Newton's divided differences: no ill-conditioned fit)."""
+    if not (x[0] < x[1] < x[2]) or not np.isfinite(y).all():
+        return None  # merged samples may repeat a point
+    first, second = (y[1] - y[0]) / (x[1] - x[0]), (y[2] - y[1]) / (x[2] - x[1])
+    curvature = (second - first) / (x[2] - x[0])
+    if not curvature > 0:
+        return None
+    slope = first + curvature * (x[1] - x[0])  # the derivative at x[1]
+    return float(y[1] - slope * slope / (4 * curvature))
 
 
 def _window_cells(codes: np.ndarray, feasible: int) -> np.ndarray:
@@ -543,7 +556,7 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
 
 
 def _scan(f, grid: np.ndarray, values: np.ndarray, sampled, near: list | None = None,
-          noise: list | None = None, resolution: float = 0.0, resample: bool = True) -> list[float]:
+          noise: list | None = None, resolution: float = 0.0, resample: bool = True, refined: bool = False) -> list[float]:
     """Roots of f on sampled ``grid``: exact zeros, sign changes (Brent), and tangential
     roots at local minima of |f| (bounded minimisation). A sign change across an
     undefined gap narrower than the cell (Brent meets NaN) is re-sampled finely, with its
@@ -569,7 +582,10 @@ def _scan(f, grid: np.ndarray, values: np.ndarray, sampled, near: list | None = 
                 points, fine_values, edges = _with_edges(fine, sampled(fine), sampled)
                 roots += [edge for edge, value in edges if abs(value) < 1e-7]
                 roots += _scan(f, points, fine_values, sampled, near, noise, resolution, resample=False)
-    for low, high in _above_noise(sampled, grid, values, _suspicious_minima(grid, values), resolution):
+    minima = _suspicious_minima(grid, values)
+    if refined:  # a fine re-sampling is quadratic between samples: only minima that may reach 0
+        minima = [cell for cell in minima if _may_reach_zero(grid, values, cell)]
+    for low, high in _above_noise(sampled, grid, values, minima, resolution):
         found = minimize_scalar(lambda s: abs(f(s)), bounds=(low, high), method="bounded",
                                 options={"xatol": 1e-14 * high})
         if found.success and abs(f(found.x)) < 1e-7:
@@ -585,6 +601,18 @@ JITTER = np.array([-4.0, -3.0, -2.0, -1.0, 1.0, 2.0, 3.0, 4.0])
 #: The parameter's resolution relative to its upper bound: s enters sums with squared
 #: distances up to that bound, so f cannot resolve s more finely than a few ulps of it.
 RESOLUTION = 2.0 ** -48
+
+
+def _may_reach_zero(grid: np.ndarray, values: np.ndarray, cell: tuple[float, float]) -> bool:
+    """Whether the parabola through |f| at a local minimum's three samples of a fine
+    re-sampling has its vertex at most half the sampled minimum: |f| ≈ c (s − s0)² at a
+    tangential root (vertex ≈ 0), |f| ≈ m + c (s − s1)² at a minimum well above 0 (vertex ≈
+    m, skipped: issue 25's 9/N17 drawn with a double root spent 7.2 of 8.4 s in 632
+    bounded minimisations of such minima)."""
+    i = int(np.searchsorted(grid, cell[0])) + 1
+    x, y = grid[i - 1:i + 2], np.abs(values[i - 1:i + 2])
+    vertex = _parabola_minimum(x, y)
+    return bool((y.min() if vertex is None else vertex) <= 0.5 * y[1])
 
 
 def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tuple[float, float]],
@@ -606,6 +634,13 @@ def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tup
     kept = [cell for cell, keep in zip(minima, dip > spread, strict=True) if keep]
     return kept[:MAX_MINIMA]
 
+
+#: A scan with more sign changes than this is noise wherever they crowd (NOISE_GAP), even
+#: where re-evaluation near a sample does not flip its sign: rounding steps coarser than
+#: the jitter (issue 25's 9/N8 drawn with a double root: 556 Brent brackets in a valley
+#: 5e-3 wide around s11,1 = 8, 21 verified configurations of one singular mode). The
+#: characteristic polynomials of 9-link trusses have degree ≤ 58 on all branches together.
+NOISE_CROWD = 24
 
 #: Noisy sign-change cells at most this many cells apart belong to one noise stretch.
 NOISE_GAP = 8
@@ -631,6 +666,8 @@ def _noise_runs(sampled, grid: np.ndarray, values: np.ndarray, cells: np.ndarray
     jittered = sampled(points).reshape(len(ends), len(JITTER))
     noisy_ends = ends[~(np.sign(jittered) == np.sign(values[ends])[:, None]).all(axis=1)]
     noisy = np.isin(cells, noisy_ends) | np.isin(cells + 1, noisy_ends)
+    if len(cells) > NOISE_CROWD:  # more sign changes than a closure condition has roots here: noise
+        noisy[:] = True
     single, runs = [int(i) for i in cells[~noisy]], []
     group: list[int] = []
     for i in cells[noisy].tolist() + [None]:
