@@ -290,7 +290,7 @@ and is open (`tests/regressions/open/9-N18-movable-coupling-two.json`: the coupl
 search has no test for two conditions sharing a curve), and 18.5 (9/N17) and 17.4
 (9/N8), coupling 1, whose slowest instances spent their time on shallow minima and
 crowded noise (11.4 → 3.1 s and 14.1 → 1.9 s alone since: docs/numeric.md). The run
-was stopped once the solving code had changed; a fifth, at the solving code of 2026-11-24's last commit,
+was stopped once the solving code had changed; a fifth, at the solving code of commit 1174e5b,
 has begun (rows in bench/results/adversarial.jsonl, resumed from a worktree of that
 commit). Both issue-25 targets — 10⁴ instances with no miss, and p99 ≤ 10 × median —
 are not met yet.
