@@ -32,6 +32,9 @@ def resolve_chain(argument: str, catalog: Path) -> tuple[str, KinematicChain]:
     (graph6, an edge list "u v" per line, or JSON: a list of link pairs, or
     {"links": [[joint names], ...]}), or a graph6 string."""
     match = CATALOG_NAME.match(argument)
+    if not match and CATALOG_NAME.match(argument.upper()) and not Path(argument).is_file():
+        raise ShowError(f"{argument}: no such truss; did you mean {argument.upper()}? (names and ids are "
+                        "written with a capital B or N)")
     if match:
         if argument in {t.name for t in THESIS_TRUSSES}:
             published = thesis_truss(argument)

@@ -161,10 +161,19 @@ def test_show_latex_catalog_id_graph6_and_file(tmp_path):
     assert "plan 3 of 3" in run("show", "7/B3", "--plans", "3").stdout
 
 
+def test_show_finds_catalog_names_from_any_folder(tmp_path):
+    """The catalog is package data: a name identified only in catalog/trusses-9.json (9/B5)
+    resolves wherever the command runs."""
+    result = subprocess.run([sys.executable, "-m", "baranov.cli", "show", "9/B5"], capture_output=True, text=True,
+                            cwd=tmp_path)
+    assert result.returncode == 0 and result.stdout.startswith("9/N4 (9/B5)")
+
+
 @pytest.mark.parametrize(
     ("args", "message"),
     [
-        (["9/B29"], "9/B29: no such truss in the catalog"),
+        (["9/B29"], "9/B29: no such truss in the catalog (names 9/B1, 9/B2, 9/B3 …; ids 9/N1..9/N28)"),
+        (["7/b1"], "7/b1: no such truss; did you mean 7/B1?"),
         (["zzz"], "graph6 'zzz': not a valid graph6 string"),
         (["5/B1", "--reference", "P1,P9"], "joint P9: no such joint in this chain"),
         (["5/B1", "--reference", "P1"], "--reference P1: expected two joint names"),
