@@ -96,10 +96,10 @@ def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tu
     for method in methods:
         try:
             solution, seconds = timed(lambda method=method: solve(scene, method=method), timeout)
-        except ValueError as error:  # SolverError: a movable linkage, or a scene the method cannot solve
+        except Exception as error:  # noqa: BLE001 - SolverError (movable, cannot solve), or a crash to record
             row[f"{method}_seconds"] = 0.0
             row[f"{method}_status"] = "movable" if isinstance(error, MovableLinkageError) else "error"
-            row[f"{method}_message"] = str(error)
+            row[f"{method}_message"] = str(error) if isinstance(error, ValueError) else f"{type(error).__name__}: {error}"
             continue
         row[f"{method}_seconds"] = seconds
         if solution is None:
@@ -182,7 +182,11 @@ def main(argv: list[str] | None = None) -> int:
     with ProcessPoolExecutor(args.workers) as pool, args.out.open("a", encoding="utf-8") as out:
         futures = [pool.submit(run, *task) for task in tasks]
         for n, future in enumerate(as_completed(futures), 1):
-            row = future.result()
+            try:
+                row = future.result()
+            except Exception as error:  # noqa: BLE001 - a worker lost: say so, keep the other rows coming
+                print(f"LOST {type(error).__name__}: {error}", flush=True)
+                continue
             out.write(json.dumps(row) + "\n")
             out.flush()
             if failed(row, methods):

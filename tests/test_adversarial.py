@@ -109,6 +109,19 @@ def test_a_movable_linkage_is_reported_as_such(name):
 
 
 @needs_msolve
+def test_a_movable_coupling_two_linkage_is_reported_as_such():
+    """9/N18 drawn with four joints at one point moves along the line s2,5 = 2, shared by
+    both closure conditions (issue 25: the numeric backend ran past 300 s, the exact one
+    raised a bare ValueError): both backends raise MovableLinkageError, naming the curve."""
+    scene = load_scene(REGRESSIONS / "movable" / "9-N18-shared-curve.json")
+    assert msolve_modes(scene).status == "infinite"
+    with pytest.raises(MovableLinkageError, match=r"both closure conditions vanish along a curve \(s2,5 from 2 to 2"):
+        solve(scene)
+    with pytest.raises(MovableLinkageError, match="hold along the curve u - 2 = 0"):
+        solve(scene, method="exact")
+
+
+@needs_msolve
 def test_a_movable_linkage_no_plan_can_solve_is_reported_as_such():
     """9/N17 drawn with two joints of one link at one point: no plan avoids that pair, so
     both backends refuse the scene, and say it moves (msolve: positive-dimensional)."""

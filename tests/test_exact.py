@@ -191,3 +191,15 @@ def test_nine_link_b28_example_by_the_exact_method():
     assert exact.characteristic_polynomial.degree == 58
     assert len(exact.characteristic_polynomial.real_roots()) == len(exact.assembly_modes) == 14
     assert same_modes(scene, exact.assembly_modes, numeric.assembly_modes)
+
+
+def test_plane_factors_survive_python_flint_sort_overflow():
+    """python-flint 0.9 raises OverflowError sorting two factors of one multiplicity whose
+    leading coefficients agree beyond 2^31 (issue 25: 9/N27 drawn at a double root);
+    plane_factors falls back to rational factoring and returns the same primitive factors."""
+    from baranov.solvers.exact.coupling_two import PLANE, plane_factors
+
+    u, v = PLANE.gens()
+    first, second = 2**40 * u * v + 3 * u + 5, 2**40 * u * v + 7 * u - 1
+    factors = plane_factors(first * second * (u - v) ** 2)
+    assert sorted((str(f), m) for f, m in factors) == sorted([(str(first), 1), (str(second), 1), (str(u - v), 2)])

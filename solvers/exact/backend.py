@@ -125,6 +125,11 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         gaps += ("the norm of the closure condition vanishes identically: on some branch, possibly complex, it "
                  "holds for every value of the parameter, so the linkage moves or a complex curve of solutions "
                  "passes through its real ones; the real modes are not certified",)
+    elif polynomial is not None and polynomial.shared_curves:
+        plane = ", ".join(parameter_name(pair) for pair in plan.parameters)
+        gaps += tuple(f"both closure conditions hold along the curve {curve} = 0 in (u, v) = ({plane}) "
+                      "on some branch, with no real configuration found on it: a continuum of complex solutions; "
+                      "real modes on that curve are not certified" for curve in polynomial.shared_curves)
     elif polynomial is not None and not polynomial.factors:
         gaps += ("the characteristic polynomial has no factor but powers of the parameter: a degenerate "
                  "instance (it may move) that this plan cannot decide",)

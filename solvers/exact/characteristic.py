@@ -153,6 +153,10 @@ class CharacteristicPolynomial:
         vanishing: the norm of the closure condition is identically 0: on some branch
             the condition holds for every value of the parameter, the linkage moves
             (``polynomial`` is then only the product of the contents divided out).
+        shared_curves: coupling degree 2: the curves in (u, v) along which both closure
+            conditions hold, on which no real configuration was found
+            (:func:`~baranov.solvers.exact.coupling_two.shared_curves`); divided out
+            before the common points are computed.
     """
 
     variable: str
@@ -161,6 +165,7 @@ class CharacteristicPolynomial:
     extraneous: tuple[tuple[flint.fmpz_poly, int], ...]
     degenerate: tuple[tuple[flint.fmpz_poly, frozenset[frozenset[str]]], ...] = ()
     vanishing: bool = False
+    shared_curves: tuple[str, ...] = ()
 
     @property
     def degree(self) -> int:

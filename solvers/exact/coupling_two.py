@@ -34,6 +34,7 @@ from baranov.planner import Plan
 from baranov.scene import Scene
 
 from ..configuration import parameter_name
+from ..modes import MovableLinkageError
 from .characteristic import (
     TEST_BITS,
     CharacteristicPolynomial,
@@ -61,18 +62,49 @@ def plane_polynomial(norm: flint.fmpq_mpoly) -> flint.fmpz_mpoly:
     return PLANE.from_dict({k: value // content for k, value in numerators.items()})
 
 
+#: The same plane with rational coefficients (:func:`plane_factors`).
+RATIONAL_PLANE = flint.fmpq_mpoly_ctx.get(("u", "v"), "lex")
+
+
+def plane_factors(polynomial: flint.fmpz_mpoly) -> list[tuple[flint.fmpz_mpoly, int]]:
+    """The irreducible factors over Q of a polynomial in (u, v), primitive, with their
+    multiplicities (the constant left out).
+
+    python-flint 0.9's ``fmpz_mpoly.factor`` sorts its factors with a key that converts
+    coefficients to a C int, and raises OverflowError when two factors of one multiplicity
+    agree in their leading terms and differ in a coefficient beyond 2^31 (issue 25: 9/N27
+    drawn at a double root, a condition's norm of bidegree (48, 48) with 300-bit
+    coefficients). Its ``fmpq_mpoly.factor`` compares rationals and does not; it is the
+    fallback, each factor scaled back to a primitive integer polynomial."""
+    try:
+        return polynomial.factor()[1]
+    except OverflowError:
+        rational = RATIONAL_PLANE.from_dict({k: flint.fmpq(c) for k, c in polynomial.to_dict().items()})
+        factors = []
+        for factor, multiplicity in rational.factor()[1]:
+            terms = factor.to_dict()
+            scale = math.lcm(*(int(c.q) for c in terms.values()))
+            integer = {k: int(c.p) * (scale // int(c.q)) for k, c in terms.items()}
+            content = math.gcd(*integer.values())
+            factors.append((PLANE.from_dict({k: c // content for k, c in integer.items()}), multiplicity))
+        return factors
+
+
 def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditions: Sequence[int],
-                  bits: int, coincident: set | None = None) -> bool | None:
+                  bits: int, coincident: set | None = None, real_only: bool = False) -> bool | None:
     """Whether on some sign branch every closure condition in ``conditions`` holds at the
     parameter values ``values`` (:func:`~baranov.solvers.exact.characteristic.residual_verdict`
     with tolerance 2^(-bits/8)): True if one branch confirms, False if every branch rules
     itself out, None (undecided) otherwise. A branch on which the plan is undefined (a
     base distance's ball contains 0) is undecided, and its joint pair is added to
-    ``coincident``."""
+    ``coincident``. ``real_only``: only real configurations count (a branch whose
+    triangle does not exist rules itself out)."""
     undecided = False
     for signs in product((1, -1), repeat=len(plan.free_sign_triangles)):
-        residuals, _, pair = closure_residuals(scene, plan, values, signs)
+        residuals, _, pair = closure_residuals(scene, plan, values, signs, real_only)
         if residuals is None:
+            if pair is None:  # real_only: a triangle of this branch does not exist
+                continue
             if coincident is not None:
                 coincident.add(pair)
             undecided = True
@@ -127,21 +159,70 @@ def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, conditi
     rng = random.Random(seed)
     for _ in range(10):
         value = flint.fmpq(rng.randrange(1, 10**6), rng.randrange(1, 10**3))
-
-        def points(value=value) -> list | None:
-            if curve.degrees()[1] > 0:
-                roots = isolated_roots(column_over_field(curve, flint.fmpz_poly([-value.p, value.q])), flint.acb(value))
-                return None if roots is None else [(flint.acb(value), v) for v in roots]
-            terms = coefficients_in_v(curve)[0]  # a vertical line: a polynomial in u only
-            line = flint.fmpz_poly([terms.get(k, 0) for k in range(max(terms) + 1)])
-            return [(root, flint.acb(value)) for root, _ in line.complex_roots()]
-
-        verdict = _some_point_solves(points, scene, plan, (condition,))
+        verdict = _some_point_solves(lambda value=value: points_on_line(curve, value), scene, plan, (condition,))
         if verdict is True:
             return True
         if verdict is False or verdict:  # ruled out, or the plan is undefined along the curve
             return False
     return True
+
+
+def points_on_line(curve: flint.fmpz_mpoly, value: flint.fmpq) -> list[tuple[flint.acb, flint.acb]] | None:
+    """The points (u, v) of ``curve`` on the line u = ``value`` (on v = ``value`` for a
+    vertical line, a curve free of v), at the current precision; None if they cannot be
+    isolated there."""
+    if curve.degrees()[1] > 0:
+        roots = isolated_roots(column_over_field(curve, flint.fmpz_poly([-value.p, value.q])), flint.acb(value))
+        return None if roots is None else [(flint.acb(value), v) for v in roots]
+    terms = coefficients_in_v(curve)[0]  # a vertical line: a polynomial in u only
+    line = flint.fmpz_poly([terms.get(k, 0) for k in range(max(terms) + 1)])
+    return [(root, flint.acb(value)) for root, _ in line.complex_roots()]
+
+
+def shared_curves(curves: Sequence[flint.fmpz_mpoly], scene: Scene, plan: Plan) -> list[flint.fmpz_mpoly]:
+    """The irreducible curves that G_1 and G_2 share (their gcd's factors). Along such a
+    curve the two closure conditions hold together, on some branch, at every point: a
+    continuum of solutions, which no characteristic polynomial lists (issue 25's 9/N18
+    instance drawn with four joints at one point: G_1 and G_2 share the line s2,5 = 2, and
+    the fibers above u = 2 had infinitely many common points). Raises
+    :class:`~baranov.solvers.modes.MovableLinkageError` where a real point of one of them
+    is a real configuration (:func:`moving_point`): the linkage moves."""
+    shared = [factor for factor, _ in plane_factors(curves[0].gcd(curves[1]))
+              if factor.degrees()[0] + factor.degrees()[1] > 0]
+    for curve in shared:
+        point = moving_point(curve, scene, plan)
+        if point is not None:
+            names = [parameter_name(pair) for pair in plan.parameters]
+            raise MovableLinkageError(
+                f"the linkage moves with these dimensions: both closure conditions hold along the curve {curve} = 0 "
+                f"(u = {names[0]}, v = {names[1]}), through the real configuration at "
+                f"{names[0]} ≈ {point[0]:.6g}, {names[1]} ≈ {point[1]:.6g}: a continuum rather than isolated "
+                "assembly modes")
+    return shared
+
+
+def moving_point(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, lines: int = 32,
+                 bits: int = 256) -> tuple[float, float] | None:
+    """A point (u, v), both > 0, of ``curve`` at which some sign branch closes with a
+    real configuration (ball arithmetic at ``bits``), searched on ``lines`` lines
+    u = (k + 1/2)/lines · upper (v = … for a vertical line) across the parameter's
+    range; None if none is found. Cost: lines × 2^m evaluations of the plan."""
+    previous = flint.ctx.prec
+    flint.ctx.prec = bits
+    try:
+        axis = 0 if curve.degrees()[1] > 0 else 1
+        upper = scene.largest_distance(*plan.parameters[axis]) ** 2
+        for k in range(lines):
+            value = flint.fmpq(round((2 * k + 1) * upper * 1000), 2000 * lines)
+            for u, v in points_on_line(curve, value) or []:
+                if not (u.imag.contains(0) and v.imag.contains(0) and u.real > 0 and v.real > 0):
+                    continue
+                point = (flint.acb(u.real), flint.acb(v.real))
+                if branch_solves(scene, plan, point, (0, 1), bits, real_only=True):
+                    return float(u.real.mid()), float(v.real.mid())
+        return None
+    finally:
+        flint.ctx.prec = previous
 
 
 def _factor_is_genuine(fiber: Fiber, scene: Scene, plan: Plan) -> bool | frozenset:
@@ -182,6 +263,10 @@ def characteristic_polynomial_two(scene: Scene, plan: Plan, route: str = "lifted
     :func:`_factor_is_genuine`. ``route="resultant"``: Res_v(G_1, G_2) by primes,
     factored, every factor tested (9/B28 example: 174 s, against about 20 s lifted)."""
     curves = genuine_curves(scene, plan)
+    shared = shared_curves(curves, scene, plan)
+    if shared:  # no real configuration on them: divided out, the curves meet in points again
+        common = math.prod(shared, start=PLANE.constant(1))
+        curves = (curves[0] / common, curves[1] / common)
     if route == "lifted":
         _, factors = lifted_characteristic_polynomial(scene, plan, saturated=False).factor()
     elif route == "resultant":
@@ -204,7 +289,8 @@ def characteristic_polynomial_two(scene: Scene, plan: Plan, route: str = "lifted
     if polynomial.degree() > 0 and polynomial.coeffs()[-1] < 0:
         polynomial = -polynomial
     return (CharacteristicPolynomial(parameter_name(plan.parameters[0]), polynomial, tuple(kept), tuple(dropped),
-                                     tuple(degenerate)), tuple(fibers))
+                                     tuple(degenerate), shared_curves=tuple(str(curve) for curve in shared)),
+            tuple(fibers))
 
 
 def genuine_curves(scene: Scene, plan: Plan) -> tuple[flint.fmpz_mpoly, flint.fmpz_mpoly]:
@@ -217,7 +303,7 @@ def genuine_curves(scene: Scene, plan: Plan) -> tuple[flint.fmpz_mpoly, flint.fm
         norm, contents = eliminate_radicals(condition, tower)
         genuine, seen = PLANE.constant(1), set()
         for part in [norm, *(content for content, _ in contents)]:  # a content's curve can hold modes too
-            for factor, _ in plane_polynomial(part).factor()[1]:
+            for factor, _ in plane_factors(plane_polynomial(part)):
                 if factor.degrees()[0] + factor.degrees()[1] > 0 and str(factor) not in seen \
                         and _curve_is_genuine(factor, scene, plan, index):
                     seen.add(str(factor))

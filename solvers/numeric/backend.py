@@ -47,7 +47,7 @@ from ..configuration import (
 from ..modes import AssemblyMode, MovableLinkageError, Solution, SolverError, signs_text
 from ..polish import polish_configurations
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
-from .two_parameter import two_parameter_roots
+from .two_parameter import shared_curve, two_parameter_roots
 
 
 def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *,
@@ -77,6 +77,7 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     elif degree == 2:
         upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
         candidates, (stalled, stalled_branches), unsearched = two_parameter_roots(compiled, branches, upper, deadline)
+        _require_isolated_roots(scene, compiled, branches, candidates)
         candidates += _polished(scene, compiled, stalled, branches[stalled_branches])
         undecided += _unsearched_cells(compiled, branches, unsearched)
     else:
@@ -87,6 +88,26 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     modes, valleys = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
                     plan.free_sign_triangles, modes, undecided=tuple(undecided) + valleys)
+
+
+def _require_isolated_roots(scene: Scene, compiled: CompiledSystem, branches: np.ndarray, candidates) -> None:
+    """Raise :class:`MovableLinkageError` where the two closure conditions share a curve
+    (:func:`~baranov.solvers.numeric.two_parameter.shared_curve`) whose points are
+    distinct, verified real configurations: the linkage moves."""
+    found = shared_curve(compiled, branches, candidates)
+    if found is None:
+        return
+    path, branch = found
+    moving = assembly_modes(scene, compiled, [(point, branch) for point in path])
+    if len(moving) < len(path):
+        return
+    names = [parameter_name(pair) for pair in compiled.parameters]
+    low, high = path.min(axis=0), path.max(axis=0)
+    where = ", ".join(f"{name} from {a:.6g} to {b:.6g}" for name, a, b in zip(names, low, high, strict=True))
+    raise MovableLinkageError(
+        f"the linkage moves with these dimensions: both closure conditions vanish along a curve ({where}, "
+        f"signs {signs_text(branch)}) whose points are {len(path)} distinct verified configurations, "
+        "a continuum rather than isolated assembly modes")
 
 
 def _unsearched_cells(compiled: CompiledSystem, branches: np.ndarray, cells) -> list[str]:

@@ -51,6 +51,15 @@ CANDIDATE_TOLERANCE = 1e-9
 #: Newton ends that stall above CANDIDATE_TOLERANCE but below this are returned for
 #: polishing on the link constraints (a root next to the domain boundary).
 STALLED_TOLERANCE = 0.2
+#: A branch with more distinct roots than this is tested for a curve shared by the two
+#: conditions (:func:`shared_curve`), at CURVE_SAMPLES of its roots; a path of
+#: CURVE_STEPS steps of CURVE_STEP (relative) is continued where the Jacobian's singular
+#: values differ by more than 1 / RANK_TOLERANCE.
+CROWDED_ROOTS = 64
+CURVE_SAMPLES = 8
+CURVE_STEPS = 4
+CURVE_STEP = 1e-2
+RANK_TOLERANCE = 1e-5
 
 
 @dataclass
@@ -88,7 +97,7 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
     low = np.array([math.sqrt(bound) * 1e-6 for bound in upper])
     high = np.array([math.sqrt(bound) for bound in upper])
     whole = Cells(np.arange(len(branches)), np.tile(low, (len(branches), 1)), np.tile(high, (len(branches), 1)))
-    interior, boundary, windows, starts = _examine(compiled, branches, whole, GRID - 1, last=False)
+    interior, boundary, windows, starts = _examine(compiled, branches, whole, GRID - 1, last=None)
     all_starts, to_polish, unsearched = [starts], [], Cells.concatenate([])
     for depth in range(DEPTH):
         if depth >= BOUNDARY_DEPTH:
@@ -101,7 +110,8 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
         if time.monotonic() > deadline:
             unsearched = interior
             break
-        interior, boundary, windows, starts = _examine(compiled, branches, interior, SPLIT, last=depth == DEPTH - 1)
+        interior, boundary, windows, starts = _examine(compiled, branches, interior, SPLIT,
+                                                       last=low if depth == DEPTH - 1 else None)
         all_starts.append(starts)
     to_polish.append(boundary)
     roots, stalled = _newton(compiled, branches, *(np.concatenate(parts) for parts in zip(*all_starts, strict=True)))
@@ -110,13 +120,15 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
     return roots, (polish_points, polish_branches), unsearched
 
 
-def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: bool):
+def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: np.ndarray | None):
     """Split every cell into split × split sub-cells and sample them. Returns the suspect
     sub-cells inside the domain; the suspect sub-cells on its boundary as ``(best sample
     (u, v), cells)``; the sub-cells with no defined corner that a strip of the domain
     crosses, shrunk to it (:func:`_strip_cells`); and the Newton starts ``(points, branch
     indices)``: the centre and the best sample of each interior sub-cell where both
-    conditions change sign (of every interior suspect at the ``last`` level)."""
+    conditions change sign; at the last level (``last``: the origin of the cells' lattice)
+    also the best sample of every interior suspect that is a local minimum of
+    max(|f_1|, |f_2|) among its neighbours (:func:`_local_minima`)."""
     count, side = len(cells), split + 1
     fractions = np.linspace(0.0, 1.0, side)
     axis = [cells.low[:, a, None] + (cells.high - cells.low)[:, a, None] * fractions for a in range(2)]
@@ -154,10 +166,52 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
                       along_second[2][:, :-1, :], along_second[2][:, 1:, :]], axis=3)
     interior, _ = cells_of(suspect & inside)
     edge_cells, edge_best = cells_of(suspect & ~inside & ~window)
-    started, started_best = cells_of((suspect if last else changes) & inside)
+    started, started_best = cells_of(changes & inside)
     centre = (started.low + started.high) / 2
     starts = (np.concatenate([centre, started_best]) ** 2, np.concatenate([started.branch] * 2))
+    if last is not None:
+        lowest = size.min(axis=3)
+        low_corner = grid[:, :-1, :-1].reshape(-1, 2)
+        minima = _local_minima(np.repeat(cells.branch, split * split), low_corner,
+                               grid[:, 1:, 1:].reshape(-1, 2) - low_corner, lowest.reshape(-1), last)
+        touching, touching_best = cells_of(suspect & ~changes & inside & minima.reshape(lowest.shape))
+        starts = (np.concatenate([starts[0], touching_best**2]), np.concatenate([starts[1], touching.branch]))
     return interior, (edge_best**2, edge_cells), _strip_cells(cells, grid, window, strip), starts
+
+
+def _local_minima(branch: np.ndarray, low: np.ndarray, width: np.ndarray, value: np.ndarray,
+                  origin: np.ndarray) -> np.ndarray:
+    """Which cells (lower corners ``low``, sides ``width``, on branches ``branch``) have a
+    ``value`` no larger than any cell of the same branch that shares a side or a corner
+    with them, on the lattice of the level's cell size from ``origin``; cells of another
+    size or off that lattice (a strip's shrunk window) always count as minima.
+    O(C log C) for C cells.
+
+    Where the two conditions' zero curves run within a cell of each other over a long
+    arc, every cell along it stays suspect at every level, and a Newton start from each
+    of them cost most of the solve (issue 25: 9/N28 drawn in a small box, 125 749
+    suspect cells at the last level, 57 of 89 s in Newton). A common zero of f_1 and f_2
+    is a minimum of max(|f_1|, |f_2|), so the cell holding it or a neighbour of it is a
+    local minimum, and Newton starts there."""
+    common = np.median(width, axis=0)  # the level's cell size; other sizes came from strips
+    position = (low - origin) / common
+    index = np.round(position).astype(np.int64)
+    regular = (np.abs(position - index) < 1e-6).all(axis=1) & (np.abs(width / common - 1) < 1e-6).all(axis=1)
+    base = np.int64(1) << 21  # cell indices stay below GRID · SPLIT^DEPTH < 2^21
+    key = (branch.astype(np.int64) * base + index[:, 0]) * base + index[:, 1]
+    key[~regular] = -1 - np.arange(np.count_nonzero(~regular))  # no neighbours
+    order = np.argsort(key)
+    sorted_keys, sorted_values = key[order], value[order]
+    minimum = np.ones(len(key), bool)
+    for dx in (-1, 0, 1):
+        for dy in (-1, 0, 1):
+            if dx == dy == 0:
+                continue
+            at = np.searchsorted(sorted_keys, key + dx * base + dy)
+            found = at < len(key)
+            found[found] = sorted_keys[at[found]] == (key + dx * base + dy)[found]
+            minimum[found] &= value[found] <= sorted_values[at[found]]
+    return minimum | ~regular
 
 
 def _strip_cells(cells: Cells, grid: np.ndarray, window: np.ndarray, strip: np.ndarray) -> Cells:
@@ -286,8 +340,20 @@ def _newton(compiled: CompiledSystem, branches: np.ndarray, start: np.ndarray, b
 
 
 def _newton_step(compiled: CompiledSystem, x: np.ndarray, f: np.ndarray, signs: np.ndarray):
-    """Newton steps -J⁻¹f with a finite-difference Jacobian (one-sided next to the domain
-    boundary), and which points have a usable Jacobian."""
+    """Newton steps -J⁻¹f with a finite-difference Jacobian (:func:`_jacobian`), and which
+    points have a usable Jacobian."""
+    jacobian = _jacobian(compiled, x, f, signs)
+    usable = np.isfinite(jacobian).all(axis=(1, 2))
+    usable[usable] = np.abs(np.linalg.det(jacobian[usable])) > 0
+    delta = np.zeros_like(x)
+    if usable.any():
+        delta[usable] = np.linalg.solve(jacobian[usable], -f[usable][:, :, None])[:, :, 0]
+    return delta, usable
+
+
+def _jacobian(compiled: CompiledSystem, x: np.ndarray, f: np.ndarray, signs: np.ndarray) -> np.ndarray:
+    """The Jacobians ∂(f_1, f_2)/∂(u, v) at the points ``x`` (K, 2) with values ``f``, by
+    central differences (one-sided next to the domain boundary): shape (K, 2, 2)."""
     step = 1e-7 * np.maximum(np.abs(x), 1.0)
     jacobian = np.empty((len(x), 2, 2))
     for axis in range(2):
@@ -300,9 +366,62 @@ def _newton_step(compiled: CompiledSystem, x: np.ndarray, f: np.ndarray, signs: 
         central = (forward - backward) / (2 * h)
         one_sided = np.where(np.isfinite(forward), (forward - f) / h, (f - backward) / h)
         jacobian[:, :, axis] = np.where(np.isfinite(central), central, one_sided)
-    usable = np.isfinite(jacobian).all(axis=(1, 2))
-    usable[usable] = np.abs(np.linalg.det(jacobian[usable])) > 0
-    delta = np.zeros_like(x)
-    if usable.any():
-        delta[usable] = np.linalg.solve(jacobian[usable], -f[usable][:, :, None])[:, :, 0]
-    return delta, usable
+    return jacobian
+
+
+def shared_curve(compiled: CompiledSystem, branches: np.ndarray, roots) -> tuple[np.ndarray, np.ndarray] | None:
+    """A path of common zeros of the two closure conditions, if they share a curve: the
+    root and CURVE_STEPS points continued from it ``(points (n, 2), branch)``, else None.
+
+    Two conditions that share a curve have a continuum of common zeros, and Newton from
+    every suspect cell along it converges to a different one (issue 25's 9/N18 instance
+    drawn with four joints at one point: 450 066 distinct roots on the line s2,5 = 2,
+    whose configurations took minutes to sort into "modes"). Isolated roots are few, so
+    only a branch with more than CROWDED_ROOTS distinct roots is examined, at
+    CURVE_SAMPLES of them: at a root of a shared curve the Jacobian has rank 1 and its
+    kernel is the curve's tangent; the path steps along it and returns to f = 0 by
+    minimum-norm Gauss–Newton steps, each point ending within CANDIDATE_TOLERANCE. An
+    isolated root where the curves touch also has rank 1, but there the continued points
+    keep a residual of order step², and the test fails. The caller verifies the path's
+    configurations (distinct real configurations along a path: the linkage moves)."""
+    if not roots:
+        return None
+    values = np.array([value for value, _ in roots])
+    table = np.array([branch for _, branch in roots])
+    kinds, which, counts = np.unique(table, axis=0, return_inverse=True, return_counts=True)
+    for kind in np.flatnonzero(counts > CROWDED_ROOTS):
+        mine = values[which.reshape(-1) == kind]
+        for x0 in mine[np.linspace(0, len(mine) - 1, CURVE_SAMPLES).astype(int)]:
+            path = _continued(compiled, kinds[kind], x0)
+            if path is not None:
+                return path, kinds[kind]
+    return None
+
+
+def _continued(compiled: CompiledSystem, signs: np.ndarray, x0: np.ndarray) -> np.ndarray | None:
+    """``x0`` and CURVE_STEPS points continued from it along the kernel of the Jacobian
+    (steps of CURVE_STEP · |x0|), or None where the Jacobian has full rank or a point
+    does not return to the zeros (:func:`shared_curve`)."""
+    signs = signs[None, :]
+    f0 = compiled.paired_residuals(x0[None, :], signs)
+    jacobian = _jacobian(compiled, x0[None, :], f0, signs)[0]
+    if not np.isfinite(jacobian).all():
+        return None
+    _, sigma, right = np.linalg.svd(jacobian)
+    if sigma[1] > RANK_TOLERANCE * max(sigma[0], 1e-300):
+        return None
+    step = CURVE_STEP * np.linalg.norm(x0)
+    x = x0 + step * np.arange(1, CURVE_STEPS + 1)[:, None] * right[1]
+    many = np.repeat(signs, len(x), axis=0)
+    for _ in range(NEWTON_STEPS):
+        f = compiled.paired_residuals(x, many)
+        if not np.isfinite(f).all() or np.abs(f).max() < CANDIDATE_TOLERANCE:
+            break
+        # rank 1 on the curve: the tiny singular value is noise, so cut it off
+        inverse = np.linalg.pinv(_jacobian(compiled, x, f, many), rtol=RANK_TOLERANCE)
+        x = x - (inverse @ f[:, :, None])[:, :, 0]
+    f = compiled.paired_residuals(x, many)
+    moved = np.linalg.norm(x - x0, axis=1)
+    if not np.isfinite(f).all() or np.abs(f).max() >= CANDIDATE_TOLERANCE or (moved < step / 2).any():
+        return None
+    return np.concatenate([x0[None, :], x])
