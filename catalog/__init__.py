@@ -13,25 +13,32 @@ Output (all written atomically, byte-identical from run to run):
 An existing ``trusses-<L>.json`` that has every field is reused unless ``force``.
 """
 
+import importlib
 from pathlib import Path
-
-from .build import build_catalog, catalog_links, crosscheck_links
-from .entries import ENTRY_FIELDS, dump_entries, load_entries, nine_link_name, truss_entry
-from .summary import render_summary
 
 #: The folder of the committed catalog files (package data): the names ``baranov show``
 #: knows wherever it is run.
 CATALOG_FOLDER = Path(__file__).resolve().parent
 
-__all__ = [
-    "CATALOG_FOLDER",
-    "ENTRY_FIELDS",
-    "build_catalog",
-    "catalog_links",
-    "crosscheck_links",
-    "dump_entries",
-    "load_entries",
-    "nine_link_name",
-    "render_summary",
-    "truss_entry",
-]
+#: Public name -> its submodule, imported on first use (a name lookup needs neither the
+#: solvers nor the enumeration that building a catalog does).
+_EXPORTS = {
+    "build_catalog": "build", "catalog_links": "build", "crosscheck_links": "build",
+    "ENTRY_FIELDS": "entries", "dump_entries": "entries", "load_entries": "entries", "nine_link_name": "entries",
+    "truss_entry": "entries", "render_summary": "summary", "truss": "lookup", "named_truss": "lookup",
+    "TrussNameError": "lookup",
+}
+
+__all__ = ["CATALOG_FOLDER", *sorted(_EXPORTS)]
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_EXPORTS))

@@ -11,16 +11,7 @@ import os
 import sys
 from pathlib import Path
 
-from baranov.catalog import CATALOG_FOLDER, build_catalog
-from baranov.catalog.files import check_writable_folder, write_atomically
-from baranov.enumerate import check_link_count
-from baranov.scene import load_scene
-from baranov.solvers import ExactSolution, available_backends
-from baranov.solvers import solve as solve_scene
-from baranov.solvers.modes import signs_text
-from baranov.topology import natural_sort_key
-
-from .show import show
+# the library is imported inside each command, so that --help and --version start fast
 
 #: The catalog command accepts link counts up to this one (13 links: about 10 s).
 CATALOG_MAX_LINKS = 13
@@ -50,6 +41,8 @@ def parse_link_counts(text: str) -> list[int]:
                 counts.add(int(part))
         except ValueError:
             raise UsageError(f"--links {text}: expected odd link counts such as 3,5,7 or 3-11") from None
+    from baranov.enumerate import check_link_count
+
     for links in sorted(counts):
         try:
             check_link_count(links)
@@ -62,6 +55,7 @@ def parse_link_counts(text: str) -> list[int]:
 
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="baranov", description="Position analysis of planar linkages by bilateration.")
+    parser.add_argument("--version", action="version", version=f"baranov {_version()}")
     commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     catalog = commands.add_parser("catalog", help="regenerate the catalog of Baranov trusses")
     catalog.add_argument("--links", default="3-11", help="odd link counts, e.g. 3,5,7 or 3-11 (default 3-11; 13 is opt-in)")
@@ -76,12 +70,12 @@ def _parser() -> argparse.ArgumentParser:
     show.add_argument("--reference", help="fix the reference pair, e.g. P1,P6")
     show.add_argument("--parameter", action="append", help="allow this parameter pair (repeatable), e.g. P1,P6")
     show.add_argument("--plans", type=int, default=1, help="show the N best plans (default 1)")
-    show.add_argument("--catalog", default=CATALOG_FOLDER, type=Path,
+    show.add_argument("--catalog", type=Path,
                       help="catalog folder for names and ids (default: the installed catalog)")
     solve = commands.add_parser("solve", help="every assembly mode of a linkage given as a scene file")
     solve.add_argument("scene", type=Path, help="scene JSON file (see examples/)")
-    solve.add_argument("--method", default="numeric", choices=available_backends(),
-                       help="solving backend (default numeric; the others: exact, and baselines for comparison)")
+    solve.add_argument("--method", default="numeric",
+                       help="solving backend: numeric (default), exact, or a baseline for comparison (msolve, …)")
     solve.add_argument("--json", action="store_true", help="print the result as JSON")
     solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
     solve.add_argument("--time-limit", type=float, metavar="SECONDS",
@@ -89,7 +83,25 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("baranov")
+    except PackageNotFoundError:
+        return "unknown (not installed)"
+
+
 def run_solve(args: argparse.Namespace) -> int:
+    from baranov.catalog.files import write_atomically
+    from baranov.scene import load_scene
+    from baranov.solvers import ExactSolution, available_backends
+    from baranov.solvers import solve as solve_scene
+    from baranov.solvers.modes import signs_text
+    from baranov.topology import natural_sort_key
+
+    if args.method not in available_backends():
+        raise UsageError(f"--method {args.method}: choose from {', '.join(available_backends())}")
     if args.plot is not None and not args.plot.parent.is_dir():
         raise UsageError(f"--plot {args.plot}: folder {args.plot.parent} does not exist")
     if args.time_limit is not None and (args.method != "numeric" or not args.time_limit > 0):
@@ -133,6 +145,9 @@ def run_solve(args: argparse.Namespace) -> int:
 
 
 def run_catalog(args: argparse.Namespace) -> int:
+    from baranov.catalog import build_catalog
+    from baranov.catalog.files import check_writable_folder
+
     link_counts = parse_link_counts(args.links)
     if args.workers < 1:
         raise UsageError(f"--workers {args.workers}: must be at least 1")
@@ -165,6 +180,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "show":
             if args.plans < 1:
                 raise UsageError(f"--plans {args.plans}: must be at least 1")
+            from .show import show
+
             print(show(args.chain, args.catalog, args.latex, args.reference, args.parameter, args.plans), end="")
             return 0
     except (UsageError, ValueError) as error:

@@ -3,12 +3,10 @@
 from __future__ import annotations
 
 import json
-import re
 from pathlib import Path
 
+from baranov.catalog.lookup import TRUSS_NAME, named_truss
 from baranov.closure import closure_system
-from baranov.enumerate import baranov_trusses
-from baranov.literature.trusses import THESIS_TRUSSES, thesis_truss
 from baranov.planner import bilateration_plans
 from baranov.topology import (
     KinematicChain,
@@ -17,59 +15,23 @@ from baranov.topology import (
     chain_from_links,
     is_baranov_truss,
     is_planar,
-    natural_sort_key,
 )
-
-CATALOG_NAME = re.compile(r"^(\d+)/([BN])(\d+)$")
 
 
 class ShowError(ValueError):
     """The chain to show could not be found or read."""
 
 
-def resolve_chain(argument: str, catalog: Path) -> tuple[str, KinematicChain]:
-    """A title and the chain for a thesis name (9/B28), a catalog id (11/N123), a file
-    (graph6, an edge list "u v" per line, or JSON: a list of link pairs, or
-    {"links": [[joint names], ...]}), or a graph6 string."""
-    match = CATALOG_NAME.match(argument)
-    if not match and CATALOG_NAME.match(argument.upper()) and not Path(argument).is_file():
-        raise ShowError(f"{argument}: no such truss; did you mean {argument.upper()}? (names and ids are "
-                        "written with a capital B or N)")
-    if match:
-        if argument in {t.name for t in THESIS_TRUSSES}:
-            published = thesis_truss(argument)
-            return f"{argument} — {published.source}", published.chain()
-        links = int(match.group(1))
-        entries = _catalog_entries(links, catalog)
-        for entry in entries:
-            if argument in (entry["id"], entry["name"]):
-                return f"{entry['id']} ({entry['name']})", chain_from_link_graph(entry["link_graph6"])
-        if match.group(2) == "N" and links <= 13 and links % 2:
-            trusses = baranov_trusses(links)
-            index = int(match.group(3))
-            if 1 <= index <= len(trusses):
-                return argument, trusses[index - 1]
-        raise ShowError(f"{argument}: no such truss in the catalog ({_known_names(entries, links, catalog)})")
+def resolve_chain(argument: str, catalog: Path | None = None) -> tuple[str, KinematicChain]:
+    """A title and the chain for a thesis name (9/B28) or a catalog id (11/N123)
+    (:func:`baranov.catalog.named_truss`), a file (graph6, an edge list "u v" per line,
+    or JSON: a list of link pairs, or {"links": [[joint names], ...]}), or a graph6 string."""
     path = Path(argument)
+    if TRUSS_NAME.match(argument.upper()) and not path.is_file():
+        return named_truss(argument, catalog)
     if path.is_file():
         return str(path), _chain_from_text(path.read_text(encoding="utf-8"), str(path))
     return argument, _chain_from_text(argument, "argument")
-
-
-def _known_names(entries: list[dict], links: int, catalog: Path) -> str:
-    """What the catalog does know at ``links`` links, for an error message."""
-    if not entries:
-        return f"{catalog} has no trusses-{links}.json"
-    names = sorted((e["name"] for e in entries if e["name"] != e["id"]), key=natural_sort_key)
-    named = f"names {', '.join(names[:3])}{' …' if len(names) > 3 else ''}; " if names else ""
-    return f"{named}ids {links}/N1..{links}/N{len(entries)}"
-
-
-def _catalog_entries(links: int, catalog: Path) -> list[dict]:
-    try:
-        return json.loads((catalog / f"trusses-{links}.json").read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return []
 
 
 def _chain_from_text(text: str, source: str) -> KinematicChain:
@@ -102,7 +64,7 @@ def _pair(text: str, option: str) -> tuple[str, str]:
     return parts[0], parts[1]
 
 
-def show(argument: str, catalog: Path, latex: bool = False, reference: str | None = None,
+def show(argument: str, catalog: Path | None = None, latex: bool = False, reference: str | None = None,
          parameters: list[str] | None = None, plans: int = 1) -> str:
     """The text that ``baranov show`` prints."""
     title, chain = resolve_chain(argument, catalog)

@@ -23,7 +23,7 @@ MODULES = sorted(
                     baranov.scene, baranov.solvers, baranov.baselines, baranov.catalog, baranov.cli)
     for info in pkgutil.walk_packages(package.__path__, package.__name__ + ".")
     if not info.name.endswith("__main__")
-) + ["baranov.topology", "baranov.enumerate"]
+) + ["baranov", "baranov.topology", "baranov.enumerate"]
 
 
 @pytest.mark.parametrize("name", MODULES)

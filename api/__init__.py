@@ -1,0 +1,77 @@
+"""baranov: the position analysis of planar linkages by bilateration (N. Rojas and
+F. Thomas): Baranov trusses, their plans and closure conditions, and every assembly
+mode of a linkage, numerically or exactly.
+
+The first things a researcher reaches for, importable from here (each is loaded on first
+use, so ``import baranov`` stays cheap):
+
+* :func:`truss` — a Baranov truss by its thesis name or catalog id; :func:`baranov_trusses`
+  — all of them for a link count, in catalog order;
+* :func:`best_plan`, :func:`coupling_degree` — a bilateration plan of a truss (thesis §2.6,
+  ch. 3); :func:`closure_system` — its closure conditions (thesis §2.7);
+* :func:`characteristic_degree` — the number of assembly modes over C for generic
+  dimensions (the degree of the characteristic polynomial);
+* :func:`load_scene`, :func:`scene_from_dict` — a linkage with its dimensions (a scene);
+  :func:`solve` — its assembly modes (``method="numeric"`` or ``"exact"``).
+
+>>> import baranov
+>>> chain = baranov.truss("7/B1")
+>>> baranov.coupling_degree(chain)
+1
+>>> print(baranov.closure_system(baranov.best_plan(chain)).text())  # doctest: +ELLIPSIS
+s... = det(...) s...
+>>> scene = baranov.scene_from_dict({
+...     "links": [{"name": "ground", "joints": {"P1": [1, 3], "P2": [6, 8]}},
+...               {"name": "b13", "joints": ["P1", "P3"], "squared_length": 20},
+...               {"name": "b23", "joints": ["P2", "P3"], "squared_length": 18}],
+...     "ground": "ground"})
+>>> modes = baranov.solve(scene, method="exact").assembly_modes
+>>> sorted((round(x, 9), round(y, 9)) for x, y in (mode.joints["P3"] for mode in modes))
+[(1.8, 7.4), (5.4, 3.8)]
+"""
+
+from __future__ import annotations
+
+import importlib
+from importlib.metadata import PackageNotFoundError, version
+
+try:
+    __version__ = version("baranov")
+except PackageNotFoundError:  # run from a checkout that was never installed
+    __version__ = "unknown"
+
+#: Public name -> the module that defines it.
+_EXPORTS = {
+    "truss": "baranov.catalog.lookup",
+    "TrussNameError": "baranov.catalog.lookup",
+    "baranov_trusses": "baranov.enumerate",
+    "best_plan": "baranov.planner",
+    "bilateration_plans": "baranov.planner",
+    "coupling_degree": "baranov.planner",
+    "closure_system": "baranov.closure",
+    "characteristic_degree": "baranov.solvers",
+    "load_scene": "baranov.scene",
+    "scene_from_dict": "baranov.scene",
+    "Scene": "baranov.scene",
+    "SceneError": "baranov.scene",
+    "solve": "baranov.solvers",
+    "Solution": "baranov.solvers",
+    "ExactSolution": "baranov.solvers",
+    "AssemblyMode": "baranov.solvers",
+    "SolverError": "baranov.solvers",
+    "MovableLinkageError": "baranov.solvers",
+}
+
+__all__ = sorted(_EXPORTS) + ["__version__"]
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(_EXPORTS[name]), name)
+        globals()[name] = value  # once loaded, a plain attribute
+        return value
+    raise AttributeError(f"module 'baranov' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_EXPORTS))

@@ -1,0 +1,85 @@
+"""A truss by its name: a thesis name (``9/B28``) or a catalog id (``11/N123``)."""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+from baranov.enumerate import baranov_trusses
+from baranov.literature.trusses import THESIS_TRUSSES, thesis_truss
+from baranov.topology import KinematicChain, chain_from_link_graph, natural_sort_key
+
+#: ``<links>/B<k>`` (a thesis name) or ``<links>/N<k>`` (a catalog id).
+TRUSS_NAME = re.compile(r"^(\d+)/([BN])(\d+)$")
+
+
+class TrussNameError(ValueError):
+    """No truss of the catalog has this name or id."""
+
+
+def truss(name: str, catalog: Path | None = None) -> KinematicChain:
+    """The Baranov truss called ``name``: a thesis name (3/B1, 5/B1, 7/B1–B3, 9/B1–B28,
+    identified in the catalog with evidence) or a catalog id ``<links>/N<k>`` (the k-th
+    truss of that many links in catalog order, :func:`baranov.enumerate.truss_sort_key`).
+    ``catalog``: the folder of ``trusses-<L>.json`` (default: the installed catalog);
+    ids of link counts it lacks (up to 13) are enumerated. Raises
+    :class:`TrussNameError`, listing the names the catalog knows, for any other name.
+
+    >>> chain = truss("9/B28")
+    >>> chain.number_of_links, chain.number_of_joints
+    (9, 12)
+    >>> truss("7/b1")
+    Traceback (most recent call last):
+    ...
+    baranov.catalog.lookup.TrussNameError: 7/b1: no such truss; did you mean 7/B1? (...)
+    """
+    return named_truss(name, catalog)[1]
+
+
+def named_truss(name: str, catalog: Path | None = None) -> tuple[str, KinematicChain]:
+    """:func:`truss` with a title: the name, its id or source in the literature."""
+    from . import CATALOG_FOLDER
+
+    catalog = CATALOG_FOLDER if catalog is None else catalog
+    match = TRUSS_NAME.match(name)
+    if not match:
+        if TRUSS_NAME.match(name.upper()):
+            raise TrussNameError(f"{name}: no such truss; did you mean {name.upper()}? (names and ids are "
+                                 "written with a capital B or N)")
+        raise TrussNameError(f"{name}: not a truss name (expected e.g. 9/B28 or 11/N123)")
+    if name in {t.name for t in THESIS_TRUSSES}:
+        published = thesis_truss(name)
+        return f"{name} — {published.source}", published.chain()
+    links = int(match.group(1))
+    entries = catalog_entries(links, catalog)
+    for entry in entries:
+        if name in (entry["id"], entry["name"]):
+            return f"{entry['id']} ({entry['name']})", chain_from_link_graph(entry["link_graph6"])
+    if match.group(2) == "N" and not entries and 3 <= links <= 13 and links % 2:
+        trusses = baranov_trusses(links)
+        index = int(match.group(3))
+        if 1 <= index <= len(trusses):
+            return name, trusses[index - 1]
+    raise TrussNameError(f"{name}: no such truss in the catalog ({_known_names(entries, links, catalog)})")
+
+
+def catalog_entries(links: int, catalog: Path) -> list[dict]:
+    """The entries of ``trusses-<links>.json`` in ``catalog`` ([] if there is none)."""
+    try:
+        return json.loads((catalog / f"trusses-{links}.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return []
+
+
+def _known_names(entries: list[dict], links: int, catalog: Path) -> str:
+    """What the catalog does know at ``links`` links, for an error message."""
+    if not entries:
+        present = sorted(int(p.stem.split("-")[1]) for p in catalog.glob("trusses-*.json")
+                         if p.stem.split("-")[1].isdigit())
+        counts = ", ".join(map(str, present)) or "none"
+        return f"it has no {links}-link trusses: Baranov trusses have an odd number of links, 3 or more; " \
+               f"the catalog holds {counts} links"
+    names = sorted((e["name"] for e in entries if e["name"] != e["id"]), key=natural_sort_key)
+    named = f"names {', '.join(names[:3])}{' …' if len(names) > 3 else ''}; " if names else ""
+    return f"{named}ids {links}/N1..{links}/N{len(entries)}"
