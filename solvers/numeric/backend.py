@@ -42,6 +42,7 @@ from ..configuration import (
     merged_clusters,
     parameter_name,
     placed_from_ground,
+    polished_mode,
     read_back,
 )
 from ..modes import AssemblyMode, MovableLinkageError, Solution, SolverError, signs_text
@@ -86,8 +87,42 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     if degree > 0 and coincidences:
         modes = _modes_of_coincident_joints(scene, plan, samples, modes)
     modes, valleys = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
+    modes, near_misses = _without_near_misses(scene, compiled, modes)
     return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, modes, undecided=tuple(undecided) + valleys)
+                    plan.free_sign_triangles, modes, undecided=tuple(undecided) + valleys + near_misses)
+
+
+#: A verified mode whose residual stays above this after NEAR_MISS_STEPS polishing steps
+#: is a near miss, not a mode (:func:`_without_near_misses`).
+NEAR_MISS = 1e-11
+NEAR_MISS_STEPS = 200
+
+
+def _without_near_misses(scene: Scene, compiled: CompiledSystem,
+                         modes: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...]]:
+    """``modes`` without the near misses, and one sentence for each: a configuration
+    that verifies to RESIDUAL_TOLERANCE but that Gauss–Newton on the link constraints
+    cannot bring below NEAR_MISS. A real root, simple or multiple, polishes to rounding
+    (1e-16 to 1e-15 measured); a minimum of |f| just above 0 — two complex roots with a
+    small imaginary part, next to where the dimensions were drawn at a double root — stays
+    where it is (issue 25: 9/N8 drawn at a double root, a "mode" at s11,1 = 10.1709 with
+    residual 6.3e-9 after 200 steps, which msolve and the exact backend do not list).
+    Floating point cannot tell such a pair from a real double root; the sentence says so,
+    and the exact backend decides."""
+    kept, sentences = [], []
+    for mode in modes:
+        if mode.max_residual > NEAR_MISS:
+            polished = polished_mode(scene, compiled, mode, NEAR_MISS_STEPS)
+            if polished.max_residual > NEAR_MISS:
+                values = ", ".join(f"{name} ≈ {value:.6g}" for name, value in mode.parameters.items())
+                sentences.append(f"{values} on branch {signs_text(mode.signs)}: a configuration within "
+                                 f"{polished.max_residual:.1e} of closing that polishing does not close: a minimum "
+                                 "of the closure condition just above 0 (two complex roots) or a real double root, "
+                                 "which floating point cannot tell apart; not listed as a mode (the exact backend "
+                                 "decides)")
+                continue
+        kept.append(mode)
+    return tuple(kept), tuple(sentences)
 
 
 def _require_isolated_roots(scene: Scene, compiled: CompiledSystem, branches: np.ndarray, candidates) -> None:
