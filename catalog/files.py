@@ -4,7 +4,39 @@ from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
+
+try:
+    import fcntl
+except ImportError:  # not POSIX: no lock
+    fcntl = None
+
+
+class FolderBusyError(ValueError):
+    """Another process is writing a catalog into the same folder."""
+
+
+@contextmanager
+def folder_lock(folder: Path) -> Iterator[None]:
+    """Hold an exclusive advisory lock (flock) on ``folder`` itself for the block, so that
+    two catalog jobs never write into one folder at once; raise :class:`FolderBusyError`
+    at once if another process holds it. Nothing is created in the folder, and the lock
+    goes with the process however it ends."""
+    if fcntl is None:
+        yield
+        return
+    handle = os.open(folder, os.O_RDONLY)
+    try:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise FolderBusyError(f"{folder}: another baranov catalog is writing into this folder; wait for it "
+                                  "to finish or choose another --out") from None
+        yield
+    finally:
+        os.close(handle)
 
 
 def write_atomically(path: Path, content: str | bytes) -> None:
@@ -23,6 +55,16 @@ def write_atomically(path: Path, content: str | bytes) -> None:
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
+
+
+def remove_stale_temporaries(folder: Path) -> list[Path]:
+    """Delete the temporary files that a killed run of :func:`write_atomically` left in
+    ``folder`` (``.<name>.<random>.tmp``; SIGKILL gives no chance to clean up), and return
+    them. Call it under :func:`folder_lock`: a live run's temporaries look the same."""
+    stale = [path for path in folder.glob(".*.tmp") if path.is_file()]
+    for path in stale:
+        path.unlink(missing_ok=True)
+    return stale
 
 
 def check_writable_folder(path: Path) -> None:

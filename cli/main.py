@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
 from pathlib import Path
 
@@ -144,9 +145,13 @@ def run_solve(args: argparse.Namespace) -> int:
     return 0
 
 
+def _stop(signum: int, frame) -> None:
+    raise KeyboardInterrupt  # SIGTERM stops the catalog job like Ctrl-C: workers terminated, one line
+
+
 def run_catalog(args: argparse.Namespace) -> int:
     from baranov.catalog import build_catalog
-    from baranov.catalog.files import check_writable_folder
+    from baranov.catalog.files import check_writable_folder, folder_lock, remove_stale_temporaries
 
     link_counts = parse_link_counts(args.links)
     if args.workers < 1:
@@ -156,15 +161,20 @@ def run_catalog(args: argparse.Namespace) -> int:
     except OSError as error:
         raise UsageError(f"--out {args.out}: cannot write there ({error.strerror or error})") from None
     log = (lambda message: None) if args.quiet else (lambda message: print(message, file=sys.stderr))
-    summary = build_catalog(
-        link_counts,
-        args.out,
-        workers=args.workers,
-        force=args.force,
-        crosscheck=not args.no_crosscheck,
-        show_progress=not args.quiet and sys.stderr.isatty(),
-        log=log,
-    )
+    # installed, not inherited: a job started in the background of a script ignores SIGINT
+    for number in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(number, _stop)
+    with folder_lock(args.out):
+        remove_stale_temporaries(args.out)
+        summary = build_catalog(
+            link_counts,
+            args.out,
+            workers=args.workers,
+            force=args.force,
+            crosscheck=not args.no_crosscheck,
+            show_progress=not args.quiet and sys.stderr.isatty(),
+            log=log,
+        )
     print(summary, end="")
     return 0
 

@@ -19,11 +19,11 @@ import shutil
 import subprocess
 import sys
 import sysconfig
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import networkx as nx
 
+from baranov.enumerate.parallel import worker_pool
 from baranov.topology import is_baranov_link_graph
 from baranov.topology.automorphisms import link_graph_certificate
 
@@ -79,8 +79,8 @@ def baranov_link_graphs_by_filter(links: int, workers: int = 1, geng: str | None
     parts = max(1, workers) * 4 if links >= 11 else 1
     jobs = [(geng, links, part, parts) for part in range(parts)]
     if workers > 1:
-        with ProcessPoolExecutor(workers) as pool:
-            results = list(pool.map(_filter_part, jobs))
+        with worker_pool(workers) as pool:
+            results = pool.map(_filter_part, jobs)
     else:
         results = [_filter_part(job) for job in jobs]
     candidates = sum(count for count, _ in results)

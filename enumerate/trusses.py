@@ -35,7 +35,7 @@ per-level deduplication instead of the canonical-parent test.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from contextlib import nullcontext
 from itertools import combinations
 
 import numpy as np
@@ -48,6 +48,8 @@ from baranov.topology import (
 )
 from baranov.topology.automorphisms import link_graph_certificate
 from baranov.topology.rigidity import subset_edge_counts
+
+from .parallel import worker_pool
 
 Masks = tuple[int, ...]
 
@@ -133,12 +135,11 @@ def baranov_link_graphs(
     check_link_count(links)
     level: dict[bytes, Masks] = {b"": (0,)}
     chunk = 2000
-    pool = ProcessPoolExecutor(workers) if workers > 1 else None
-    try:
+    with worker_pool(workers) if workers > 1 else nullcontext() as pool:
         for size in range(1, links):
             parents = list(level.values())
             jobs = [(parents[i:i + chunk], links) for i in range(0, len(parents), chunk)]
-            results = pool.map(_expand, jobs) if pool else map(_expand, jobs)
+            results = pool.imap(_expand, jobs) if pool else map(_expand, jobs)
             merged: dict[bytes, Masks] = {}
             for found in results:
                 for key, graph in found.items():
@@ -146,9 +147,6 @@ def baranov_link_graphs(
             level = merged
             if progress:
                 progress(size + 1, len(level))
-    finally:
-        if pool:
-            pool.shutdown()
     return list(level.values())
 
 

@@ -10,17 +10,29 @@ A scene lists links; each link gives either
   three listed joints. A ground link given this way is placed with its first joint at
   the origin and its second on the +x axis.
 
-Numbers may be integers, floats, or exact strings such as ``"9/5"``. Integers and
-rationals stay exact (:class:`fractions.Fraction`); a float marks the scene inexact.
-Every invalid input raises :class:`SceneError` (a ``ValueError``) naming the link.
+Numbers may be integers, decimals, or exact strings such as ``"9/5"``. In a JSON file
+(:func:`load_scene`) a decimal literal is the exact decimal its author wrote: ``2.5`` is
+5/2 and ``0.1`` is 1/10, so every scene file is exact and the exact backend takes it. In
+Python data (:func:`scene_from_dict`) integers, :class:`fractions.Fraction`,
+:class:`decimal.Decimal` and strings are exact, and a ``float`` is a binary float: it
+marks the scene inexact (give ``"5/2"`` or ``Fraction(5, 2)`` for exactness).
+
+Besides ``"links"`` and ``"ground"``, a scene may carry ``"comment"`` and the
+annotations of saved instances (``"verified_modes"``, ``"generating_configuration"``,
+``"generating_tolerance"``), which the solvers ignore; a link may carry a
+``"comment"``. Any other key is an error (a misspelt ``"grund"`` is not silently
+dropped). Every invalid input raises :class:`SceneError` (a ``ValueError``) naming the
+link, joint or key.
 """
 
 from __future__ import annotations
 
+import difflib
 import json
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from decimal import Decimal
 from fractions import Fraction
 from functools import cached_property
 from itertools import combinations
@@ -37,6 +49,10 @@ from baranov.topology import (
 )
 
 Number = Fraction | float
+
+#: A link triangle whose area is below this fraction of the link's squared size is flat
+#: (its orientation is not defined by the link's shape).
+FLAT_AREA = 1e-9
 
 
 class SceneError(ValueError):
@@ -90,13 +106,18 @@ class Scene:
 
     def widest_triangle(self, link: SceneLink) -> tuple[str, str, str] | None:
         """The three joints of ``link`` spanning the largest area (None if all collinear):
-        the triangle whose orientation tells the link from its mirror image."""
-        best, area = None, 0.0
+        the triangle whose orientation tells the link from its mirror image. Areas come
+        from the squared distances (16 A², exact for an exact scene), and an area below
+        FLAT_AREA of the link's size counts as none: the rounded frame of a straight bar
+        scaled by 1e6 had a "widest triangle" of area 1e-4, whose orientation then
+        flipped at random (issue 22: a 3-RPR's base, all its modes rejected as mirrored)."""
+        size = max(link.squared_distances.values())
+        best, widest = None, FLAT_AREA**2 * size**2
         for triangle in combinations(link.joints, 3):
-            (xi, yi), (xj, yj), (xk, yk) = (link.local[n] for n in triangle)
-            cross = abs((xj - xi) * (yk - yi) - (yj - yi) * (xk - xi))
-            if cross > area:
-                best, area = triangle, cross
+            i, j, k = triangle
+            area16 = triangle_radicand(*(link.squared_distances[frozenset(p)] for p in ((i, j), (i, k), (j, k))))
+            if area16 > widest:
+                best, widest = triangle, area16
         return best
 
     def largest_distance(self, u: str, v: str) -> float:
@@ -146,6 +167,10 @@ def _number(value, where: str) -> Number:
             raise SceneError(f"{where}: {value!r} is not a number such as 3, 2.5 or \"9/5\"") from None
     if isinstance(value, Fraction):
         return value
+    if isinstance(value, Decimal):  # a decimal literal of a JSON file: exact, 2.5 is 5/2
+        if not value.is_finite():
+            raise SceneError(f"{where}: {value} is not a finite number")
+        return Fraction(value)
     raise SceneError(f"{where}: {value!r} is not a number")
 
 
@@ -200,6 +225,57 @@ def _embed(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], 
     return local
 
 
+def _rational_sqrt(value: Number) -> Fraction | None:
+    """√value if it is rational (value a Fraction whose numerator and denominator are
+    squares), else None."""
+    if not isinstance(value, Fraction) or value < 0:
+        return None
+    numerator, denominator = math.isqrt(value.numerator), math.isqrt(value.denominator)
+    if numerator**2 != value.numerator or denominator**2 != value.denominator:
+        return None
+    return Fraction(numerator, denominator)
+
+
+def _rational_frame(link: SceneLink) -> dict[str, tuple[Fraction, Fraction]] | None:
+    """The link's own frame (:func:`_embed`'s: first joint at the origin, second on +x,
+    the others on the sides ``link.local`` puts them) in exact rationals, if every
+    coordinate is rational; else None. A ground link given by distances is placed in this
+    frame: in floats, 1e-6 is not exact, and msolve, given the rounded ground, found the
+    3-RPR's modes with coincident joints inconsistent at that scale (issue 22)."""
+    first, second = link.joints[:2]
+    d = _rational_sqrt(link.squared_distances[frozenset((first, second))])
+    if d is None or d == 0:
+        return None
+    frame = {first: (Fraction(0), Fraction(0)), second: (d, Fraction(0))}
+    for joint in link.joints[2:]:
+        a, b = link.squared_distances[frozenset((first, joint))], link.squared_distances[frozenset((second, joint))]
+        if not isinstance(a, Fraction) or not isinstance(b, Fraction):
+            return None
+        x = (d * d + a - b) / (2 * d)
+        y = _rational_sqrt(a - x * x) if a - x * x >= 0 else None
+        if y is None:
+            return None
+        frame[joint] = (x, y if link.local[joint][1] >= 0 else -y)
+    return frame
+
+
+#: The range of squared distances a scene may have: the numeric method squares them
+#: (triangle radicands), which must stay finite and normal in double precision. Any
+#: linkage fits after a change of units.
+SMALLEST_SQUARED = 1e-100
+LARGEST_SQUARED = 1e100
+LARGEST_COORDINATE = 1e50
+
+
+def _shown(value: Number) -> str:
+    """A number for a message, also where it exceeds the float range."""
+    try:
+        return f"{float(value):.3g}"
+    except OverflowError:
+        exponent = len(str(abs(value.numerator))) - len(str(value.denominator))
+        return f"{'-' if value < 0 else ''}about 1e{exponent}"
+
+
 def _require_positive(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], Number]) -> None:
     """Squared distances are positive, except that two joints of a link with three or more
     may coincide (0: coalescent attachments, thesis §5.1.3.3) as long as its first two
@@ -210,12 +286,32 @@ def _require_positive(name: str, joints: tuple[str, ...], squared: Mapping[froze
             raise SceneError(f"link {name}: squared distance {','.join(sorted(key))} = {value} must be positive"
                              + (" (joints of a link with three or more may coincide, but not its first two)"
                                 if value == 0 and len(joints) >= 3 else ""))
+        if value != 0 and not SMALLEST_SQUARED <= value <= LARGEST_SQUARED:
+            raise SceneError(f"link {name}: squared distance {','.join(sorted(key))} = {_shown(value)} is out of "
+                             f"range: squared distances lie between {SMALLEST_SQUARED:g} and {LARGEST_SQUARED:g} "
+                             "(rescale the linkage: a change of units does not change its assembly modes)")
+
+
+#: The keys a scene and a link may have (the module docstring says what each means).
+SCENE_KEYS = ("links", "ground", "comment", "verified_modes", "generating_configuration", "generating_tolerance")
+LINK_KEYS = ("name", "joints", "squared_length", "squared_distances", "orientation", "comment")
+
+
+def _require_known_keys(data: Mapping, known: tuple[str, ...], where: str) -> None:
+    """Raise :class:`SceneError` for the first key of ``data`` not in ``known``, with the
+    nearest known key as a suggestion."""
+    for key in data:
+        if key not in known:
+            near = difflib.get_close_matches(str(key), known, n=1)
+            hint = f"did you mean \"{near[0]}\"?" if near else f"expected one of {', '.join(known)}"
+            raise SceneError(f"{where}: unknown key {str(key)!r} ({hint})")
 
 
 def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
     if not isinstance(entry, Mapping):
         raise SceneError(f"link #{index + 1}: expected an object with \"name\" and \"joints\"")
     name = str(entry.get("name", f"#{index + 1}"))
+    _require_known_keys(entry, LINK_KEYS, f"link {name}")
     raw = entry.get("joints")
     exact = True
     if isinstance(raw, Mapping):
@@ -225,6 +321,11 @@ def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
             if not isinstance(point, (list, tuple)) or len(point) != 2:
                 raise SceneError(f"link {name}: joint {joint} needs coordinates [x, y]")
             x, y = (_number(v, f"link {name}, joint {joint}") for v in point)
+            for value in (x, y):
+                if abs(value) > LARGEST_COORDINATE:
+                    raise SceneError(f"link {name}, joint {joint}: coordinate {_shown(value)} is out of range: "
+                                     f"coordinates lie within ±{LARGEST_COORDINATE:g} (rescale the linkage: a "
+                                     "change of units does not change its assembly modes)")
             exact &= isinstance(x, Fraction) and isinstance(y, Fraction)
             coordinates[str(joint)] = (x, y)
         squared = {frozenset((a, b)): (coordinates[a][0] - coordinates[b][0]) ** 2 + (coordinates[a][1] - coordinates[b][1]) ** 2
@@ -274,6 +375,9 @@ def scene_from_dict(data) -> Scene:
     """Build and validate a scene from its JSON structure (see the module docstring)."""
     if not isinstance(data, Mapping) or not isinstance(data.get("links"), list):
         raise SceneError("scene: expected an object with a \"links\" list and a \"ground\" name")
+    _require_known_keys(data, SCENE_KEYS, "scene")
+    if not data["links"]:
+        raise SceneError("scene: \"links\" is empty")
     parsed = [_parse_link(entry, i) for i, entry in enumerate(data["links"])]
     links = tuple(link for link, _, _ in parsed)
     names = [link.name for link in links]
@@ -281,8 +385,11 @@ def scene_from_dict(data) -> Scene:
         repeated = next(n for n in names if names.count(n) > 1)
         raise SceneError(f"link {repeated}: name used twice")
     ground = data.get("ground")
+    listed = ", ".join(names[:8]) + (" …" if len(names) > 8 else "")
+    if "ground" not in data:
+        raise SceneError(f"scene: \"ground\" missing: name the fixed link (one of {listed})")
     if ground not in names:
-        raise SceneError(f"ground {ground!r}: no link of that name")
+        raise SceneError(f"ground {ground!r}: no link of that name (links: {listed})")
     counts: dict[str, list[str]] = {}
     for link in links:
         for joint in link.joints:
@@ -295,7 +402,7 @@ def scene_from_dict(data) -> Scene:
     ground_index = names.index(ground)
     _, world, _ = parsed[ground_index]
     if world is None:  # given by distances: first joint at the origin, second on +x
-        world = dict(links[ground_index].local)
+        world = _rational_frame(links[ground_index]) or dict(links[ground_index].local)
     scene = Scene(links, ground, all(exact for _, _, exact in parsed), world)
     try:
         require_rigid_chain(scene.chain)
@@ -307,7 +414,7 @@ def scene_from_dict(data) -> Scene:
 def load_scene(path: str | Path) -> Scene:
     """Read a scene from a JSON file."""
     try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
+        data = json.loads(Path(path).read_text(encoding="utf-8"), parse_float=Decimal)
     except OSError as error:
         raise SceneError(f"{path}: cannot read ({error.strerror})") from None
     except ValueError as error:

@@ -94,7 +94,7 @@ def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[st
     pairs = set(pairs)
     if not any(coincidence_possible(scene, pair) for pair in pairs):
         return modes, True
-    scale = max(1.0, distance_bound(scene)) ** 2
+    scale = distance_bound(scene) ** 2
 
     def at_values(measured: list[float], mode: AssemblyMode) -> list[float] | None:
         closest = min(values, key=lambda r: abs(measured[0] - r))
@@ -120,7 +120,7 @@ def with_modes_of_coincident_joints(scene: Scene, plan: Plan, pairs: set[frozens
     ``pairs`` coincide (within 1e-6 of the linkage's size): the modes ``plan`` cannot
     reach, wherever they are (found by the collinear-joints sweep, 9/N19: P3 = P11 at
     s10,1 = 34.6 in four modes); settled as :func:`_with_alternative_modes` says."""
-    scale = max(1.0, distance_bound(scene))
+    scale = distance_bound(scene)
 
     def coincident(measured: list[float], mode: AssemblyMode) -> list[float] | None:
         near = any(_squared_distance(mode, *sorted(pair)) < (1e-6 * scale) ** 2 for pair in pairs)
@@ -227,7 +227,7 @@ def _in_plan_terms(scene: Scene, plan: Plan, joints: dict[str, tuple[float, floa
     mode = AssemblyMode({}, (), joints, residual)
     values = values if values is not None else [_squared_distance(mode, *pair) for pair in plan.parameters]
     names = [parameter_name(pair) for pair in plan.parameters]
-    scale = max(1.0, distance_bound(scene)) ** 2
+    scale = distance_bound(scene) ** 2
     return AssemblyMode(dict(zip(names, values, strict=True)), _branch_signs(mode, plan, scale), joints, residual)
 
 

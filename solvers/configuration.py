@@ -47,7 +47,10 @@ def compile_scene(scene: Scene, plan: Plan) -> CompiledSystem:
 
 
 def distance_bound(scene: Scene) -> float:
-    """Sum of the link diameters: no two joints are farther apart."""
+    """Sum of the link diameters: no two joints are farther apart. The linkage's size, to
+    which every tolerance on positions is relative (never to a fixed unit: issue 22, a
+    triad scaled by 1e-6 had its two modes merged and a 3-RPR scaled by 1e6 failed to
+    verify its modes when tolerances were floored at 1)."""
     return sum(math.sqrt(max(float(v) for v in link.squared_distances.values())) for link in scene.links)
 
 
@@ -114,7 +117,7 @@ def first_of_each_mode(points: np.ndarray, scene: Scene) -> np.ndarray:
     """Indices of the configurations (complex (K, J)) that do not repeat an earlier one:
     the first of each group placing every joint within 1e-6 of the linkage's size
     (:func:`same_mode`). Cost O(K · n · J) for n distinct configurations."""
-    tolerance = SAME_MODE * max(1.0, distance_bound(scene))
+    tolerance = SAME_MODE * distance_bound(scene)
     first: list[int] = []
     for k in range(len(points)):
         if not first or (np.abs(points[first] - points[k]).max(axis=1) >= tolerance).all():
@@ -162,7 +165,7 @@ def _close_pairs(scene: Scene, modes, within: float) -> list[tuple[int, int]]:
     if len(modes) < 2:
         return []
     distance = _joint_distances(modes)
-    first, second = np.nonzero(np.triu(distance < within * max(1.0, distance_bound(scene)), k=1))
+    first, second = np.nonzero(np.triu(distance < within * distance_bound(scene), k=1))
     return list(zip(first.tolist(), second.tolist(), strict=True))
 
 
@@ -365,15 +368,16 @@ def joint_residuals(scene: Scene, joints: list[str], points: np.ndarray) -> np.n
             cross = ((j - i).conjugate() * (k - i)).imag
             mirrored = np.where(cross > 0, 1, -1) != scene.orientation(triangle)
             residual = np.where(mirrored, np.maximum(residual, 1.0), residual)
+    size = distance_bound(scene)
     for joint, (x, y) in scene.world.items():
         target = complex(float(x), float(y))
-        residual = np.maximum(residual, np.abs(at[joint] - target) / max(abs(target), 1.0))
+        residual = np.maximum(residual, np.abs(at[joint] - target) / max(abs(target), size))
     return np.where(np.isfinite(points).all(axis=1), residual, np.inf)
 
 
 def same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:
     """Whether two modes place every joint within 1e-6 of the linkage's size."""
-    scale = max(1.0, distance_bound(scene))
+    scale = distance_bound(scene)
     return all(
         math.dist(first.joints[j], second.joints[j]) < SAME_MODE * scale for j in first.joints
     )

@@ -71,7 +71,11 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray, s
                                                                   / weight[movable, None])
         jacobian = jacobian.reshape(active.size, len(pairs), 2 * len(free))
         transposed = jacobian.transpose(0, 2, 1)  # batched matmul: BLAS, unlike einsum
-        normal = transposed @ jacobian + 1e-14 * np.eye(2 * len(free))
+        normal = transposed @ jacobian
+        # Tikhonov term relative to the matrix (an absolute 1e-14 vanished in rounding on a
+        # 3-RPR scaled by 1e-6, whose coincident joints make the matrix singular: issue 22)
+        diagonal = np.diagonal(normal, axis1=1, axis2=2).max(axis=1)
+        normal = normal + 1e-14 * np.maximum(diagonal, np.finfo(float).tiny)[:, None, None] * np.eye(2 * len(free))
         gradient = (transposed @ residual[active][:, :, None])[:, :, 0]
         step = np.linalg.solve(normal, -gradient[:, :, None])[:, :, 0]
         trial = points[active].copy()

@@ -204,7 +204,7 @@ def test_solve_table_and_json():
     [
         (None, "cannot read"),
         ("{not json", "not valid JSON"),
-        ('{"links": []}', "ground None: no link of that name"),
+        ('{"links": []}', "scene: \"links\" is empty"),
         ('{"links": [{"name": "a", "joints": ["P1", "P2"], "squared_length": 0}], "ground": "a"}',
          "link a: squared distance P1,P2 = 0 must be positive"),
     ],

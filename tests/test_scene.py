@@ -3,6 +3,7 @@
 dimensions."""
 
 import json
+from decimal import Decimal
 from fractions import Fraction
 from pathlib import Path
 
@@ -71,3 +72,58 @@ def test_coincident_joints_in_coordinates():
     data["links"][0]["joints"]["P2"] = [1, 3]  # on top of P1
     with pytest.raises(SceneError, match=r"link ground: squared distance P1,P2 = 0 must be positive"):
         scene_from_dict(data)
+
+
+def test_decimal_literals_of_a_file_are_exact(tmp_path):
+    """2.5 in a JSON file is 5/2 to its author: the scene is exact, the exact backend
+    takes it; a Python float stays a binary float (inexact)."""
+    data = json.loads((EXAMPLES / "3-B1.json").read_text())
+    data["links"][2]["squared_length"] = 18.5
+    path = tmp_path / "decimal.json"
+    path.write_text(json.dumps(data))
+    scene = load_scene(path)
+    assert scene.exact and scene.known[frozenset(("P2", "P3"))] == Fraction(37, 2)
+    assert not scene_from_dict(data).exact
+    data["links"][2]["squared_length"] = Decimal("0.1")
+    assert scene_from_dict(data).known[frozenset(("P2", "P3"))] == Fraction(1, 10)
+
+
+@pytest.mark.parametrize("where, key, message", [
+    (None, "grund", "scene: unknown key 'grund' (did you mean \"ground\"?)"),
+    (1, "squared_lenght", "link b13: unknown key 'squared_lenght' (did you mean \"squared_length\"?)"),
+    (None, "mass", "scene: unknown key 'mass' (expected one of links, ground, comment"),
+])
+def test_unknown_keys_are_errors_with_a_suggestion(where, key, message):
+    data = json.loads((EXAMPLES / "3-B1.json").read_text())
+    target = data if where is None else data["links"][where]
+    target[key] = 1
+    with pytest.raises(SceneError) as error:
+        scene_from_dict(data)
+    assert str(error.value).startswith(message)
+
+
+@pytest.mark.parametrize("value", [2.5e300, 1e-120])
+def test_extreme_magnitudes_are_refused_with_a_message(value):
+    data = json.loads((EXAMPLES / "3-B1.json").read_text())
+    data["links"][1]["squared_length"] = value
+    with pytest.raises(SceneError, match=r"link b13: squared distance P1,P3 = .* is out of range: .*rescale"):
+        scene_from_dict(data)
+
+
+def test_unicode_and_very_long_names_and_a_10_mb_file_are_accepted(tmp_path):
+    """Names are any strings (a joint named by 5000 accented letters, a link with a Greek
+    letter); a 10 MB scene file (a long comment) loads and solves."""
+    from baranov.solvers import solve
+
+    data = json.loads((EXAMPLES / "3-B1.json").read_text())
+    long = "P" + "é" * 5000
+    for link in data["links"]:
+        if isinstance(link["joints"], dict):
+            continue
+        link["joints"] = [long if joint == "P3" else joint for joint in link["joints"]]
+    data["links"][1]["name"] = "bâton-β"
+    data["comment"] = "x" * 10_000_000
+    path = tmp_path / "big.json"
+    path.write_text(json.dumps(data, ensure_ascii=False), encoding="utf-8")
+    modes = solve(load_scene(path), method="exact").assembly_modes
+    assert sorted(round(mode.joints[long][0], 9) for mode in modes) == [1.8, 5.4]
