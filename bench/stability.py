@@ -286,14 +286,50 @@ complex curve passes through an isolated real mode, which the numeric backend re
 (`7-N2-complex-curve.json`; the bench now tests such modes for a real motion). Its time
 bound fails on four nine-link trusses: p99/median 34.4 (9/N18) and 28.0 (9/N28), both
 coupling 2, where one movable 9/N18 instance (four joints at one point) ran past 300 s
-and is open (`tests/regressions/open/9-N18-movable-coupling-two.json`: the coupling-2
-search has no test for two conditions sharing a curve), and 18.5 (9/N17) and 17.4
-(9/N8), coupling 1, whose slowest instances spent their time on shallow minima and
-crowded noise (11.4 → 3.1 s and 14.1 → 1.9 s alone since: docs/numeric.md). The run
-was stopped once the solving code had changed; a fifth, at the solving code of commit 1174e5b,
-has begun (rows in bench/results/adversarial.jsonl, resumed from a worktree of that
-commit). Both issue-25 targets — 10⁴ instances with no miss, and p99 ≤ 10 × median —
-are not met yet.
+(fixed since, below), and 18.5 (9/N17) and 17.4 (9/N8), coupling 1, whose slowest
+instances spent their time on shallow minima and crowded noise (11.4 → 3.1 s and
+14.1 → 1.9 s alone since: docs/numeric.md).
+
+The fifth run (`adversarial-1174e5b` below: at the solving code of commit 1174e5b, 4500
+seven-link and 2790 nine-link instances, then stopped) found no missed mode in 7265
+finite instances, and six kinds of failure, five fixed since (their instances saved in
+tests/regressions/) and one open:
+
+- 9/N18 drawn with four joints at one point (the fourth run's open instance) moves along
+  the line s2,5 = 2, which both closure conditions share: the numeric backend's Newton
+  converged to 450 066 distinct points of it (over 300 s), the exact backend raised a bare
+  ValueError. Both now raise MovableLinkageError: the numeric one continues a path of
+  verified configurations along the Jacobian's kernel, the exact one finds a real
+  configuration on the common factor of its two curves
+  (`movable/9-N18-shared-curve.json`; docs/numeric.md, "Coupling degree 2").
+- 9/N27 and 9/N18 (coupling 2): the exact backend crashed with OverflowError inside
+  python-flint 0.9's `fmpz_mpoly.factor`, whose factor-sorting key converts coefficients
+  to a C int; it now factors over Q where that happens (`9-N27-flint-factor-overflow.json`).
+  The crash also stalled the run for 35 minutes (the bench caught only ValueError, and
+  its pool then waited on every queued instance); the bench now records any exception.
+- 9/N8 drawn at a double root: the numeric backend listed a fifth mode verified to
+  6.3e-9, a minimum of |f| just above 0 that polishing does not close
+  (`9-N8-near-double-root.json`); such near misses are now named in `undecided`.
+- 9/N19 drawn at a double root: the closure condition is flat to rounding on
+  [8.9899, 9], where the domain ends in the mode; the middle of the stretch was listed
+  as a mode on two branches (`9-N19-flat-valley-at-edge.json`); a stretch cut off by the
+  domain now gives its edge.
+- 9/N12 drawn with two joints of one link at one point: no plan avoids that pair as a
+  base and both backends refused the scene, where msolve lists 4 modes; both now list
+  msolve's modes, verified (`9-N12-no-plan-coincident-input.json`).
+- 9/N28 drawn with joints in line: the exact backend ran over 300 s (issue 24: the
+  coupling-2 lifting; 81–142 s on five more 9/N28 instances). Open.
+
+Its numeric time bound failed on 9/N28 (p99/median 41: one small-box instance took
+133 s, where the two conditions' zero curves run within a cell of each other along a long
+arc and every suspect cell started Newton; 16 s with Newton started only at local minima,
+docs/numeric.md) and on 9/N18 (the movable instance). A check of the changed coupling-2
+search against msolve (90 instances of 9/N18, 9/N27 and 9/N28, seed 77): 0 missed,
+0 spurious, numeric median 2.8 s, max 18.4 s, p99/median per truss at most 6.1.
+Because the fixes changed the solving code, the 10⁴-instance count restarts: a sixth run,
+at the solving code of the commit that adds this paragraph, with fresh instances (seed
+27), has begun (rows in bench/results/adversarial.jsonl). The issue-25 targets — 10⁴
+instances with no miss, p99 ≤ 10 × median — are not met yet.
 
 {adversarial}
 

@@ -64,10 +64,15 @@ def alternative_plan(scene: Scene, pairs: Iterable[frozenset[str]]) -> Plan | No
                  if not pairs & ({frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps})), None)
 
 
+class NoPlanError(SolverError):
+    """No bilateration plan is defined for the scene: two joints at known distance 0 are
+    a base of every plan tried."""
+
+
 def solvable_plan(scene: Scene) -> Plan:
     """The best plan with no joint pair at known distance 0 as its reference or a base;
-    raises :class:`SolverError` (naming the pair) if none of the ALTERNATIVE_PLANS best
-    has that property."""
+    raises :class:`NoPlanError` (naming the pair) if none of the ALTERNATIVE_PLANS best
+    has that property (:class:`MovableLinkageError` if msolve finds the linkage moves)."""
     coincident = {pair for pair, value in scene.known.items() if value == 0}
     if not coincident:
         return best_plan(scene.chain)
@@ -80,8 +85,36 @@ def solvable_plan(scene: Scene) -> Plan:
             # said rather than only refused (issue 25's 9/N17, two joints of one link at one point)
             raise MovableLinkageError(f"{message}; msolve: the linkage moves with these dimensions "
                                       "(a positive-dimensional solution set, over the complex numbers)")
-        raise SolverError(message)
+        raise NoPlanError(message)
     return plan
+
+
+#: What a solution found without a plan says of its modes.
+NO_PLAN_NOTE = ("no bilateration plan is defined (joints {pairs} coincide in every plan's base): the modes are "
+                "msolve's, on the Cartesian system, each verified on the link dimensions")
+
+
+def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[tuple[AssemblyMode, ...], str]:
+    """Where no plan is defined (``error`` from :func:`solvable_plan`), every mode by
+    msolve on the Cartesian system (no plan needed), each verified on the link
+    dimensions, described in the best plan's terms; and the note saying so. Raises
+    ``error`` again without msolve, for a scene with float dimensions, or where msolve
+    fails or a mode does not verify (issue 25: 9/N12 drawn with P1 and P9 of one link at
+    one point, which both backends refused where msolve lists 4 modes)."""
+    if find_msolve() is None or not scene.exact:
+        raise error
+    result = msolve_modes(scene)
+    if result.status != "finite":
+        raise NoPlanError(f"{error}; msolve: {result.status} {result.message}".strip())
+    plan = best_plan(scene.chain)
+    modes = []
+    for configuration in result.configurations:
+        residual = joint_residual(scene, {j: complex(*p) for j, p in configuration.items()})
+        if residual >= RESIDUAL_TOLERANCE:
+            raise NoPlanError(f"{error}; msolve's mode does not verify (residual {residual:.1e})")
+        modes.append(_in_plan_terms(scene, plan, configuration, residual))
+    pairs = ", ".join(sorted("=".join(sorted(pair)) for pair, value in scene.known.items() if value == 0))
+    return sorted_modes(modes), NO_PLAN_NOTE.format(pairs=pairs)
 
 
 def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[str]], values: list[float],

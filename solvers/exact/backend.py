@@ -34,13 +34,15 @@ import flint
 import numpy as np
 
 from baranov.closure import sign_branches
-from baranov.planner import Plan
+from baranov.planner import Plan, best_plan
 from baranov.scene import Scene
 
 from ..coincidence import (
     MSOLVE_NOTE,
+    NoPlanError,
     coincidence_possible,
     computed_base_pairs,
+    modes_without_plan,
     solvable_plan,
     unexamined_coincidences,
     with_coincident_modes,
@@ -86,7 +88,14 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     the result (:class:`~baranov.solvers.modes.ExactSolution`) carries the characteristic
     polynomial (in the first parameter) and the certificate.
     ``coincidences=False`` skips step 4 (used by step 4 itself)."""
-    plan = plan or solvable_plan(scene)
+    try:
+        plan = plan or solvable_plan(scene)
+    except NoPlanError as error:  # no plan is defined: msolve's modes, verified
+        modes, note = modes_without_plan(scene, error)
+        fallback = best_plan(scene.chain)
+        return ExactSolution("exact", fallback.number_of_parameters,
+                             tuple(parameter_name(p) for p in fallback.parameters), fallback.free_sign_triangles,
+                             modes, certificate=Certificate(True, note, ()))
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None
     gaps: tuple[str, ...] = ()

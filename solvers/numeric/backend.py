@@ -21,12 +21,14 @@ import time
 import numpy as np
 
 from baranov.closure import CompiledSystem, sign_branches
-from baranov.planner import Plan
+from baranov.planner import Plan, best_plan
 from baranov.scene import Scene
 
 from ..coincidence import (
+    NoPlanError,
     coincidence_possible,
     computed_base_pairs,
+    modes_without_plan,
     solvable_plan,
     with_coincident_modes,
     with_modes_of_coincident_joints,
@@ -59,7 +61,13 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     ``time_limit`` (seconds): once it has passed, the branches (coupling 1) or the cells
     of the parameter plane (coupling 2) not yet searched are left, and the solution's
     ``undecided`` names them; the modes found are verified as always."""
-    plan = plan or solvable_plan(scene)
+    try:
+        plan = plan or solvable_plan(scene)
+    except NoPlanError as error:  # no plan is defined: msolve's modes, verified
+        modes, note = modes_without_plan(scene, error)
+        fallback = best_plan(scene.chain)
+        return Solution("numeric", fallback.number_of_parameters, tuple(parameter_name(p) for p in fallback.parameters),
+                        fallback.free_sign_triangles, modes, undecided=(note,))
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters

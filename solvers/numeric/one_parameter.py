@@ -229,8 +229,11 @@ def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list
         if n < len(roots) and _flat(sampled, roots[n - 1], roots[n]):
             continue
         if n - start > 1:
-            low, high = _flat_stretch(sampled, roots[start], roots[n - 1])
-            kept.append((low + high) / 2)
+            (low, high), (low_cut, high_cut) = _flat_stretch(sampled, roots[start], roots[n - 1])
+            # cut off by the domain on one side: the mode is at that edge, not in the middle
+            # (issue 25's 9/N19 drawn at a double root: flat on [8.9899, 9], the domain ends
+            # at 9, where the mode is; the middle, 8.99495, was a spurious mode on 2 branches)
+            kept.append(low if low_cut and not high_cut else high if high_cut and not low_cut else (low + high) / 2)
             valleys.append((low, high))
         else:
             kept.append(roots[start])
@@ -243,33 +246,38 @@ def _flat(sampled, low: float, high: float) -> bool:
     return bool(np.isfinite(values).all() and (np.abs(values) <= FLAT_NOISE).all())
 
 
-def _flat_stretch(sampled, low: float, high: float) -> tuple[float, float]:
+def _flat_stretch(sampled, low: float, high: float) -> tuple[tuple[float, float], tuple[bool, bool]]:
     """The stretch around [low, high] (flat) where |f| stays below FLAT_NOISE, sampled
     outwards over windows of growing width, then across the last sample step twice more
     (to VALLEY_SAMPLES⁻³ of the last window: the middle of the stretch is the mode's
-    estimate, and a coarse end moved it by 2e-4 on 9/N15)."""
-    ends = []
+    estimate, and a coarse end moved it by 2e-4 on 9/N15); and for each end, whether the
+    domain ends there (f undefined just beyond) rather than |f| rising."""
+    ends, cut = [], []
     for direction, end in ((-1, low), (1, high)):
         width = high - low
         for _ in range(8):
-            end, width, inside = _last_flat(sampled, end, direction, width)
+            end, width, inside, undefined = _last_flat(sampled, end, direction, width)
             if not inside:
                 break
         for _ in range(2):
-            end, width, _ = _last_flat(sampled, end, direction, width / (VALLEY_SAMPLES - 1))
+            end, width, inside, finer = _last_flat(sampled, end, direction, width / (VALLEY_SAMPLES - 1))
+            undefined = finer if not inside else undefined
         ends.append(end)
-    return ends[0], ends[1]
+        cut.append(bool(undefined))
+    return (ends[0], ends[1]), (cut[0], cut[1])
 
 
 def _last_flat(sampled, start: float, direction: int, width: float) -> tuple[float, float, bool]:
     """The last of VALLEY_SAMPLES samples from ``start`` over ``width`` in ``direction``
-    before |f| first exceeds FLAT_NOISE, and whether none did (then the next window is 4
-    times wider)."""
+    before |f| first exceeds FLAT_NOISE, whether none did (then the next window is 4
+    times wider), and whether the first sample that did is undefined (the domain's end)."""
     points = start + direction * np.linspace(0, width, VALLEY_SAMPLES)
-    flat = np.abs(np.nan_to_num(sampled(points), nan=np.inf)) <= FLAT_NOISE
+    values = sampled(points)
+    flat = np.abs(np.nan_to_num(values, nan=np.inf)) <= FLAT_NOISE
     if flat.all():
-        return float(points[-1]), width * 4, True
-    return float(points[max(int(np.argmin(flat)) - 1, 0)]), width, False
+        return float(points[-1]), width * 4, True, False
+    first = int(np.argmin(flat))
+    return float(points[max(first - 1, 0)]), width, False, bool(np.isnan(values[first]))
 
 
 #: A failing radicand whose coarse-grid local maximum is below −this (relative to the
