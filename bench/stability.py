@@ -326,9 +326,13 @@ arc and every suspect cell started Newton; 16 s with Newton started only at loca
 docs/numeric.md) and on 9/N18 (the movable instance). A check of the changed coupling-2
 search against msolve (90 instances of 9/N18, 9/N27 and 9/N28, seed 77): 0 missed,
 0 spurious, numeric median 2.8 s, max 18.4 s, p99/median per truss at most 6.1.
-Because the fixes changed the solving code, the 10⁴-instance count restarts: a sixth run,
-at the solving code of the commit that adds this paragraph, with fresh instances (seed
-27), has begun (rows in bench/results/adversarial.jsonl). The issue-25 targets — 10⁴
+Because the fixes changed the solving code, the 10⁴-instance count restarted with a
+sixth run on fresh instances (seed 27; rows in bench/results/adversarial.jsonl). At the
+solving code of commit d8991b4 its 4500 seven-link instances gave one failure, a numeric
+miss: 7/N1 drawn at a double root, a mode where the branch's domain begins with one
+triangle flat and another nearly so, whose fold candidate took both flat
+(`7-N1-fold-one-of-two-flat.json`; docs/numeric.md). Fixed, and the sixth run began again
+at the fixing commit. The issue-25 targets — 10⁴
 instances with no miss, p99 ≤ 10 × median — are not met yet.
 
 {adversarial}

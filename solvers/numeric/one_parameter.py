@@ -368,8 +368,9 @@ def _roots_at_folds(compiled: CompiledSystem, branch: np.ndarray, edges: list[tu
     fold those branches are one curve, f(e ± δ) ≈ V ± W√δ, so opposite signs at the edge
     found (δ ≈ 1e-14 of the cell) mean V ≈ 0: a mode with those triangles flat, where no
     branch changes sign and none reaches |f| < 1e-7 at δ (joints in line: docs/stability.md;
-    on 9/N1 two triangles were flat at once). The candidate is placed with the flat
-    triangles' signs 0 (their joints on the line) and polished like every other."""
+    on 9/N1 two triangles were flat at once). A candidate is placed with each non-empty
+    subset of the nearly flat triangles' signs 0 (their joints on the line) and verified
+    and polished like every other."""
     found = []
     for edge, value in edges:
         _, _, margins = compiled.failure_profile(np.array([[edge]]), branch[None, :])
@@ -381,9 +382,14 @@ def _roots_at_folds(compiled: CompiledSystem, branch: np.ndarray, edges: list[tu
         others = compiled.residuals(np.array([[edge]]), variants)[:, 0, 0]
         others = others[np.isfinite(others)]
         if (others > 0).any() and (others < 0).any():
-            folded = branch.copy()
-            folded[flat] = 0
-            found.append((np.array([edge]), folded))
+            # every non-empty subset taken flat: a triangle with a small margin need not be
+            # flat (issue 25's 7/N1 drawn at a double root: margins 3e-8 and 3e-6 at the
+            # edge; only the first is flat, and the candidate with both flat failed to verify)
+            for size in range(1, len(flat) + 1):
+                for subset in combinations(flat, size):
+                    folded = branch.copy()
+                    folded[list(subset)] = 0
+                    found.append((np.array([edge]), folded))
     return found
 
 
