@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shutil
 import signal
 import sys
 from pathlib import Path
@@ -77,7 +78,10 @@ def _parser() -> argparse.ArgumentParser:
     solve.add_argument("scene", type=Path, help="scene JSON file (see examples/)")
     solve.add_argument("--method", default="numeric",
                        help="solving backend: numeric (default), exact, or a baseline for comparison (msolve, …)")
-    solve.add_argument("--json", action="store_true", help="print the result as JSON")
+    solve.add_argument("--format", choices=("table", "json", "csv"), default="table",
+                       help="table (default: mode, parameters, signs, residual), json, or csv (with every joint)")
+    solve.add_argument("--json", action="store_true", help="the same as --format json")
+    solve.add_argument("--joints", action="store_true", help="table: each mode's joint coordinates below its row")
     solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
     solve.add_argument("--time-limit", type=float, metavar="SECONDS",
                        help="numeric method: stop searching after this long and name what was left undecided")
@@ -98,8 +102,8 @@ def run_solve(args: argparse.Namespace) -> int:
     from baranov.scene import load_scene
     from baranov.solvers import ExactSolution, available_backends
     from baranov.solvers import solve as solve_scene
-    from baranov.solvers.modes import signs_text
-    from baranov.topology import natural_sort_key
+
+    from .output import mode_table, modes_csv
 
     if args.method not in available_backends():
         raise UsageError(f"--method {args.method}: choose from {', '.join(available_backends())}")
@@ -114,8 +118,12 @@ def run_solve(args: argparse.Namespace) -> int:
         from baranov.solvers.drawing import render_modes  # matplotlib only when drawing
 
         write_atomically(args.plot, render_modes(scene, solution))
-    if args.json:
+    form = "json" if args.json else args.format
+    if form == "json":
         print(json.dumps(solution.to_dict(), indent=1))
+        return 0
+    if form == "csv":
+        print(modes_csv(solution), end="")
         return 0
     modes = solution.assembly_modes
     print(f"{args.scene}: coupling degree {solution.coupling_degree}, "
@@ -131,17 +139,10 @@ def run_solve(args: argparse.Namespace) -> int:
     if not modes:
         print("the linkage cannot be assembled with these dimensions")
         return 0
-    joints = sorted(modes[0].joints, key=natural_sort_key)
-    header = ["mode", *solution.parameters, "signs", *joints, "max residual"]
-    rows = []
-    for number, mode in enumerate(modes, 1):
-        rows.append([str(number), *(f"{v:.6g}" for v in mode.parameters.values()),
-                     signs_text(mode.signs),
-                     *(f"({mode.joints[j][0]:.4f}, {mode.joints[j][1]:.4f})" for j in joints),
-                     f"{mode.max_residual:.1e}"])
-    widths = [max(len(header[c]), *(len(r[c]) for r in rows)) for c in range(len(header))]
-    for row in [header, *rows]:
-        print("  ".join(cell.rjust(width) for cell, width in zip(row, widths, strict=True)))
+    width = shutil.get_terminal_size((100, 24)).columns if sys.stdout.isatty() else 100
+    print("\n".join(mode_table(solution, joints=args.joints, width=width)))
+    if not args.joints:
+        print("(joint coordinates: --joints, or --format csv / json)")
     return 0
 
 

@@ -247,3 +247,19 @@ def test_time_limit_is_positive_and_numeric_only(args):
     assert result.returncode == 2
     assert result.stderr.startswith(f"baranov: error: --time-limit {args[1]}: a positive number of seconds")
     assert result.stderr.count("\n") == 1 and result.stdout == ""
+
+
+@pytest.mark.parametrize("example", ["3-B1", "5-B1", "7-B1", "9-B28", "3-RPR-IV", "11-watt-baranov"])
+def test_solve_output_fits_100_columns(example, capsys):
+    """The default table (mode, parameters, signs, residual) and the --joints listing stay
+    within 100 columns (rows of 206 and 288 columns before); --format csv has a column per
+    joint coordinate and a row per mode."""
+    path = str(REPO / "examples" / f"{example}.json")
+    for extra in ([], ["--joints"]):
+        assert main(["solve", path, *extra]) == 0
+        out = capsys.readouterr().out
+        assert max(len(line) for line in out.splitlines()) <= 100, out
+    assert main(["solve", path, "--format", "csv"]) == 0
+    rows = list(__import__("csv").reader(capsys.readouterr().out.splitlines()))
+    header, body = rows[0], rows[1:]
+    assert header[0] == "mode" and header[-1].endswith("_y") and all(len(row) == len(header) for row in body)
