@@ -18,11 +18,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-
-import sympy
+from typing import TYPE_CHECKING
 
 from baranov.planner import DistanceKind, Plan
 from baranov.topology import distance_name, natural_sort_key, thesis_subscript
+
+if TYPE_CHECKING:  # sympy is imported where sympy equations are built: it costs 0.2 s
+    import sympy
 
 Triangle = tuple[str, str, str]
 Monomial = tuple[Triangle, ...]  # Z factors, latest step first
@@ -154,17 +156,23 @@ def closure_system(plan: Plan) -> ClosureSystem:
 
 
 def _s_symbol(u: str, v: str) -> sympy.Symbol:
+    import sympy
+
     u, v = sorted((u, v), key=lambda n: (len(n), n))
     return sympy.Symbol(f"s_{thesis_subscript(u)}_{thesis_subscript(v)}", positive=True)
 
 
 def _a_symbol(triangle: Triangle) -> sympy.Symbol:
+    import sympy
+
     return sympy.Symbol("A_" + "_".join(thesis_subscript(n) for n in triangle), real=True)
 
 
 def sympy_condition(condition: DistanceCondition) -> sympy.Eq:
     """``s_{u,v} = det(Ω) s_ref`` with every Z_{i,j,k} written out (thesis eq. 2.7) as
     (s_ij + s_ik - s_jk + 4 i A_ijk) / (2 s_ij), and det(Ω) = |Ω|², unexpanded."""
+    import sympy
+
     total = sympy.Integer(0)
     for monomial, coefficient in condition.omega.terms:
         product = sympy.Integer(coefficient)

@@ -18,10 +18,13 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import networkx as nx
 import pynauty
-from sympy.combinatorics import Permutation, PermutationGroup
+
+if TYPE_CHECKING:  # sympy is imported where the group's elements are listed: it costs 0.25 s
+    from sympy.combinatorics import PermutationGroup
 
 from .chain import JointKind, KinematicChain
 from .rigidity import adjacency_masks
@@ -45,7 +48,8 @@ class AutomorphismGroup:
     """The automorphism group of a chain (see :func:`automorphism_group`).
 
     Attributes:
-        order: exact group order (Schreier–Sims, sympy).
+        order: exact group order (nauty's, where a float holds it exactly; else
+            Schreier–Sims in sympy).
         generators: a generating set as found by nauty (empty for the trivial group).
         link_orbits: orbits of links, each sorted, ordered by their smallest link.
         joint_orbits: orbits of joints (names), ordered by first joint in chain order.
@@ -77,6 +81,8 @@ def _permutation_group(
     generators: Sequence[Automorphism], number_of_links: int, joint_names: Sequence[str]
 ) -> PermutationGroup:
     """The group as sympy permutations of links 0..L-1 followed by joints L..L+J-1."""
+    from sympy.combinatorics import Permutation, PermutationGroup
+
     n = number_of_links
     index = {name: k for k, name in enumerate(joint_names)}
     perms = [Permutation(list(g.links) + [n + index[name] for name in g.joints]) for g in generators]
@@ -96,8 +102,8 @@ def _incidence_graph(chain: KinematicChain) -> pynauty.Graph:
 def automorphism_group(chain: KinematicChain) -> AutomorphismGroup:
     """The automorphism group of ``chain``: order, generators, link and joint orbits.
 
-    Complexity: one nauty run on L + J vertices (fast in practice), plus Schreier–Sims
-    for the exact order.
+    Complexity: one nauty run on L + J vertices (fast in practice), which also gives the
+    order (Schreier–Sims only for orders a float does not hold exactly).
 
     >>> from baranov.topology import chain_from_link_graph
     >>> pentad = chain_from_link_graph([(0, 2), (0, 3), (0, 4), (1, 2), (1, 3), (1, 4)])
@@ -107,7 +113,7 @@ def automorphism_group(chain: KinematicChain) -> AutomorphismGroup:
     """
     n = chain.number_of_links
     names = tuple(joint.name for joint in chain.joints)
-    generators_raw, _, _, orbits, _ = pynauty.autgrp(_incidence_graph(chain))
+    generators_raw, mantissa, exponent, orbits, _ = pynauty.autgrp(_incidence_graph(chain))
     generators = tuple(
         Automorphism(tuple(g[:n]), tuple(names[g[n + k] - n] for k in range(len(names))))
         for g in generators_raw
@@ -117,8 +123,18 @@ def automorphism_group(chain: KinematicChain) -> AutomorphismGroup:
         tuple(names[k] for k in orbit)
         for orbit in _orbits_from_representatives([r - n for r in orbits[n:]], range(len(names)))
     )
-    order = int(_permutation_group(generators, n, names).order()) if generators else 1
+    order = _group_order(mantissa, exponent) or (int(_permutation_group(generators, n, names).order())
+                                                 if generators else 1)
     return AutomorphismGroup(order, generators, link_orbits, joint_orbits, names, n)
+
+
+def _group_order(mantissa: float, exponent: int) -> int | None:
+    """nauty's group order, mantissa · 10^exponent, as an integer where the float holds it
+    exactly (an integer below 2^53 and exponent 0: every chain of the catalog); None
+    otherwise (then Schreier–Sims in sympy decides)."""
+    if exponent == 0 and mantissa < 2**53 and float(mantissa).is_integer():
+        return int(mantissa)
+    return None
 
 
 def list_automorphisms(chain: KinematicChain) -> list[Automorphism]:
