@@ -37,19 +37,31 @@ def _hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
 
 
 def render_modes(scene: Scene, solution: Solution, columns: int | None = None) -> bytes:
-    """A PNG image (bytes) with one drawing per assembly mode, ``columns`` per row (by
-    default 4, or about √n for n > 16 modes so that the grid stays roughly square)."""
+    """A PNG image (bytes) of :func:`modes_figure`."""
+    buffer = io.BytesIO()
+    modes_figure(scene, solution, columns).savefig(buffer, format="png", dpi=110)
+    return buffer.getvalue()
+
+
+def modes_figure(scene: Scene, solution: Solution, columns: int | None = None) -> Figure:
+    """One drawing per assembly mode, ``columns`` per row (by default 4, or about √n for
+    n > 16 modes so that the grid stays roughly square), laid out by matplotlib's
+    constrained layout so that no title runs into a neighbouring panel; joint labels sit
+    away from the mode's centre, and joints at one point share one label ("P1=P5")."""
     modes = solution.assembly_modes
     count = max(len(modes), 1)
     if columns is None:
         columns = max(4, math.ceil(math.sqrt(count)))
     columns = min(columns, count)
     rows = math.ceil(count / columns)
-    figure = Figure(figsize=(3.6 * columns, 3.6 * rows))
-    axes = figure.subplots(rows, columns, squeeze=False)
     everything = [p for m in modes for p in m.joints.values()] or [(0.0, 0.0)]
     xs, ys = [p[0] for p in everything], [p[1] for p in everything]
-    margin = 0.08 * max(max(xs) - min(xs), max(ys) - min(ys), 1.0)
+    extent = max(max(xs) - min(xs), max(ys) - min(ys)) or 1.0
+    margin = 0.12 * extent
+    # panels as tall as the drawings need (a flat 3-RPR left wide empty bands before)
+    shape = min(max((max(ys) - min(ys) + 2 * margin) / (max(xs) - min(xs) + 2 * margin), 0.45), 1.6)
+    figure = Figure(figsize=(3.6 * columns, 3.6 * shape * rows + 0.8), layout="constrained")
+    axes = figure.subplots(rows, columns, squeeze=False)
     for index, axis in enumerate(axes.flat):
         axis.set_aspect("equal")
         axis.set_xticks([])
@@ -61,24 +73,44 @@ def render_modes(scene: Scene, solution: Solution, columns: int | None = None) -
             if not modes:
                 axis.text(0.5, 0.5, "no assembly mode", ha="center", va="center", transform=axis.transAxes)
             continue
-        mode = modes[index]
-        for link in scene.links:
-            points = [mode.joints[j] for j in link.joints]
-            ground = link.name == scene.ground
-            if len(points) == 2:
-                (x1, y1), (x2, y2) = points
-                axis.plot([x1, x2], [y1, y2], color="0.15", linewidth=3 if not ground else 5,
-                          solid_capstyle="round", zorder=2)
-            else:
-                axis.add_patch(Polygon(_hull(points), closed=True, facecolor="0.82" if not ground else "0.95",
-                                       edgecolor="0.15", linewidth=1.5, hatch="////" if ground else None, zorder=1))
-        for joint, (x, y) in mode.joints.items():
-            axis.plot(x, y, "o", markersize=6, markerfacecolor="white", markeredgecolor="0.1", zorder=3)
-            axis.annotate(joint, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=8, zorder=4)
-        values = ", ".join(f"{name} = {value:.4f}" for name, value in mode.parameters.items())
+        _draw_mode(axis, scene, modes[index], extent)
+        values = ", ".join(f"{name} = {value:.6g}" for name, value in modes[index].parameters.items())
         axis.set_title(f"mode {index + 1}" + (f": {values}" if values else ""), fontsize=9)
     figure.suptitle(f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} (ground hatched)", fontsize=11)
-    figure.tight_layout(rect=(0, 0, 1, 1 - 0.6 / (3.6 * rows)))
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=110)
-    return buffer.getvalue()
+    return figure
+
+
+def _draw_mode(axis, scene: Scene, mode, extent: float) -> None:
+    """The links (ground hatched, k-ary links filled, bars), joints and their labels."""
+    for link in scene.links:
+        points = [mode.joints[j] for j in link.joints]
+        ground = link.name == scene.ground
+        if len(points) == 2:
+            (x1, y1), (x2, y2) = points
+            axis.plot([x1, x2], [y1, y2], color="0.15", linewidth=3 if not ground else 5,
+                      solid_capstyle="round", zorder=2)
+        else:
+            axis.add_patch(Polygon(_hull(points), closed=True, facecolor="0.82" if not ground else "0.95",
+                                   edgecolor="0.15", linewidth=1.5, hatch="////" if ground else None, zorder=1))
+    centre = (sum(x for x, _ in mode.joints.values()) / len(mode.joints),
+              sum(y for _, y in mode.joints.values()) / len(mode.joints))
+    for names, (x, y) in _label_groups(mode.joints, 1e-6 * extent):
+        axis.plot(x, y, "o", markersize=6, markerfacecolor="white", markeredgecolor="0.1", zorder=3)
+        dx, dy = x - centre[0], y - centre[1]
+        length = math.hypot(dx, dy) or 1.0
+        axis.annotate("=".join(names), (x, y), textcoords="offset points", xytext=(9 * dx / length, 9 * dy / length),
+                      ha="left" if dx >= 0 else "right", va="bottom" if dy >= 0 else "top", fontsize=8, zorder=4)
+
+
+def _label_groups(joints: dict, tolerance: float) -> list[tuple[list[str], tuple[float, float]]]:
+    """Joints grouped where they lie within ``tolerance`` of each other (coincident
+    joints: one label), each group with its first joint's position."""
+    groups: list[tuple[list[str], tuple[float, float]]] = []
+    for name, point in joints.items():
+        for names, at in groups:
+            if math.dist(point, at) <= tolerance:
+                names.append(name)
+                break
+        else:
+            groups.append(([name], point))
+    return groups
