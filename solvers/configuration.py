@@ -129,6 +129,10 @@ def first_of_each_mode(points: np.ndarray, scene: Scene) -> np.ndarray:
 #: CLUSTER_STEPS plain Gauss–Newton steps, before they count as distinct.
 CLUSTER = 1e-3
 CLUSTER_STEPS = 200
+#: A mode whose residual is at this level is placed to rounding: polishing it without the
+#: monotone test could only move it (issue 22: msolve's exact mode with P1 = P5 on a
+#: 3-RPR-II scaled by 1/1000 and mirrored was moved 5e-5 away, then stood for its valley).
+ROUNDING = 1e-15
 
 
 def merged_clusters(scene: Scene, compiled: CompiledSystem,
@@ -151,7 +155,9 @@ def merged_clusters(scene: Scene, compiled: CompiledSystem,
         return sorted_modes(modes), ()
     kept = [mode for index, mode in enumerate(modes) if index not in clustered]
     for index in sorted(clustered, key=lambda i: modes[i].max_residual):
-        mode = polished_mode(scene, compiled, modes[index], CLUSTER_STEPS, monotone=False)
+        mode = modes[index]
+        if mode.max_residual > ROUNDING:  # one placed to rounding (msolve's) stays where it is
+            mode = polished_mode(scene, compiled, mode, CLUSTER_STEPS, monotone=False)
         mode = flattened_mode(scene, compiled, mode if mode.max_residual < RESIDUAL_TOLERANCE else modes[index])
         if not any(same_mode(mode, other, scene) for other in kept):
             kept.append(mode)

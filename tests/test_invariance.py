@@ -68,12 +68,7 @@ def transformed(data: dict, scale: Fraction, mirrored: bool, rotation: tuple, tr
     return data, lambda point: tuple(float(c) for c in world(point))
 
 
-#: Open (issue 22): 3-RPR-II scaled by 1/1000 and mirrored. Its modes with P1 = P5 sit in
-#: a stretch of s1,5 where the closure condition is rounding noise; msolve lists them
-#: exactly, but the numeric backend's valley merge then keeps a float member of the valley
-#: 5e-5 (relative) away instead of msolve's configuration. At scale 1 the float member is
-#: within 1e-6 and is replaced before the merge.
-KNOWN = {("3-RPR-II", "numeric", "all at once"): "valley representative preferred over msolve's exact mode"}
+KNOWN: dict[tuple[str, str, str], str] = {}
 
 
 def _cases():
