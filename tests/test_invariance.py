@@ -1,5 +1,5 @@
 """Invariance (issue 22): a similarity does not change a linkage's assembly modes. Every
-example scene is translated, rotated, mirrored and scaled by 1e-6 and 1e6 — exactly, in
+example scene (the small ones with both backends) is translated, rotated, mirrored and scaled by 1e-6 and 1e6 — exactly, in
 rationals, so that the exact backend sees the same problem — and solved again: the same
 number of modes, placed where the transformation takes the original ones."""
 
@@ -71,9 +71,14 @@ def transformed(data: dict, scale: Fraction, mirrored: bool, rotation: tuple, tr
 KNOWN: dict[tuple[str, str, str], str] = {}
 
 
+#: Examples solved numerically only: 9-B28 (the exact coupling-2 solve takes 20 s), the
+#: Watt-Baranov trusses (size), 3-RPR-V (irrational link areas: the exact method refuses).
+NUMERIC_ONLY = ["9-B28", "11-watt-baranov", "13-watt-baranov", "3-RPR-V"]
+
+
 def _cases():
-    for name in [*SMALL, "9-B28"]:
-        for method in ("numeric", "exact") if name != "9-B28" else ("numeric",):
+    for name in [*SMALL, *NUMERIC_ONLY]:
+        for method in ("numeric",) if name in NUMERIC_ONLY else ("numeric", "exact"):
             for transform in TRANSFORMS:
                 reason = KNOWN.get((name, method, transform[0]))
                 marks = [pytest.mark.xfail(reason=reason, strict=True)] if reason else []
