@@ -20,6 +20,7 @@ import argparse
 import hashlib
 import json
 import math
+import resource
 import shlex
 import signal
 import subprocess
@@ -155,6 +156,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=25)
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--timeout", type=float, default=600.0, help="seconds per solve (default 600)")
+    parser.add_argument("--memory", type=float, default=8.0,
+                        help="GiB of address space per worker (default 8): a runaway solve raises MemoryError, "
+                             "recorded as an error, instead of the kernel killing the worker and the pool with it")
     parser.add_argument("--out", type=Path, required=True, help="JSON lines, appended; a rerun resumes")
     parser.add_argument("--report", type=Path, help="write the Markdown summary of --out here")
     parser.add_argument("--failures", type=Path, help="save every failed instance here as a scene file")
@@ -179,7 +183,8 @@ def main(argv: list[str] | None = None) -> int:
              if (f"{links}/N{index + 1}/{kind}/{instance}", args.seed) not in done]
     print(f"{len(tasks)} instances to run ({len(done)} already in {args.out} for solving code {code})", flush=True)
     args.out.parent.mkdir(parents=True, exist_ok=True)
-    with ProcessPoolExecutor(args.workers) as pool, args.out.open("a", encoding="utf-8") as out:
+    with ProcessPoolExecutor(args.workers, initializer=_limit_memory, initargs=(args.memory,)) as pool, \
+            args.out.open("a", encoding="utf-8") as out:
         futures = [pool.submit(run, *task) for task in tasks]
         for n, future in enumerate(as_completed(futures), 1):
             try:
@@ -197,6 +202,14 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"{n}/{len(tasks)} done", flush=True)
     write_report(args, argv, current_rows(args.out, code), methods)
     return 0
+
+
+def _limit_memory(gibibytes: float) -> None:
+    """Worker initializer: cap the address space (issue 25's sixth run: one 9/N9 solve grew
+    past 24 GB, the kernel killed its worker, and the broken pool lost every queued
+    instance)."""
+    limit = int(gibibytes * 2**30)
+    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 
 
 def current_rows(path: Path, code: str | None) -> list[dict]:

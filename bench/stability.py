@@ -332,7 +332,15 @@ solving code of commit d8991b4 its 4500 seven-link instances gave one failure, a
 miss: 7/N1 drawn at a double root, a mode where the branch's domain begins with one
 triangle flat and another nearly so, whose fold candidate took both flat
 (`7-N1-fold-one-of-two-flat.json`; docs/numeric.md). Fixed, and the sixth run began again
-at the fixing commit. The issue-25 targets — 10⁴
+at the fixing commit (0277a59): 4500 seven-link instances without a failure, then 692
+nine-link ones without a miss, until one solve ran the machine out of memory: 9/N9 drawn at
+a double root, movable (msolve: positive-dimensional; the exact backend says so at once),
+where the feasible domain flickers at rounding noise (5248 defined/undefined transitions
+on one branch, each given an edge search) and the numeric backend grew past 24 GB. The
+kernel killed that worker, which broke the run's process pool, and the queued nine-link
+instances were lost. Open (`tests/regressions/open/9-N9-domain-flicker-oom.json`); the
+bench now caps each worker's memory (`--memory`, 8 GiB), so that such a solve is recorded
+as an error. The issue-25 targets — 10⁴
 instances with no miss, p99 ≤ 10 × median — are not met yet.
 
 {adversarial}
