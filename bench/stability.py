@@ -338,9 +338,12 @@ a double root, movable (msolve: positive-dimensional; the exact backend says so 
 where the feasible domain flickers at rounding noise (5248 defined/undefined transitions
 on one branch, each given an edge search) and the numeric backend grew past 24 GB. The
 kernel killed that worker, which broke the run's process pool, and the queued nine-link
-instances were lost. Open (`tests/regressions/open/9-N9-domain-flicker-oom.json`); the
-bench now caps each worker's memory (`--memory`, 8 GiB), so that such a solve is recorded
-as an error. The issue-25 targets — 10⁴
+instances were lost. The failing step of the plan flickers with rounding noise there, and
+the window refinement multiplied its cells by up to 64 per level (215 million samples at
+the fourth); it now stops past 4096 cells, and the solve raises MovableLinkageError in
+51 s with 194 MB (`movable/9-N9-domain-flicker.json`; still slow). The bench also caps
+each worker's memory now (`--memory`, 8 GiB), so that a runaway solve is recorded as an
+error. The issue-25 targets — 10⁴
 instances with no miss, p99 ≤ 10 × median — are not met yet.
 
 {adversarial}

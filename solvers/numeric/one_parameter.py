@@ -49,6 +49,11 @@ REFINEMENT = 400
 #: regression: tests/regressions/9-missed-2.json, a window 0.6 wide in a cell 7 wide).
 WINDOW_SAMPLES = 64
 WINDOW_DEPTH = 6
+#: More window cells than this at one level means the failing step flickers with rounding
+#: noise (a radicand at 0 along a stretch): refining further multiplied the cells by up to
+#: 64 per level (issue 25's 9/N9 drawn at a double root: 215 million samples at the fourth
+#: level, 24 GB, the worker killed), so the refinement stops there.
+WINDOW_CROWD = 4096
 
 
 def critical_values(scene: Scene, plan: Plan) -> list[float]:
@@ -465,6 +470,8 @@ def _with_windows(grid, values, failures, radicands, margins, sampled, failing, 
         for c in range(len(cells)):
             part = slice(c * WINDOW_SAMPLES, (c + 1) * WINDOW_SAMPLES)
             following += [(points[part][i], points[part][i + 1]) for i in _window_cells(codes[part], feasible)]
+        if len(following) > WINDOW_CROWD:  # the failing step flickers at rounding noise: no window converges
+            break
         cells = following
     if not extra:
         return grid, values
