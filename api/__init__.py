@@ -65,13 +65,24 @@ _EXPORTS = {
 __all__ = sorted(_EXPORTS) + ["__version__"]
 
 
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        value = getattr(importlib.import_module(_EXPORTS[name]), name)
-        globals()[name] = value  # once loaded, a plain attribute
-        return value
-    raise AttributeError(f"module 'baranov' has no attribute {name!r}")
+def lazy_exports(namespace: dict, exports: dict[str, str]):
+    """``__getattr__`` and ``__dir__`` for a package whose names in ``exports`` (name ->
+    module) are imported on first use and then kept in ``namespace`` (its globals()), so
+    that importing the package stays cheap (PEP 562). Used here and by
+    :mod:`baranov.catalog`."""
+    package = namespace["__name__"]
+
+    def __getattr__(name: str):
+        if name in exports:
+            value = getattr(importlib.import_module(exports[name]), name)
+            namespace[name] = value  # once loaded, a plain attribute
+            return value
+        raise AttributeError(f"module {package!r} has no attribute {name!r}")
+
+    def __dir__() -> list[str]:
+        return sorted(set(namespace) | set(exports))
+
+    return __getattr__, __dir__
 
 
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_EXPORTS))
+__getattr__, __dir__ = lazy_exports(globals(), _EXPORTS)

@@ -13,8 +13,9 @@ Output (all written atomically, byte-identical from run to run):
 An existing ``trusses-<L>.json`` that has every field is reused unless ``force``.
 """
 
-import importlib
 from pathlib import Path
+
+from baranov import lazy_exports
 
 #: The folder of the committed catalog files (package data): the names ``baranov show``
 #: knows wherever it is run.
@@ -22,23 +23,13 @@ CATALOG_FOLDER = Path(__file__).resolve().parent
 
 #: Public name -> its submodule, imported on first use (a name lookup needs neither the
 #: solvers nor the enumeration that building a catalog does).
-_EXPORTS = {
+_EXPORTS = {name: f"{__name__}.{module}" for name, module in {
     "build_catalog": "build", "catalog_links": "build", "crosscheck_links": "build",
     "ENTRY_FIELDS": "entries", "dump_entries": "entries", "load_entries": "entries", "nine_link_name": "entries",
     "truss_entry": "entries", "render_summary": "summary", "truss": "lookup", "named_truss": "lookup",
     "TrussNameError": "lookup",
-}
+}.items()}
 
 __all__ = ["CATALOG_FOLDER", *sorted(_EXPORTS)]
 
-
-def __getattr__(name: str):
-    if name in _EXPORTS:
-        value = getattr(importlib.import_module(f"{__name__}.{_EXPORTS[name]}"), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_EXPORTS))
+__getattr__, __dir__ = lazy_exports(globals(), _EXPORTS)

@@ -5,7 +5,7 @@ random instances of a truss built from integer configurations (thesis §2.1: the
 dimensions of a Baranov truss)."""
 
 from .instances import generic_integer_configuration, instance_dict, scene_of
-from .model import Scene, SceneError, SceneLink, load_scene, scene_from_dict
+from .model import Scene, SceneError, SceneLink, load_scene, rational_sqrt, scene_from_dict
 
 __all__ = [
     "Scene",
@@ -14,6 +14,7 @@ __all__ = [
     "generic_integer_configuration",
     "instance_dict",
     "load_scene",
+    "rational_sqrt",
     "scene_from_dict",
     "scene_of",
 ]

@@ -105,6 +105,17 @@ class Scene:
         raise SceneError(f"link {name}: no such link")
 
     def widest_triangle(self, link: SceneLink) -> tuple[str, str, str] | None:
+        """The three joints of ``link`` spanning the largest area (None if all collinear),
+        computed once per link (:meth:`_widest_triangle`; residuals ask for it at every
+        verification)."""
+        return self._widest_triangles[link.name]
+
+    @cached_property
+    def _widest_triangles(self) -> dict[str, tuple[str, str, str] | None]:
+        return {link.name: self._widest_triangle(link) for link in self.links}
+
+    @staticmethod
+    def _widest_triangle(link: SceneLink) -> tuple[str, str, str] | None:
         """The three joints of ``link`` spanning the largest area (None if all collinear):
         the triangle whose orientation tells the link from its mirror image. Areas come
         from the squared distances (16 A², exact for an exact scene), and an area below
@@ -225,9 +236,13 @@ def _embed(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], 
     return local
 
 
-def _rational_sqrt(value: Number) -> Fraction | None:
-    """√value if it is rational (value a Fraction whose numerator and denominator are
-    squares), else None."""
+def rational_sqrt(value: Number) -> Fraction | None:
+    """√value if it is rational (a nonnegative Fraction whose numerator and denominator
+    are squares), else None.
+
+    >>> rational_sqrt(Fraction(9, 4)), rational_sqrt(Fraction(2)), rational_sqrt(2.25)
+    (Fraction(3, 2), None, None)
+    """
     if not isinstance(value, Fraction) or value < 0:
         return None
     numerator, denominator = math.isqrt(value.numerator), math.isqrt(value.denominator)
@@ -238,24 +253,25 @@ def _rational_sqrt(value: Number) -> Fraction | None:
 
 def _rational_frame(link: SceneLink) -> dict[str, tuple[Fraction, Fraction]] | None:
     """The link's own frame (:func:`_embed`'s: first joint at the origin, second on +x,
-    the others on the sides ``link.local`` puts them) in exact rationals, if every
-    coordinate is rational; else None. A ground link given by distances is placed in this
-    frame: in floats, 1e-6 is not exact, and msolve, given the rounded ground, found the
-    3-RPR's modes with coincident joints inconsistent at that scale (issue 22)."""
+    each other joint on the side ``link.local`` puts it) by the same bilateration, in
+    exact rationals, if every triangle area is rational; else None. A ground link given
+    by distances is placed in this frame: in floats, 1e-6 is not exact, and msolve, given
+    the rounded ground, found the 3-RPR's modes with coincident joints inconsistent at
+    that scale (issue 22)."""
     first, second = link.joints[:2]
-    d = _rational_sqrt(link.squared_distances[frozenset((first, second))])
-    if d is None or d == 0:
+    d = rational_sqrt(link.squared_distances[frozenset((first, second))])
+    if not d:
         return None
     frame = {first: (Fraction(0), Fraction(0)), second: (d, Fraction(0))}
     for joint in link.joints[2:]:
-        a, b = link.squared_distances[frozenset((first, joint))], link.squared_distances[frozenset((second, joint))]
-        if not isinstance(a, Fraction) or not isinstance(b, Fraction):
+        sides = (d * d, link.squared_distances[frozenset((first, joint))],
+                 link.squared_distances[frozenset((second, joint))])
+        root = rational_sqrt(triangle_radicand(*sides)) if all(isinstance(x, Fraction) for x in sides) else None
+        if root is None:
             return None
-        x = (d * d + a - b) / (2 * d)
-        y = _rational_sqrt(a - x * x) if a - x * x >= 0 else None
-        if y is None:
-            return None
-        frame[joint] = (x, y if link.local[joint][1] >= 0 else -y)
+        signed = root if link.local[joint][1] >= 0 else -root
+        x, y, _ = dehomogenised(bilaterated((0, 0, 1), (d, 0, 1), sides, signed))
+        frame[joint] = (x, y)
     return frame
 
 
@@ -265,6 +281,7 @@ def _rational_frame(link: SceneLink) -> dict[str, tuple[Fraction, Fraction]] | N
 SMALLEST_SQUARED = 1e-100
 LARGEST_SQUARED = 1e100
 LARGEST_COORDINATE = 1e50
+RESCALE = "rescale the linkage: a change of units does not change its assembly modes"
 
 
 def _shown(value: Number) -> str:
@@ -289,7 +306,7 @@ def _require_positive(name: str, joints: tuple[str, ...], squared: Mapping[froze
         if value != 0 and not SMALLEST_SQUARED <= value <= LARGEST_SQUARED:
             raise SceneError(f"link {name}: squared distance {','.join(sorted(key))} = {_shown(value)} is out of "
                              f"range: squared distances lie between {SMALLEST_SQUARED:g} and {LARGEST_SQUARED:g} "
-                             "(rescale the linkage: a change of units does not change its assembly modes)")
+                             f"({RESCALE})")
 
 
 #: The keys a scene and a link may have (the module docstring says what each means).
@@ -324,8 +341,7 @@ def _parse_link(entry, index: int) -> tuple[SceneLink, dict | None, bool]:
             for value in (x, y):
                 if abs(value) > LARGEST_COORDINATE:
                     raise SceneError(f"link {name}, joint {joint}: coordinate {_shown(value)} is out of range: "
-                                     f"coordinates lie within ±{LARGEST_COORDINATE:g} (rescale the linkage: a "
-                                     "change of units does not change its assembly modes)")
+                                     f"coordinates lie within ±{LARGEST_COORDINATE:g} ({RESCALE})")
             exact &= isinstance(x, Fraction) and isinstance(y, Fraction)
             coordinates[str(joint)] = (x, y)
         squared = {frozenset((a, b)): (coordinates[a][0] - coordinates[b][0]) ** 2 + (coordinates[a][1] - coordinates[b][1]) ** 2

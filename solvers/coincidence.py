@@ -94,10 +94,11 @@ NO_PLAN_NOTE = ("no bilateration plan is defined (joints {pairs} coincide in eve
                 "msolve's, on the Cartesian system, each verified on the link dimensions")
 
 
-def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[tuple[AssemblyMode, ...], str]:
+def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[Plan, tuple[AssemblyMode, ...], str]:
     """Where no plan is defined (``error`` from :func:`solvable_plan`), every mode by
     msolve on the Cartesian system (no plan needed), each verified on the link
-    dimensions, described in the best plan's terms; and the note saying so. Raises
+    dimensions and described in the terms of the best plan (returned too, though it is
+    undefined at the coincidence); and the note saying so. Raises
     ``error`` again without msolve, for a scene with float dimensions, or where msolve
     fails or a mode does not verify (issue 25: 9/N12 drawn with P1 and P9 of one link at
     one point, which both backends refused where msolve lists 4 modes)."""
@@ -114,7 +115,7 @@ def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[tuple[Assembly
             raise NoPlanError(f"{error}; msolve's mode does not verify (residual {residual:.1e})")
         modes.append(_in_plan_terms(scene, plan, configuration, residual))
     pairs = ", ".join(sorted("=".join(sorted(pair)) for pair, value in scene.known.items() if value == 0))
-    return sorted_modes(modes), NO_PLAN_NOTE.format(pairs=pairs)
+    return plan, sorted_modes(modes), NO_PLAN_NOTE.format(pairs=pairs)
 
 
 def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[str]], values: list[float],

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 
-from baranov.scene import Scene
+from baranov.scene import Scene, rational_sqrt
 
 #: Bits to which msolve isolates every coordinate of a real solution.
 PRECISION = 128
@@ -124,13 +124,6 @@ def _text(p: dict) -> str:
     return text[1:] if text.startswith("+") else text
 
 
-def _rational_sqrt(value: Fraction) -> Fraction | None:
-    if value < 0:
-        return None
-    n, d = math.isqrt(value.numerator), math.isqrt(value.denominator)
-    return Fraction(n, d) if n * n == value.numerator and d * d == value.denominator else None
-
-
 def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = ()
                      ) -> tuple[list[str], list[dict], dict[str, tuple[str, str]], dict[str, int]]:
     """(variables, polynomials, joint → (x variable, y variable), auxiliary variable →
@@ -163,7 +156,7 @@ def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = ()
             sac, sbc = s[frozenset((a, c))], s[frozenset((b, c))]
             along = (sab + sac - sbc) / (2 * sab)
             area16 = 4 * sab * sac - (sab + sac - sbc) ** 2
-            root = _rational_sqrt(area16)
+            root = rational_sqrt(area16)
             epsilon = scene.orientation((a, b, c)) if area16 != 0 else 0
             if root is not None:
                 across = _linear({None: epsilon * root / (2 * sab)})

@@ -26,17 +26,19 @@ PENTAD = json.loads((REPO / "examples" / "5-B1.json").read_text(encoding="utf-8"
 DOC = REPO / "docs" / "input-errors.md"
 
 
-def _triad(change) -> str:
-    """The 3/B1 example scene with ``change`` applied to a copy of its JSON data."""
-    data = json.loads(json.dumps(TRIAD))
+def _changed(example: dict, change) -> str:
+    """``example`` (JSON data) with ``change`` applied to a copy, as text."""
+    data = json.loads(json.dumps(example))
     change(data)
     return json.dumps(data)
+
+
+def _triad(change) -> str:
+    return _changed(TRIAD, change)
 
 
 def _pentad(change) -> str:
-    data = json.loads(json.dumps(PENTAD))
-    change(data)
-    return json.dumps(data)
+    return _changed(PENTAD, change)
 
 
 def _set(path: tuple, value):

@@ -34,7 +34,7 @@ import flint
 import numpy as np
 
 from baranov.closure import sign_branches
-from baranov.planner import Plan, best_plan
+from baranov.planner import Plan
 from baranov.scene import Scene
 
 from ..coincidence import (
@@ -91,10 +91,9 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     try:
         plan = plan or solvable_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
-        modes, note = modes_without_plan(scene, error)
-        fallback = best_plan(scene.chain)
-        return ExactSolution("exact", fallback.number_of_parameters,
-                             tuple(parameter_name(p) for p in fallback.parameters), fallback.free_sign_triangles,
+        described, modes, note = modes_without_plan(scene, error)
+        return ExactSolution("exact", described.number_of_parameters,
+                             tuple(parameter_name(p) for p in described.parameters), described.free_sign_triangles,
                              modes, certificate=Certificate(True, note, ()))
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None

@@ -33,7 +33,6 @@ dimensions.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -43,7 +42,7 @@ import flint
 
 from baranov.closure.bilateration import dehomogenised, place_joints, squared_distance, triangle_radicand
 from baranov.planner import Plan
-from baranov.scene import Scene
+from baranov.scene import Scene, rational_sqrt
 
 from ..coincidence import solvable_plan
 from ..configuration import parameter_name
@@ -284,12 +283,12 @@ def link_area_root(scene: Scene, triangle: tuple[str, str, str]) -> Fraction:
     """
     a, b, c = (Fraction(scene.known[frozenset(pair)]) for pair in combinations(triangle, 2))
     radicand = triangle_radicand(a, b, c)
-    roots = [math.isqrt(part) if part >= 0 else -1 for part in (radicand.numerator, radicand.denominator)]
-    if roots[0] < 0 or roots[0] ** 2 != radicand.numerator or roots[1] ** 2 != radicand.denominator:
+    root = rational_sqrt(radicand)
+    if root is None:
         raise ExactMethodError(
             f"link with joints {', '.join(triangle)}: 16·area² = {radicand} is not the square of a "
             "rational; the exact method needs rational link areas (e.g. rational joint coordinates)")
-    return Fraction(roots[0], roots[1]) * scene.orientation(triangle)
+    return root * scene.orientation(triangle)
 
 
 def eliminate_radicals(polynomial: flint.fmpq_mpoly,

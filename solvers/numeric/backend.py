@@ -21,7 +21,7 @@ import time
 import numpy as np
 
 from baranov.closure import CompiledSystem, sign_branches
-from baranov.planner import Plan, best_plan
+from baranov.planner import Plan
 from baranov.scene import Scene
 
 from ..coincidence import (
@@ -64,10 +64,10 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     try:
         plan = plan or solvable_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
-        modes, note = modes_without_plan(scene, error)
-        fallback = best_plan(scene.chain)
-        return Solution("numeric", fallback.number_of_parameters, tuple(parameter_name(p) for p in fallback.parameters),
-                        fallback.free_sign_triangles, modes, undecided=(note,))
+        described, modes, note = modes_without_plan(scene, error)
+        return Solution("numeric", described.number_of_parameters,
+                        tuple(parameter_name(p) for p in described.parameters), described.free_sign_triangles,
+                        modes, undecided=(note,))
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
@@ -86,7 +86,7 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     elif degree == 2:
         upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
         candidates, (stalled, stalled_branches), unsearched = two_parameter_roots(compiled, branches, upper, deadline)
-        _require_isolated_roots(scene, compiled, branches, candidates)
+        _require_no_shared_curve(scene, compiled, branches, candidates)
         candidates += _polished(scene, compiled, stalled, branches[stalled_branches])
         undecided += _unsearched_cells(compiled, branches, unsearched)
     else:
@@ -133,7 +133,7 @@ def _without_near_misses(scene: Scene, compiled: CompiledSystem,
     return tuple(kept), tuple(sentences)
 
 
-def _require_isolated_roots(scene: Scene, compiled: CompiledSystem, branches: np.ndarray, candidates) -> None:
+def _require_no_shared_curve(scene: Scene, compiled: CompiledSystem, branches: np.ndarray, candidates) -> None:
     """Raise :class:`MovableLinkageError` where the two closure conditions share a curve
     (:func:`~baranov.solvers.numeric.two_parameter.shared_curve`) whose points are
     distinct, verified real configurations: the linkage moves."""
