@@ -94,10 +94,12 @@ def test_double_root_configurations_are_infinitesimally_flexible():
 
 
 @needs_msolve
-@pytest.mark.parametrize("name", ["7-N2-movable", "9-N20-movable"])
+@pytest.mark.parametrize("name", ["7-N2-movable", "9-N20-movable", "9-N9-domain-flicker"])
 def test_a_movable_linkage_is_reported_as_such(name):
-    """7/N2 drawn with P1 = P6 = P8 rotates about that point, 9/N20 moves along s10,8
-    (issue 25): msolve finds a positive-dimensional solution set, the numeric backend
+    """7/N2 drawn with P1 = P6 = P8 rotates about that point, 9/N20 moves along s10,8,
+    9/N9 drawn at a double root moves with P10 = P4 and its domain flickers with rounding
+    along a stretch (issue 25; 17 900 domain edges, searched together since): msolve
+    finds a positive-dimensional solution set, the numeric backend
     raises MovableLinkageError, the exact backend lists the isolated modes it found and is
     not certified complete."""
     scene = load_scene(REGRESSIONS / "movable" / f"{name}.json")

@@ -375,18 +375,28 @@ def _roots_at_folds(compiled: CompiledSystem, branch: np.ndarray, edges: list[tu
     branch changes sign and none reaches |f| < 1e-7 at δ (joints in line: docs/stability.md;
     on 9/N1 two triangles were flat at once). A candidate is placed with each non-empty
     subset of the nearly flat triangles' signs 0 (their joints on the line) and verified
-    and polished like every other."""
-    found = []
-    for edge, value in edges:
-        _, _, margins = compiled.failure_profile(np.array([[edge]]), branch[None, :])
-        flat = np.flatnonzero(np.abs(margins[0, 0]) < FLAT_MARGIN) if margins.size else []
+    and polished like every other. Two vectorised evaluations for all edges."""
+    if not edges:
+        return []
+    points = np.array([edge for edge, _ in edges])
+    _, _, margins = compiled.failure_profile(points[:, None], branch[None, :])  # all edges at once
+    folds, rows, variant_signs = [], [], []
+    for i, (edge, value) in enumerate(edges):
+        flat = np.flatnonzero(np.abs(margins[0, i]) < FLAT_MARGIN) if margins.size else []
         if not len(flat) or not np.isfinite(value):
             continue
         variants = np.repeat(branch[None, :], 2 ** len(flat), axis=0)
         variants[:, flat] = sign_branches(len(flat))
-        others = compiled.residuals(np.array([[edge]]), variants)[:, 0, 0]
-        others = others[np.isfinite(others)]
-        if (others > 0).any() and (others < 0).any():
+        folds.append((edge, flat, len(rows), len(rows) + len(variants)))
+        rows += [edge] * len(variants)
+        variant_signs.append(variants)
+    if not folds:
+        return []
+    others = compiled.paired_residuals(np.array(rows)[:, None], np.concatenate(variant_signs))[:, 0]
+    found = []
+    for edge, flat, start, stop in folds:
+        near = others[start:stop][np.isfinite(others[start:stop])]
+        if (near > 0).any() and (near < 0).any():
             # every non-empty subset taken flat: a triangle with a small margin need not be
             # flat (issue 25's 7/N1 drawn at a double root: margins 3e-8 and 3e-6 at the
             # edge; only the first is flat, and the candidate with both flat failed to verify)
@@ -554,26 +564,23 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
     s = 2811.6 changed sign only between the edge and the last sample before it
     (tests/regressions/7-root-at-edge.json, found by the completeness test). Also return
     the edges with their values (a root may sit on an edge). Next to each edge, samples
-    spread evenly in √δ (EDGE_LEVELS)."""
+    spread evenly in √δ (EDGE_LEVELS). All edges are searched together, a few vectorised
+    evaluations in all (:func:`_domain_edges`)."""
     finite = np.isfinite(values)
-    edges, extra_points, extra_values = [], [], []
-    for i in np.flatnonzero(finite[:-1] != finite[1:]):
-        edge, seen_points, seen_values = _domain_edge(sampled, points[i], points[i + 1], inside_low=bool(finite[i]))
-        extra_points.append(seen_points)
-        extra_values.append(seen_values)
-        if edge is not None:
-            edges.append((edge, float(sampled(np.array([edge]))[0])))
-            inside = points[i] if finite[i] else points[i + 1]
-            steps = edge + (inside - edge) * 4.0 ** -np.arange(1, EDGE_LEVELS + 1)
-            steps = steps[np.abs(steps - edge) >= EDGE_FLOOR * abs(edge)]
-            extra_points.append(steps)
-            extra_values.append(sampled(steps))
-    if edges:  # the edges are samples too: a root within 1e-10 (relative) of an edge changes sign only there
-        extra_points.append(np.array([edge for edge, _ in edges]))
-        extra_values.append(np.array([value for _, value in edges]))
-    if not extra_points:
-        return points, values, edges
-    return (*_merge(points, values, np.concatenate(extra_points), np.concatenate(extra_values)), edges)
+    cells = np.flatnonzero(finite[:-1] != finite[1:])
+    if cells.size == 0:
+        return points, values, []
+    found, seen_points, seen_values = _domain_edges(sampled, points[cells], points[cells + 1], finite[cells])
+    inside = np.where(finite[cells], points[cells], points[cells + 1])[~np.isnan(found)]
+    found = found[~np.isnan(found)]
+    steps = found[:, None] + (inside - found)[:, None] * 4.0 ** -np.arange(1, EDGE_LEVELS + 1)
+    steps = steps[np.abs(steps - found[:, None]) >= EDGE_FLOOR * np.abs(found[:, None])]
+    edge_values = sampled(found)
+    edges = list(zip(found.tolist(), edge_values.tolist(), strict=True))
+    # the edges are samples too: a root within 1e-10 (relative) of an edge changes sign only there
+    more_points = np.concatenate([seen_points, steps, found])
+    more_values = np.concatenate([seen_values, sampled(steps), edge_values])
+    return (*_merge(points, values, more_points, more_values), edges)
 
 
 def _scan(f, grid: np.ndarray, values: np.ndarray, sampled, near: list | None = None,
@@ -703,24 +710,38 @@ def _noise_runs(sampled, grid: np.ndarray, values: np.ndarray, cells: np.ndarray
     return sorted(single), runs
 
 
-def _domain_edge(sampled, lo: float, hi: float, inside_low: bool):
-    """The boundary of the feasible domain between ``lo`` and ``hi``, on the defined side:
-    7 rounds of 64 vectorised samples (resolution 64^-7 of the cell). Returns the edge (or
-    None) and the defined samples of the first two rounds (spread over the cell and over
-    its last 64th; the later rounds crowd at the edge, where rounding noise would only add
-    spurious minima: keeping all seven made the 5/B1 example 300 times slower)."""
-    inside, outside = (lo, hi) if inside_low else (hi, lo)
+def _domain_edges(sampled, lows: np.ndarray, highs: np.ndarray, inside_low: np.ndarray):
+    """The boundaries of the feasible domain in the cells (``lows``, ``highs``), each on
+    its defined side (``inside_low``: the low end is defined): 7 rounds of 64 samples per
+    cell (resolution 64^-7 of the cell), each round one vectorised evaluation for all
+    cells. Returns the edges (NaN where the search ends undefined) and the defined samples
+    of the first two rounds (spread over the cells and over their last 64th; the later
+    rounds crowd at the edges, where rounding noise would only add spurious minima:
+    keeping all seven made the 5/B1 example 300 times slower). Cost: 7 × 64 evaluations
+    per cell, in 8 calls of ``sampled`` (one call per cell per round made issue 25's
+    9/N9, whose domain flickers with rounding along a stretch, spend 56 s in 17 900
+    searches)."""
+    inside = np.where(inside_low, lows, highs).astype(float)
+    outside = np.where(inside_low, highs, lows).astype(float)
+    active = np.ones(len(inside), dtype=bool)
     kept_points, kept_values = [], []
+    fractions = np.linspace(0.0, 1.0, 64)
     for round_number in range(7):
-        points = np.linspace(inside, outside, 64)
-        values = sampled(points)
+        rows = np.flatnonzero(active)
+        if rows.size == 0:
+            break
+        points = inside[rows, None] + (outside[rows] - inside[rows])[:, None] * fractions
+        values = sampled(points.ravel()).reshape(points.shape)
         defined = np.isfinite(values)
         if round_number < 2:
             kept_points.append(points[defined])
             kept_values.append(values[defined])
-        undefined = np.flatnonzero(~defined)
-        if undefined.size == 0 or undefined[0] == 0:
-            break
-        inside, outside = points[undefined[0] - 1], points[undefined[0]]
-    edge = inside if np.isfinite(sampled(np.array([inside]))[0]) else None
-    return edge, np.concatenate(kept_points), np.concatenate(kept_values)
+        has_undefined = (~defined).any(axis=1)
+        first = np.argmax(~defined, axis=1)
+        moving = has_undefined & (first > 0)
+        active[rows[~moving]] = False
+        rows, first = rows[moving], first[moving]
+        inside[rows] = points[moving, first - 1]
+        outside[rows] = points[moving, first]
+    edges = np.where(np.isfinite(sampled(inside)), inside, np.nan)
+    return edges, np.concatenate(kept_points), np.concatenate(kept_values)
