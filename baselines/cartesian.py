@@ -15,13 +15,8 @@ from scipy.optimize import least_squares
 
 from baranov.scene import Scene
 from baranov.solvers import Solution
-from baranov.solvers.configuration import (
-    distance_bound,
-    joint_residual,
-    same_mode,
-    sorted_modes,
-)
 from baranov.solvers.modes import AssemblyMode
+from baranov.solvers.verification import distance_bound, joint_residual, same_mode, sorted_modes
 
 #: A least-squares run has converged when every equation holds to this (relative).
 CONVERGED = 1e-10

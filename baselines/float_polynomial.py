@@ -21,17 +21,13 @@ import mpmath
 import numpy as np
 
 from baranov.closure import sign_branches
+from baranov.planner import parameter_name
 from baranov.scene import Scene
 from baranov.solvers import Solution, SolverError, characteristic_polynomial
 from baranov.solvers.coincidence import solvable_plan
-from baranov.solvers.configuration import (
-    compile_scene,
-    configuration,
-    parameter_name,
-    same_mode,
-    sorted_modes,
-)
 from baranov.solvers.exact.backend import BRANCH_TOLERANCE
+from baranov.solvers.placement import compile_scene, configuration
+from baranov.solvers.verification import same_mode, sorted_modes
 
 #: A computed root is taken as real when |imaginary part| ≤ REAL_TOLERANCE · |root|.
 REAL_TOLERANCE = 1e-8

@@ -29,8 +29,8 @@ import sympy
 
 from baranov.scene import Scene
 from baranov.solvers import Solution, SolverError
-from baranov.solvers.configuration import joint_residual, same_mode, sorted_modes
 from baranov.solvers.modes import AssemblyMode
+from baranov.solvers.verification import joint_residual, same_mode, sorted_modes
 
 #: Back-substitution keeps a value where every polynomial of the level vanishes to this,
 #: relative to the sum of the absolute values of its terms there.

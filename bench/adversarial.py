@@ -1,5 +1,5 @@
 """Adversarial completeness run (issue 25): random trusses drawn as a user would type them
-(solvers/adversarial.py: small boxes, joints in line, joints at one point, modes at a
+(scene/adversarial.py: small boxes, joints in line, joints at one point, modes at a
 domain edge, double roots), solved by both backends and by msolve on the Cartesian system
 (baranov.solvers.msolve, which shares no code with the backends), compared mode for mode.
 
@@ -33,9 +33,9 @@ import numpy as np
 
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
+from baranov.scene.adversarial import ADVERSARIAL_KINDS, adversarial_scene
 from baranov.scene.instances import instance_dict
 from baranov.solvers import ExactSolution, MovableLinkageError, solve
-from baranov.solvers.adversarial import ADVERSARIAL_KINDS, adversarial_scene
 from baranov.solvers.msolve import compare_modes, match_configurations, msolve_modes
 
 METHODS = ("numeric", "exact")

@@ -42,7 +42,7 @@ from baranov.scene import Scene, load_scene
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import SolverError, solve
 from baranov.solvers.coincidence import solvable_plan
-from baranov.solvers.configuration import RESIDUAL_TOLERANCE, same_mode
+from baranov.solvers.verification import RESIDUAL_TOLERANCE, same_mode
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "docs" / "bench"

@@ -8,7 +8,7 @@ Cases: the six 3-RPR examples of thesis §5.1.3; a family whose two assembly mod
 (a 3-RPR pentad at a singular configuration, one leg lengthened by δ); a mode at a branch
 boundary (a free-sign triangle of zero area); nearly collinear ternary links; nearly
 coincident joints; and the conditioning of the modes under a relative perturbation ε of
-every link dimension. The scenes come from :mod:`baranov.solvers.hard_instances`, which
+every link dimension. The scenes come from :mod:`baranov.scene.hard_instances`, which
 tests/test_stability.py uses too.
 """
 
@@ -25,11 +25,7 @@ from speed_vs_accuracy import outcome, timed_run
 
 from baranov.enumerate import baranov_trusses
 from baranov.scene import Scene, load_scene
-from baranov.scene.instances import generic_integer_configuration, scene_of
-from baranov.solvers import characteristic_polynomial
-from baranov.solvers.coincidence import solvable_plan
-from baranov.solvers.configuration import RESIDUAL_TOLERANCE, distance_bound, same_mode
-from baranov.solvers.hard_instances import (
+from baranov.scene.hard_instances import (
     SINGULAR_BASE,
     SINGULAR_PLATFORM,
     branch_boundary_scene,
@@ -38,6 +34,10 @@ from baranov.solvers.hard_instances import (
     merging_scene,
     perturbed_scene,
 )
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers import characteristic_polynomial
+from baranov.solvers.coincidence import solvable_plan
+from baranov.solvers.verification import RESIDUAL_TOLERANCE, distance_bound, same_mode
 
 ROOT = Path(__file__).resolve().parents[1]
 METHODS = ("numeric", "exact", "cartesian-100", "loop-equations", "float64-polynomial", "mpmath100-polynomial")
@@ -200,7 +200,7 @@ the drawn configuration (2 = both resolved).
 
 Random integer configurations of every nine-link truss with three or four joints on one
 line (vertical, horizontal, diagonal, antidiagonal in turn; coordinates in [−4, 4]²;
-`baranov.solvers.hard_instances.collinear_joints_configuration`), both backends: does each
+`baranov.scene.hard_instances.collinear_joints_configuration`), both backends: does each
 return the generating configuration, do they agree mode for mode, is the exact solve
 certified complete. The report below is written by `bench/sweep_collinear.py --out
 docs/bench/collinear-joints.md` (not rerun by this script: `make bench-collinear`, 11 min measured) and copied
@@ -216,7 +216,7 @@ guarantees"; docs/numeric.md, "Flat triangles").
 
 ## Adversarial instances against msolve (issue 25)
 
-Instances drawn as users type them (`baranov.solvers.adversarial`): every joint at an
+Instances drawn as users type them (`baranov.scene.adversarial`): every joint at an
 integer point of a small box (`small-box`, [−3, 3]²), three or four joints on one line
 (`collinear`), two joints of different links at one point (`coincident`), a free-sign
 triangle of the plan flat so that the generating mode is on the edge of the parameters'

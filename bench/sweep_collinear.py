@@ -25,14 +25,14 @@ from pathlib import Path
 import numpy as np
 
 from baranov.enumerate import baranov_trusses
-from baranov.scene.instances import scene_of
-from baranov.solvers import solve
-from baranov.solvers.configuration import distance_bound, same_mode
-from baranov.solvers.hard_instances import (
+from baranov.scene.hard_instances import (
     LINE_DIRECTIONS,
     coincident_joints_configuration,
     collinear_joints_configuration,
 )
+from baranov.scene.instances import scene_of
+from baranov.solvers import solve
+from baranov.solvers.verification import distance_bound, same_mode
 
 
 def contains_configuration(scene, modes, coordinates) -> bool:

@@ -10,8 +10,7 @@ from baranov.closure import closure_system
 from baranov.enumerate.sliders import count_slider_chains
 from baranov.literature.appendix_a import appendix_a_labelling, link_pairs_required, names_by_closure_conditions
 from baranov.literature.trusses import name_by_invariants, nine_link_signature, thesis_joint_names, thesis_name
-from baranov.planner import best_plan
-from baranov.solvers.configuration import parameter_name
+from baranov.planner import best_plan, parameter_name
 from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology import KinematicChain, automorphism_group, chain_from_link_graph, is_planar
 from baranov.topology.realizations import realization_count

@@ -1,7 +1,18 @@
 """Bilateration plans: locate every joint of a rigid chain through the fewest unknown
 distances (the coupling degree), with ranked alternatives and user constraints."""
 
-from .plan import DistanceKind, Plan, Step, StepKind
-from .search import best_plan, bilateration_plans, coupling_degree
+from .plan import DistanceKind, Plan, Step, StepKind, parameter_name
+from .search import ALTERNATIVE_PLANS, best_plan, bilateration_plans, coupling_degree, plan_avoiding
 
-__all__ = ["DistanceKind", "Plan", "Step", "StepKind", "best_plan", "bilateration_plans", "coupling_degree"]
+__all__ = [
+    "ALTERNATIVE_PLANS",
+    "DistanceKind",
+    "Plan",
+    "Step",
+    "StepKind",
+    "best_plan",
+    "bilateration_plans",
+    "coupling_degree",
+    "parameter_name",
+    "plan_avoiding",
+]

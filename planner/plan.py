@@ -29,6 +29,16 @@ from enum import Enum
 from baranov.topology import distance_name, thesis_subscript
 
 
+def parameter_name(pair: tuple[str, str]) -> str:
+    """The name of a plan's parameter, the squared distance of a joint pair (thesis §2.2):
+    ``("P1", "P6")`` → ``"s1,6"``.
+
+    >>> parameter_name(("P1", "P6"))
+    's1,6'
+    """
+    return distance_name(*pair)
+
+
 class StepKind(str, Enum):
     """How a step locates its joint (see the module docstring)."""
 
@@ -152,7 +162,7 @@ class Plan:
         a, b = self.reference
         lines = [f"reference p{thesis_subscript(a)},{thesis_subscript(b)}"]
         if self.parameters:
-            lines.append("parameters " + ", ".join(distance_name(u, v) for u, v in self.parameters))
+            lines.append("parameters " + ", ".join(map(parameter_name, self.parameters)))
         for step in self.steps:
             i, j, k = step.triangle
             how = {StepKind.LINK: f"link L{step.link}, fixed sign", StepKind.CROSS: "free sign",

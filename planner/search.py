@@ -468,6 +468,32 @@ def best_plan(chain: KinematicChain) -> Plan:
     return bilateration_plans(chain, 1)[0]
 
 
+#: How many of the best plans :func:`plan_avoiding` searches.
+ALTERNATIVE_PLANS = 50
+
+
+def plan_avoiding(chain: KinematicChain, pairs: Iterable[frozenset[str]], count: int = ALTERNATIVE_PLANS) -> Plan | None:
+    """The best plan, among the ``count`` best, with none of the joint pairs ``pairs`` as
+    its reference or as the base of a step; None if there is none. A bilateration
+    Z_{i,j,k} divides by s_{i,j} (thesis eq. 2.7): where P_i = P_j it is undefined, so
+    joints that coincide must never be a base (thesis §5.1.3.2–5.1.3.3). The best plan
+    itself when ``pairs`` is empty.
+
+    Cost: that of :func:`bilateration_plans` with ``count`` plans, when ``pairs`` is not
+    empty.
+
+    >>> from baranov.literature.trusses import thesis_truss
+    >>> pentad = thesis_truss("5/B1").chain()
+    >>> plan_avoiding(pentad, [frozenset(best_plan(pentad).reference)]).reference != best_plan(pentad).reference
+    True
+    """
+    pairs = set(pairs)
+    if not pairs:
+        return best_plan(chain)
+    return next((plan for plan in bilateration_plans(chain, count)
+                 if not pairs & ({frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps})), None)
+
+
 def _checked(chain: KinematicChain) -> KinematicChain:
     require_rigid_chain(chain)
     return chain

@@ -2,15 +2,21 @@
 joint coordinates), a ground link — as users write it (JSON) and as every backend reads
 it; its validation (one clear error naming the offending link, joint or value); and
 random instances of a truss built from integer configurations (thesis §2.1: the
-dimensions of a Baranov truss)."""
+dimensions of a Baranov truss); adversarial and hard instances (issue 25); and, for a
+linkage with mobility F > 0, its named inputs (:mod:`~baranov.scene.inputs`)."""
 
+from .inputs import SceneInput, angle_as_distance
 from .instances import generic_integer_configuration, instance_dict, scene_of
-from .model import Scene, SceneError, SceneLink, load_scene, rational_sqrt, scene_from_dict
+from .model import Scene, SceneError, SceneLink, load_scene, scene_from_dict
+from .numbers import Number, rational_sqrt
 
 __all__ = [
+    "Number",
     "Scene",
     "SceneError",
+    "SceneInput",
     "SceneLink",
+    "angle_as_distance",
     "generic_integer_configuration",
     "instance_dict",
     "load_scene",

@@ -17,6 +17,10 @@ Python data (:func:`scene_from_dict`) integers, :class:`fractions.Fraction`,
 :class:`decimal.Decimal` and strings are exact, and a ``float`` is a binary float: it
 marks the scene inexact (give ``"5/2"`` or ``Fraction(5, 2)`` for exactness).
 
+A linkage with mobility F = 3(L − 1) − 2J > 0 (a four-bar, a six-bar) is a scene too,
+with up to F named ``"inputs"`` (a driven angle or distance: :mod:`~baranov.scene.inputs`);
+the backends solve rigid scenes (F = 0) and refuse it.
+
 Besides ``"links"`` and ``"ground"``, a scene may carry ``"comment"`` and the
 annotations of saved instances (``"verified_modes"``, ``"generating_configuration"``,
 ``"generating_tolerance"``), which the solvers ignore; a link may carry a
@@ -45,10 +49,13 @@ from baranov.topology import (
     KinematicChain,
     TopologyError,
     chain_from_links,
+    mobility,
+    require_not_over_constrained,
     require_rigid_chain,
 )
 
-Number = Fraction | float
+from .inputs import INPUT_KEYS, SceneInput
+from .numbers import Number, rational_sqrt
 
 #: A link triangle whose area is below this fraction of the link's squared size is flat
 #: (its orientation is not defined by the link's shape).
@@ -78,12 +85,20 @@ class SceneLink:
 
 @dataclass(frozen=True)
 class Scene:
-    """A linkage: links with dimensions, and the name of the ground link."""
+    """A linkage: links with dimensions, the name of the ground link, and, for a linkage
+    with mobility F > 0, up to F named inputs (:mod:`~baranov.scene.inputs`)."""
 
     links: tuple[SceneLink, ...]
     ground: str
     exact: bool
     world: Mapping[str, tuple[Number, Number]] = field(default_factory=dict)
+    inputs: tuple[SceneInput, ...] = ()
+
+    @property
+    def mobility(self) -> int:
+        """Grübler–Kutzbach mobility F = 3(L − 1) − 2J of the scene's chain: 0 for the
+        rigid linkages the backends solve (thesis §3.1)."""
+        return mobility(self.chain)
 
     @cached_property
     def chain(self) -> KinematicChain:
@@ -97,6 +112,12 @@ class Scene:
         for link in self.links:
             known.update(link.squared_distances)
         return known
+
+    @cached_property
+    def coincident_pairs(self) -> frozenset[frozenset[str]]:
+        """Pairs of joints on a common link at squared distance 0: no bilateration may
+        use one as its base (thesis eq. 2.7 divides by it)."""
+        return frozenset(pair for pair, value in self.known.items() if value == 0)
 
     def link_of(self, name: str) -> SceneLink:
         for link in self.links:
@@ -236,21 +257,6 @@ def _embed(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], 
     return local
 
 
-def rational_sqrt(value: Number) -> Fraction | None:
-    """√value if it is rational (a nonnegative Fraction whose numerator and denominator
-    are squares), else None.
-
-    >>> rational_sqrt(Fraction(9, 4)), rational_sqrt(Fraction(2)), rational_sqrt(2.25)
-    (Fraction(3, 2), None, None)
-    """
-    if not isinstance(value, Fraction) or value < 0:
-        return None
-    numerator, denominator = math.isqrt(value.numerator), math.isqrt(value.denominator)
-    if numerator**2 != value.numerator or denominator**2 != value.denominator:
-        return None
-    return Fraction(numerator, denominator)
-
-
 def _rational_frame(link: SceneLink) -> dict[str, tuple[Fraction, Fraction]] | None:
     """The link's own frame (:func:`_embed`'s: first joint at the origin, second on +x,
     each other joint on the side ``link.local`` puts it) by the same bilateration, in
@@ -310,7 +316,8 @@ def _require_positive(name: str, joints: tuple[str, ...], squared: Mapping[froze
 
 
 #: The keys a scene and a link may have (the module docstring says what each means).
-SCENE_KEYS = ("links", "ground", "comment", "verified_modes", "generating_configuration", "generating_tolerance")
+SCENE_KEYS = ("links", "ground", "inputs", "comment", "verified_modes", "generating_configuration",
+              "generating_tolerance")
 LINK_KEYS = ("name", "joints", "squared_length", "squared_distances", "orientation", "comment")
 
 
@@ -421,10 +428,88 @@ def scene_from_dict(data) -> Scene:
         world = _rational_frame(links[ground_index]) or dict(links[ground_index].local)
     scene = Scene(links, ground, all(exact for _, _, exact in parsed), world)
     try:
-        require_rigid_chain(scene.chain)
+        if scene.mobility > 0:
+            require_not_over_constrained(scene.chain)
+        else:
+            require_rigid_chain(scene.chain)
     except TopologyError as error:
         raise SceneError(f"topology: {error}") from None
+    if "inputs" in data:
+        scene = Scene(links, ground, scene.exact, world, _parse_inputs(data["inputs"], scene))
     return scene
+
+
+def _parse_inputs(entries, scene: Scene) -> tuple[SceneInput, ...]:
+    """The scene's inputs (module :mod:`~baranov.scene.inputs`), validated: at most F of
+    them, distinct names, joints of the scene, each driving a distance no link fixes."""
+    if not isinstance(entries, list):
+        raise SceneError("inputs: expected a list of inputs such as {\"name\": \"crank\", \"angle\": [\"P1\", "
+                         "\"P2\", \"P3\"], \"degrees\": 30}")
+    if entries and scene.mobility == 0:
+        raise SceneError(f"inputs: a rigid linkage (mobility 3(L-1) - 2J = 0 with L = {len(scene.links)} links) "
+                         "has none to drive")
+    if len(entries) > scene.mobility:
+        raise SceneError(f"inputs: {len(entries)} given, but the linkage has mobility {scene.mobility} "
+                         f"(3(L-1) - 2J with L = {len(scene.links)} links): it takes at most {scene.mobility}")
+    inputs = tuple(_parse_input(entry, index, scene) for index, entry in enumerate(entries))
+    names = [entry.name for entry in inputs]
+    if len(set(names)) != len(names):
+        raise SceneError(f"input {next(n for n in names if names.count(n) > 1)}: name used twice")
+    pairs = [frozenset(entry.driven_pair) for entry in inputs]
+    if len(set(pairs)) != len(pairs):
+        raise SceneError(f"inputs: two inputs drive the distance of {', '.join(sorted(pairs[0]))}")
+    return inputs
+
+
+def _parse_input(entry, index: int, scene: Scene) -> SceneInput:
+    if not isinstance(entry, Mapping):
+        raise SceneError(f"input #{index + 1}: expected an object with \"name\" and \"angle\" or \"distance\"")
+    name = str(entry.get("name", f"#{index + 1}"))
+    _require_known_keys(entry, INPUT_KEYS, f"input {name}")
+    if ("angle" in entry) == ("distance" in entry):
+        raise SceneError(f"input {name}: give either \"angle\": [at, from, to] or \"distance\": [joint, joint]")
+    kind = "angle" if "angle" in entry else "distance"
+    size, unit, other = (3, "degrees", "squared_distance") if kind == "angle" else (2, "squared_distance", "degrees")
+    joints = entry[kind]
+    if not isinstance(joints, list) or len(joints) != size or not all(isinstance(j, str) for j in joints):
+        raise SceneError(f"input {name}: \"{kind}\" should list {size} joint names")
+    if other in entry:
+        raise SceneError(f"input {name}: {'an angle' if kind == 'angle' else 'a distance'} input takes \"{unit}\", "
+                         f"not \"{other}\"")
+    for joint in joints:
+        if not any(joint in link.joints for link in scene.links):
+            raise SceneError(f"input {name}: joint {joint} is not in the scene")
+    value = _number(entry[unit], f"input {name}") if unit in entry else None
+    if kind == "angle":
+        _require_angle_joints(name, tuple(joints), scene)
+    else:
+        _require_free_distance(name, tuple(joints), scene)
+        if value is not None and not 0 < value <= LARGEST_SQUARED:
+            raise SceneError(f"input {name}: squared distance {_shown(value)} must be positive "
+                             f"and at most {LARGEST_SQUARED:g}")
+    return SceneInput(name, kind, tuple(joints), value)
+
+
+def _require_angle_joints(name: str, joints: tuple[str, str, str], scene: Scene) -> None:
+    """P_f and P_t on the two different links that meet at P_a."""
+    at, start, end = joints
+    links = [link for link in scene.links if at in link.joints]
+    on_start = [link.name for link in links if start in link.joints and start != at]
+    on_end = [link.name for link in links if end in link.joints and end != at]
+    if not (on_start and on_end and set(on_start) != set(on_end)):
+        meeting = " and ".join(link.name for link in links)
+        raise SceneError(f"input {name}: an angle at {at} is measured between the links that meet there "
+                         f"({meeting}): {start} on one and {end} on the other")
+
+
+def _require_free_distance(name: str, joints: tuple[str, str], scene: Scene) -> None:
+    """Two distinct joints whose distance no link fixes."""
+    u, v = joints
+    if u == v:
+        raise SceneError(f"input {name}: a distance needs two different joints, not {u} twice")
+    if frozenset(joints) in scene.known:
+        link = next(link.name for link in scene.links if u in link.joints and v in link.joints)
+        raise SceneError(f"input {name}: {u} and {v} are both on link {link}, whose shape fixes their distance")
 
 
 def load_scene(path: str | Path) -> Scene:

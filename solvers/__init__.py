@@ -18,7 +18,12 @@ from .numeric import solve_numeric
 def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
     """All assembly modes of ``scene`` by a registered backend
     (:func:`~baranov.solvers.backends.available_backends`: ``"numeric"``, ``"exact"`` and
-    the baselines), passing it ``options``."""
+    the baselines), passing it ``options``. Raises :class:`SolverError` for a scene with
+    mobility F > 0: its configurations are not isolated assembly modes."""
+    if scene.mobility > 0:
+        raise SolverError(f"mobility {scene.mobility} (3(L-1) - 2J with L = {len(scene.links)} links): the linkage "
+                          "moves by its topology, and the backends find the assembly modes of rigid linkages "
+                          "(mobility 0); tracing a mobile linkage is not available yet")
     return backend(method).load()(scene, **options)
 
 

@@ -24,22 +24,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable
 
-from baranov.planner import Plan, best_plan, bilateration_plans
+from baranov.planner import ALTERNATIVE_PLANS, Plan, best_plan, parameter_name, plan_avoiding
 from baranov.scene import Scene
 
-from .configuration import (
-    RESIDUAL_TOLERANCE,
-    distance_bound,
-    joint_residual,
-    parameter_name,
-    same_mode,
-    sorted_modes,
-)
 from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
 from .msolve import find_msolve, msolve_modes
-
-#: How many of the best plans are searched for one defined where the joints coincide.
-ALTERNATIVE_PLANS = 50
+from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residual, same_mode, sorted_modes
 
 
 def coincidence_possible(scene: Scene, pair: frozenset[str]) -> bool:
@@ -56,14 +46,6 @@ def coincidence_possible(scene: Scene, pair: frozenset[str]) -> bool:
     return True
 
 
-def alternative_plan(scene: Scene, pairs: Iterable[frozenset[str]]) -> Plan | None:
-    """The best plan (of the first ALTERNATIVE_PLANS) with none of ``pairs`` as its
-    reference or as a bilateration base; None if there is none."""
-    pairs = set(pairs)
-    return next((plan for plan in bilateration_plans(scene.chain, ALTERNATIVE_PLANS)
-                 if not pairs & ({frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps})), None)
-
-
 class NoPlanError(SolverError):
     """No bilateration plan is defined for the scene: two joints at known distance 0 are
     a base of every plan tried."""
@@ -73,12 +55,9 @@ def solvable_plan(scene: Scene) -> Plan:
     """The best plan with no joint pair at known distance 0 as its reference or a base;
     raises :class:`NoPlanError` (naming the pair) if none of the ALTERNATIVE_PLANS best
     has that property (:class:`MovableLinkageError` if msolve finds the linkage moves)."""
-    coincident = {pair for pair, value in scene.known.items() if value == 0}
-    if not coincident:
-        return best_plan(scene.chain)
-    plan = alternative_plan(scene, coincident)
+    plan = plan_avoiding(scene.chain, scene.coincident_pairs)
     if plan is None:
-        names = ", ".join(sorted(",".join(sorted(pair)) for pair in coincident))
+        names = ", ".join(sorted(",".join(sorted(pair)) for pair in scene.coincident_pairs))
         message = (f"joints {names}: coincident (squared distance 0), and none of the {ALTERNATIVE_PLANS} best "
                    "plans avoids them as a bilateration base")
         if find_msolve() is not None and scene.exact and msolve_modes(scene).status == "infinite":
@@ -173,7 +152,7 @@ def _with_alternative_modes(scene: Scene, plan: Plan, pairs: set[frozenset[str]]
     Added modes carry ``plan``'s free-sign orientations (0 where flat). Also whether that
     settles the coincidences: the alternative plan exists and its solve is complete (an
     exact solve's certificate; a numeric solve counts)."""
-    alternative = alternative_plan(scene, pairs)
+    alternative = plan_avoiding(scene.chain, pairs)
     if alternative is None:
         return modes, False
     found = list(modes)

@@ -26,7 +26,7 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray, s
     ``steps`` steps. ``monotone``: a step is taken only if it lowers the largest residual,
     and a configuration leaves once it stops doing so; otherwise every step is taken (at
     a singular mode the largest residual stalls at 1e-11 while the steps still approach
-    the mode: :func:`~baranov.solvers.configuration.merged_clusters`).
+    the mode: :func:`~baranov.solvers.mode_clusters.merged_clusters`).
 
     Args:
         scene: the linkage.

@@ -3,7 +3,7 @@ another test module)."""
 
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
-from baranov.solvers.configuration import same_mode
+from baranov.solvers.verification import same_mode
 
 #: Published real roots (thesis §3.3.x.3 and §4.2.1) and the distance they are given in.
 SEVEN_LINK_EXAMPLES = {

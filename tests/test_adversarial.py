@@ -16,13 +16,13 @@ import pytest
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.scene import load_scene
-from baranov.solvers import ExactSolution, MovableLinkageError, solve
-from baranov.solvers.adversarial import (
+from baranov.scene.adversarial import (
     ADVERSARIAL_KINDS,
     adversarial_scene,
     double_root_configuration,
     is_infinitesimally_flexible,
 )
+from baranov.solvers import ExactSolution, MovableLinkageError, solve
 from baranov.solvers.msolve import compare_modes, find_msolve, msolve_modes
 
 REGRESSIONS = Path(__file__).resolve().parent / "regressions"

@@ -17,7 +17,7 @@ from baranov.baselines import (
 )
 from baranov.scene import load_scene
 from baranov.solvers import solve
-from baranov.solvers.configuration import RESIDUAL_TOLERANCE, same_mode
+from baranov.solvers.verification import RESIDUAL_TOLERANCE, same_mode
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

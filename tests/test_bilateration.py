@@ -19,8 +19,8 @@ from baranov.closure.evaluate import true_parameters_and_signs
 from baranov.enumerate import baranov_trusses
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers.coincidence import solvable_plan
-from baranov.solvers.configuration import compile_scene
 from baranov.solvers.exact.characteristic import characteristic_polynomial, closure_residuals, radical_tower
+from baranov.solvers.placement import compile_scene
 
 TRUSSES = [(links, index) for links in (3, 5, 7, 9) for index in range(len(baranov_trusses(links)))]
 

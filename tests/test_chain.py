@@ -24,7 +24,7 @@ def test_labels_of_a_networkx_graph_are_kept_for_messages():
     graph = nx.Graph([("frame", "crank"), ("crank", "coupler"), ("coupler", "frame")])
     chain = chain_from_link_graph(graph)
     assert chain.link_labels == ("coupler", "crank", "frame")
-    assert chain.link_name(0) == "Lcoupler"
+    assert chain.link_name(0) == "coupler"
 
 
 def test_joint_graph_of_pentad_is_two_triangles_and_three_bars(pentad):
@@ -101,7 +101,7 @@ def test_fuse_links_and_its_errors(pentad):
 
     fused = fuse_links(pentad, [[0, 2]])  # a ternary link and a bar jointed at P1
     assert fused.number_of_links == 4 and [j.name for j in fused.joints] == ["P2", "P3", "P4", "P5", "P6"]
-    assert fused.link_labels[0] == "0+2"
+    assert fused.link_labels[0] == "L0+L2"
     with pytest.raises(TopologyError, match="not jointed together"):
         fuse_links(pentad, [[0, 1]])
     with pytest.raises(TopologyError, match="in more than one group"):

@@ -18,10 +18,10 @@ from hypothesis import strategies as st
 
 from baranov.enumerate import baranov_trusses
 from baranov.scene import load_scene
+from baranov.scene.hard_instances import LINE_DIRECTIONS, collinear_joints_configuration
 from baranov.scene.instances import scene_of
 from baranov.solvers import solve
-from baranov.solvers.configuration import distance_bound, same_mode
-from baranov.solvers.hard_instances import LINE_DIRECTIONS, collinear_joints_configuration
+from baranov.solvers.verification import distance_bound, same_mode
 
 REGRESSION = Path(__file__).resolve().parent / "regressions" / "9-B28-joints-in-line.json"
 

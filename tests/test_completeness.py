@@ -19,7 +19,7 @@ from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import solve
-from baranov.solvers.configuration import same_mode
+from baranov.solvers.verification import same_mode
 
 #: Random instances per truss, by coupling degree, and how many one worker task takes
 #: (coupling-2 instances cost 5-30 s each: small tasks keep both workers busy).

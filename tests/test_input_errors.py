@@ -118,6 +118,15 @@ CASES = [
     _scene("a joint on three links", _triad(lambda d: d["links"].append(
         {"name": "extra", "joints": ["P3", "P1"], "squared_length": 20}))),
     _scene("a mobile chain (a four-bar) given to solve", json.dumps(FOUR_BAR)),
+    _scene("inputs given to a rigid linkage", _triad(_set(("inputs",), [{"name": "crank", "distance": ["P1", "P4"]}]))),
+    _scene("more inputs than the mobility", json.dumps({**FOUR_BAR, "inputs": [
+        {"name": "crank", "angle": ["P1", "P2", "P3"]}, {"name": "rocker", "angle": ["P2", "P1", "P4"]}]})),
+    _scene("an angle input between joints of one link", json.dumps({**FOUR_BAR, "inputs": [
+        {"name": "crank", "angle": ["P1", "P3", "P4"], "degrees": 30}]})),
+    _scene("a distance input that a link fixes", json.dumps({**FOUR_BAR, "inputs": [
+        {"name": "stroke", "distance": ["P3", "P4"], "squared_distance": 20}]})),
+    _scene("an input value in the wrong unit", json.dumps({**FOUR_BAR, "inputs": [
+        {"name": "crank", "angle": ["P1", "P2", "P3"], "squared_distance": 20}]})),
     # files and flags of solve
     Case("a scene file that does not exist", ("solve", "missing.json")),
     Case("a folder given as the scene", ("solve", "folder"), (("folder/keep", ""),)),

@@ -9,9 +9,7 @@ from fractions import Fraction
 import pytest
 from shared import same_modes
 
-from baranov.solvers import characteristic_polynomial, solve
-from baranov.solvers.configuration import RESIDUAL_TOLERANCE
-from baranov.solvers.hard_instances import (
+from baranov.scene.hard_instances import (
     SINGULAR_BASE,
     SINGULAR_PLATFORM,
     branch_boundary_scene,
@@ -19,6 +17,8 @@ from baranov.solvers.hard_instances import (
     collinear_platform_scene,
     merging_scene,
 )
+from baranov.solvers import characteristic_polynomial, solve
+from baranov.solvers.verification import RESIDUAL_TOLERANCE
 
 
 def modes_near_singular_pose(solution) -> int:

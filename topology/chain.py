@@ -89,8 +89,9 @@ class KinematicChain:
         return tuple(degree)
 
     def link_name(self, link: int) -> str:
-        """User-facing name of a link: ``L<label>``."""
-        return f"L{self.link_labels[link]}"
+        """User-facing name of a link: its label if that is a name (a scene's link
+        names), ``L<label>`` for a numeric label (``L0``, ``L1``, …)."""
+        return _shown_label(self.link_labels[link])
 
     def joint(self, name: str) -> Joint:
         """The joint called ``name``; :class:`TopologyError` if there is none."""
@@ -229,17 +230,22 @@ def chain_from_links(links: Sequence[Iterable[str]], link_labels: Sequence[Hasha
     carriers: dict[str, list[int]] = {}
     for index, link in enumerate(links):
         if len(set(link)) != len(link):
-            raise TopologyError(f"link L{labels[index]}: a joint is listed twice")
+            raise TopologyError(f"link {_shown_label(labels[index])}: a joint is listed twice")
         for name in link:
             carriers.setdefault(name, []).append(index)
     for name, on in carriers.items():
         if len(on) != 2:
-            listed = ", ".join(f"L{labels[i]}" for i in on)
+            listed = ", ".join(_shown_label(labels[i]) for i in on)
             raise TopologyError(f"joint {name}: lies on {len(on)} link{'s' if len(on) != 1 else ''} ({listed}); "
                                 "a joint joins exactly two links")
     names = sorted(carriers, key=natural_sort_key)
     joints = tuple(Joint(name, (carriers[name][0], carriers[name][1])) for name in names)
     return KinematicChain(len(links), joints, labels)
+
+
+def _shown_label(label: Hashable) -> str:
+    """A link label as :meth:`KinematicChain.link_name` shows it."""
+    return label if isinstance(label, str) else f"L{label}"
 
 
 def thesis_subscript(name: str) -> str:

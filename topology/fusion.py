@@ -31,7 +31,7 @@ def fuse_links(chain: KinematicChain, groups: Iterable[Iterable[int]]) -> Kinema
     >>> four_bar = chain_from_link_graph([(0, 1), (1, 2), (2, 3), (3, 0)])  # 0 = ground, 1 = crank
     >>> triad = fuse_links(four_bar, [[0, 1]])  # input angle fixed
     >>> triad.number_of_links, mobility(triad), triad.link_labels
-    (3, 0, ('0+1', 2, 3))
+    (3, 0, ('L0+L1', 2, 3))
     """
     groups = [sorted(set(group)) for group in groups]
     n = chain.number_of_links
@@ -57,7 +57,7 @@ def fuse_links(chain: KinematicChain, groups: Iterable[Iterable[int]]) -> Kinema
     labels = []
     for link in survivors:
         members = [m for m in range(n) if owner[m] == link]
-        labels.append("+".join(str(chain.link_labels[m]) for m in members) if len(members) > 1 else chain.link_labels[link])
+        labels.append("+".join(chain.link_name(m) for m in members) if len(members) > 1 else chain.link_labels[link])
     joints = []
     pairs: dict[tuple[int, int], str] = {}
     for joint in chain.joints:

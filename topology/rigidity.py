@@ -162,6 +162,18 @@ def require_rigid_chain(chain: KinematicChain) -> None:
     baranov.topology.errors.TopologyError: mobility F = 3(L-1) - 2J = -1 with L = 4 links and J = 5 joints; ...
     """
     _require_zero_mobility(chain, "a rigid chain")
+    require_not_over_constrained(chain)
+
+
+def require_not_over_constrained(chain: KinematicChain) -> None:
+    """Raise :class:`TopologyError` if some set of links S has 2·e(S) > 3|S| − 3 (more
+    joints than rigidity needs: its dimensions could not be chosen freely), the whole
+    chain included. A chain with mobility F > 0 that passes moves with F degrees of
+    freedom for generic dimensions (thesis §6.1: Grübler chains).
+
+    >>> from baranov.topology import chain_from_link_graph
+    >>> require_not_over_constrained(chain_from_link_graph([(0, 1), (1, 2), (2, 3), (3, 0)]))  # four-bar
+    """
     over = smallest_overconstrained_subchain(chain)
     if over is not None:
         listed, joints = _describe_links(chain, over)

@@ -34,9 +34,10 @@ import flint
 import numpy as np
 
 from baranov.closure import sign_branches
-from baranov.planner import Plan
+from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
+from ..candidates import assembly_modes
 from ..coincidence import (
     MSOLVE_NOTE,
     NoPlanError,
@@ -49,17 +50,9 @@ from ..coincidence import (
     with_modes_of_coincident_joints,
     with_modes_where_undefined,
 )
-from ..configuration import (
-    RESIDUAL_TOLERANCE,
-    assembly_modes,
-    compile_scene,
-    joint_residual,
-    parameter_name,
-    placed_from_ground,
-    same_mode,
-    sorted_modes,
-)
 from ..modes import AssemblyMode, Certificate, ExactSolution
+from ..placement import compile_scene, placed_from_ground
+from ..verification import RESIDUAL_TOLERANCE, joint_residual, same_mode, sorted_modes
 from .characteristic import (
     TEST_BITS,
     CharacteristicPolynomial,

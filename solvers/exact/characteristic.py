@@ -41,11 +41,10 @@ from itertools import combinations, product
 import flint
 
 from baranov.closure.bilateration import dehomogenised, place_joints, squared_distance, triangle_radicand
-from baranov.planner import Plan
+from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene, rational_sqrt
 
 from ..coincidence import solvable_plan
-from ..configuration import parameter_name
 from ..modes import SolverError
 
 #: Precisions (bits) of the genuineness test of a factor, tried in turn.

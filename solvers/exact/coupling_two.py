@@ -30,10 +30,9 @@ from itertools import product
 
 import flint
 
-from baranov.planner import Plan
+from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
-from ..configuration import parameter_name
 from ..modes import MovableLinkageError
 from .characteristic import (
     TEST_BITS,

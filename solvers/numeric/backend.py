@@ -21,9 +21,10 @@ import time
 import numpy as np
 
 from baranov.closure import CompiledSystem, sign_branches
-from baranov.planner import Plan
+from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
+from ..candidates import assembly_modes, distinct_candidates
 from ..coincidence import (
     NoPlanError,
     coincidence_possible,
@@ -34,21 +35,11 @@ from ..coincidence import (
     with_modes_of_coincident_joints,
     with_modes_where_undefined,
 )
-from ..configuration import (
-    NEARLY_FLAT,
-    RESIDUAL_TOLERANCE,
-    assembly_modes,
-    compile_scene,
-    distance_bound,
-    distinct_candidates,
-    merged_clusters,
-    parameter_name,
-    placed_from_ground,
-    polished_mode,
-    read_back,
-)
+from ..mode_clusters import merged_clusters
 from ..modes import AssemblyMode, MovableLinkageError, Solution, SolverError, signs_text
+from ..placement import NEARLY_FLAT, compile_scene, placed_from_ground, polished_mode, read_back
 from ..polish import polish_configurations
+from ..verification import RESIDUAL_TOLERANCE, distance_bound
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
 from .two_parameter import shared_curve, two_parameter_roots
 

@@ -27,10 +27,9 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from baranov.closure import CompiledSystem, sign_branches
-from baranov.planner import Plan
+from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
-from ..configuration import parameter_name
 from ..modes import MovableLinkageError, signs_text
 
 #: A local minimum of |f| below this but not below 1e-7 (a root where f is not smooth:
@@ -226,7 +225,7 @@ def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list
     symmetric about s0 to first order, so the middle of the stretch where it stays below
     FLAT_NOISE is the estimate (31.99994 there). Where the noise is larger than FLAT_NOISE
     (next to a fold: 1e-8 on 9/N22) the modes are merged later, by
-    :func:`~baranov.solvers.configuration.merged_clusters`."""
+    :func:`~baranov.solvers.mode_clusters.merged_clusters`."""
     ordered = sorted(roots)
     roots = [r for n, r in enumerate(ordered) if n == 0 or r - ordered[n - 1] > 1e-12 * abs(r)]
     kept, valleys, start = [], [], 0

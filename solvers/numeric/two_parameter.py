@@ -34,7 +34,7 @@ from scipy.ndimage import maximum_filter, minimum_filter
 
 from baranov.closure import CompiledSystem
 
-from ..configuration import distinct_candidates
+from ..candidates import distinct_candidates
 
 #: Samples per axis of the first grid (uniform in the distances √u, √v).
 GRID = 160

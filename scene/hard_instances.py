@@ -11,11 +11,11 @@ from itertools import combinations
 import numpy as np
 
 from baranov.enumerate import baranov_trusses
-from baranov.scene import Scene, scene_from_dict
-from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.planner import best_plan, plan_avoiding
 from baranov.topology.graphs import joints_of_links
 
-from .coincidence import solvable_plan
+from .instances import generic_integer_configuration, scene_of
+from .model import Scene, SceneError, scene_from_dict
 
 
 def pentad(base: dict, platform: dict, legs: dict | None = None) -> Scene:
@@ -67,15 +67,16 @@ def branch_boundary_scene(seed: int = 7) -> Scene:
     truss = baranov_trusses(7)[0]
     while True:
         coordinates = generic_integer_configuration(truss, rng)
-        i, j, k = solvable_plan(scene_of(truss, coordinates)).free_sign_triangles[-1]
+        i, j, k = best_plan(scene_of(truss, coordinates).chain).free_sign_triangles[-1]
         (xi, yi), (xj, yj) = coordinates[i], coordinates[j]
         coordinates[k] = (xi + 2 * (xj - xi), yi + 2 * (yj - yi))
         try:
             scene = scene_of(truss, coordinates)
-            if solvable_plan(scene).free_sign_triangles[-1] == (i, j, k):
-                return scene
-        except ValueError:  # a degenerate link (SceneError) or no usable plan (SolverError)
+        except SceneError:  # a degenerate link
             continue
+        plan = plan_avoiding(scene.chain, scene.coincident_pairs)  # the plan the solvers will take
+        if plan is not None and plan.free_sign_triangles[-1] == (i, j, k):
+            return scene
 
 
 def perturbed_scene(scene_links: list[tuple[str, dict]], epsilon: float, rng: np.random.Generator) -> Scene:

@@ -9,9 +9,9 @@ Kinds (``ADVERSARIAL_KINDS``):
   their joints apart, anything else may happen (collinear triples, coincident joints of
   different links, collinear ternary links).
 - ``collinear``: three or four joints, chosen at random, on one line
-  (:func:`~baranov.solvers.hard_instances.collinear_joints_configuration`).
+  (:func:`~baranov.scene.hard_instances.collinear_joints_configuration`).
 - ``coincident``: two joints of different links at one point
-  (:func:`~baranov.solvers.hard_instances.coincident_joints_configuration`).
+  (:func:`~baranov.scene.hard_instances.coincident_joints_configuration`).
 - ``domain-edge``: a free-sign triangle of the plan flat, so the generating mode's
   parameters lie on the edge of their domain (thesis §2.3: a parameter's range ends
   where a triangle degenerates).
@@ -28,14 +28,13 @@ from itertools import combinations
 import numpy as np
 from flint import fmpz_mat
 
-from baranov.scene import Scene, SceneError
-from baranov.scene.instances import scene_of
+from baranov.planner import plan_avoiding
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
-from .coincidence import solvable_plan
 from .hard_instances import coincident_joints_configuration, collinear_joints_configuration
-from .modes import SolverError
+from .instances import scene_of
+from .model import Scene, SceneError
 
 ADVERSARIAL_KINDS = ("small-box", "collinear", "coincident", "domain-edge", "double-root")
 
@@ -75,10 +74,10 @@ def domain_edge_configuration(truss: KinematicChain, rng: np.random.Generator, b
         scene = _scene_or_none(truss, points)
         if scene is None:
             continue
-        try:
-            triangles = solvable_plan(scene).free_sign_triangles
-        except SolverError:
+        plan = plan_avoiding(scene.chain, scene.coincident_pairs)  # the plan the solvers will take
+        if plan is None:
             continue
+        triangles = plan.free_sign_triangles
         if not triangles:
             return points
         i, j, k = triangles[rng.integers(len(triangles))]

@@ -1,0 +1,138 @@
+"""Near-copies of one singular assembly mode merged: at a root of multiplicity k the
+residual is ~δ^k, so configurations around the mode verify too, and floating point
+cannot always tell them apart (issue 25; docs/numeric.md)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from baranov.closure import CompiledSystem
+from baranov.scene import Scene
+
+from .modes import AssemblyMode
+from .placement import flattened_mode, polished_mode
+from .polish import polish_configurations
+from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residuals, same_mode, sorted_modes
+
+#: Verified modes closer than this (relative to the linkage's size) are polished again,
+#: CLUSTER_STEPS plain Gauss–Newton steps, before they count as distinct.
+CLUSTER = 1e-3
+
+
+CLUSTER_STEPS = 200
+
+
+#: A mode whose residual is at this level is placed to rounding: polishing it without the
+#: monotone test could only move it (issue 22: msolve's exact mode with P1 = P5 on a
+#: 3-RPR-II scaled by 1/1000 and mirrored was moved 5e-5 away, then stood for its valley).
+ROUNDING = 1e-15
+
+
+def merged_clusters(scene: Scene, compiled: CompiledSystem,
+                    modes: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...]]:
+    """``modes`` with the near-copies of a singular mode merged into it, sorted; and one
+    sentence per group of modes that floating point could not tell apart.
+
+    At a root of multiplicity k a point δ away has residual ~δ^k, so points 1e-4 from the
+    mode verify to 1e-11 (issue 25: 9/N2 drawn at a flexible configuration, five such
+    "modes" around s1,10 = s1,12 = 1). Modes with a neighbour within CLUSTER of the
+    linkage's size are polished by plain Gauss–Newton steps on the link constraints, which
+    approach the singular mode (measured there: from 5e-5 to 7e-7 in 50 steps), and kept
+    only if still distinct; two regular roots this close each converge to themselves.
+    Where the residual is flat to rounding along a valley, the steps do not move them
+    (9/N15, 9/N22: four and eleven points within 3e-5 of the mode, residuals 1e-16 to
+    1e-13); those still close are merged by :func:`_same_valley`. Cost: O(n² J) distance
+    checks for n modes of J joints, CLUSTER_STEPS steps per clustered mode."""
+    clustered = sorted({index for a, b in _close_pairs(scene, modes, CLUSTER) for index in (a, b)})
+    if not clustered:
+        return sorted_modes(modes), ()
+    kept = [mode for index, mode in enumerate(modes) if index not in clustered]
+    for index in sorted(clustered, key=lambda i: modes[i].max_residual):
+        mode = modes[index]
+        if mode.max_residual > ROUNDING:  # one placed to rounding (msolve's) stays where it is
+            mode = polished_mode(scene, compiled, mode, CLUSTER_STEPS, monotone=False)
+        mode = flattened_mode(scene, compiled, mode if mode.max_residual < RESIDUAL_TOLERANCE else modes[index])
+        if not any(same_mode(mode, other, scene) for other in kept):
+            kept.append(mode)
+    groups = _valley_groups(scene, kept)
+    undecided = tuple(_valley_sentence([kept[i] for i in group]) for group in groups if len(group) > 1)
+    return sorted_modes([_valley_representative([kept[i] for i in group]) for group in groups]), undecided
+
+
+def _close_pairs(scene: Scene, modes, within: float) -> list[tuple[int, int]]:
+    """Pairs of modes placing every joint within ``within`` of the linkage's size."""
+    if len(modes) < 2:
+        return []
+    distance = _joint_distances(modes)
+    first, second = np.nonzero(np.triu(distance < within * distance_bound(scene), k=1))
+    return list(zip(first.tolist(), second.tolist(), strict=True))
+
+
+def _same_valley(scene: Scene, first: AssemblyMode, second: AssemblyMode) -> bool:
+    """Whether two verified modes lie in one valley of the residual, flat to rounding:
+    their midpoint, polished on the link constraints, verifies as well as they do and
+    stays put (moves less than a tenth of their distance). Between two distinct regular
+    roots the midpoint's residual is ~L d²/8 and polishing carries it towards one of
+    them; measured on 9/N15 and 9/N22, the polished midpoints moved 0–8 % of d."""
+    joints = sorted(first.joints)
+    ends = np.array([[complex(*mode.joints[j]) for j in joints] for mode in (first, second)])
+    middle = ends.mean(axis=0)
+    real, _ = polish_configurations(scene, joints, np.stack([middle.real, middle.imag], axis=-1)[None])
+    polished = real[0, :, 0] + 1j * real[0, :, 1]
+    residual = joint_residuals(scene, joints, polished[None])[0]
+    distance = np.abs(ends[0] - ends[1]).max()
+    return bool(residual <= max(10 * max(first.max_residual, second.max_residual), 1e-14)
+                and np.abs(polished - middle).max() <= 0.1 * distance)
+
+
+def _valley_groups(scene: Scene, modes: list[AssemblyMode]) -> list[list[int]]:
+    """Indices of ``modes`` grouped by :func:`_same_valley` among close pairs (union–find)."""
+    parent = list(range(len(modes)))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            i = parent[i]
+        return i
+
+    for a, b in _close_pairs(scene, modes, CLUSTER):
+        if root(a) != root(b) and _same_valley(scene, modes[a], modes[b]):
+            parent[root(a)] = root(b)
+    groups: dict[int, list[int]] = {}
+    for i in range(len(modes)):
+        groups.setdefault(root(i), []).append(i)
+    return list(groups.values())
+
+
+def _valley_representative(modes: list[AssemblyMode]) -> AssemblyMode:
+    """The mode reported for a valley: one with a flat free-sign triangle (the singular
+    mode itself, placed with its joints in line), else the one nearest the middle of the
+    valley's parameter box. Along a valley the residual is ~c δ^k in each parameter's
+    offset δ from the singular mode, so the box is symmetric about it; on issue 25's
+    11/N561 (648 configurations, s10,1 in [9.961, 10.039], the mode at s10,1 = 10,
+    s10,8 = 32) that member is 1.2e-6 from msolve's mode, the member nearest all others
+    2.1e-4 and the configurations' mean 8.4e-4."""
+    flat = [mode for mode in modes if 0 in mode.signs]
+    if flat:
+        return min(flat, key=lambda mode: mode.max_residual)
+    names = sorted(modes[0].parameters)
+    values = np.array([[mode.parameters[name] for name in names] for mode in modes])
+    low, high = values.min(axis=0), values.max(axis=0)
+    # absolute offsets: the parameters are squared distances of one linkage, and scaled
+    # by its extent a parameter the valley barely spans would decide (s10,8 on 11/N561)
+    return modes[int(np.argmin(np.abs(values - (low + high) / 2).max(axis=1)))]
+
+
+def _valley_sentence(modes: list[AssemblyMode]) -> str:
+    names = sorted(modes[0].parameters)
+    ranges = ", ".join(f"{name} in [{min(m.parameters[name] for m in modes):.8g}, "
+                       f"{max(m.parameters[name] for m in modes):.8g}]" for name in names)
+    return (f"{len(modes)} verified configurations within {_joint_distances(modes).max():.1e} of each other "
+            f"({ranges}) lie in one valley of the residual, flat to rounding: reported as one mode (a singular "
+            "mode, or modes closer than floating point separates)")
+
+
+def _joint_distances(modes) -> np.ndarray:
+    """For n modes, the (n, n) largest distance of a joint between two of them."""
+    joints = sorted(modes[0].joints)
+    points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in modes])
+    return np.abs(points[:, None, :] - points[None, :, :]).max(axis=-1)

@@ -1,0 +1,150 @@
+"""Configurations from a plan's parameter values and free-sign branch (the world
+positions of every joint, placed from the ground link), and back: parameters and signs
+read from joint positions. Shared by the numeric and exact backends."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from baranov.closure import CompiledSystem, closure_system
+from baranov.planner import Plan, parameter_name
+from baranov.scene import Scene
+
+from .modes import AssemblyMode
+from .polish import POLISH_STEPS, polish_configurations
+from .verification import RESIDUAL_TOLERANCE, joint_residuals
+
+#: Relative doubled area below which :func:`read_back` calls a triangle flat (sign 0).
+FLAT_AREA = 1e-10
+
+
+#: A free-sign triangle of a verified mode whose doubled area is below this (relative to
+#: the product of its sides from P_i) is tried flat by :func:`flattened_mode`.
+NEARLY_FLAT = 1e-4
+
+
+def compile_scene(scene: Scene, plan: Plan) -> CompiledSystem:
+    """The closure system of ``plan`` bound to the dimensions of ``scene`` (floats), with
+    the orientation of every link step read from the link's shape."""
+    return CompiledSystem(
+        closure_system(plan),
+        {pair: float(value) for pair, value in scene.known.items()},
+        {s.triangle: scene.orientation(s.triangle) for s in plan.steps if not s.free_sign},
+    )
+
+
+def placed_from_ground(scene: Scene, matrices: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """World positions (complex) of every joint from the plan's M_k (relative to its
+    reference, any array shape): the similarity that takes the ground link's first two
+    joints onto their world coordinates. NaN where a radicand was negative or the ground
+    joints coincide."""
+    ground = scene.link_of(scene.ground)
+    g1, g2 = ground.joints[0], ground.joints[1]
+    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
+    with np.errstate(invalid="ignore", divide="ignore"):
+        denominator = matrices[g2] - matrices[g1]
+        reference = np.where(denominator != 0, (world[g2] - world[g1]) / np.where(denominator != 0, denominator, 1),
+                             np.nan)
+        origin = world[g1] - matrices[g1] * reference
+        return {joint: origin + value * reference for joint, value in matrices.items()}
+
+
+def placed_configurations(scene: Scene, compiled: CompiledSystem, values: np.ndarray,
+                          branches: np.ndarray) -> tuple[list[str], np.ndarray]:
+    """Joint names (sorted) and the configurations of K candidates, point k at parameter
+    values ``values[k]`` on branch ``branches[k]``: complex array (K, J), NaN where a
+    radicand was negative."""
+    placed = placed_from_ground(scene, compiled.paired_matrices(values, branches))
+    joints = sorted(placed)
+    return joints, np.stack([np.broadcast_to(placed[j], (len(values),)) for j in joints], axis=1)
+
+
+def configuration(scene: Scene, compiled: CompiledSystem, values: np.ndarray, branch: np.ndarray) -> AssemblyMode:
+    """The configuration of one candidate, with its largest relative error over every link
+    dimension (1.0 for a rigid link found mirrored; inf where it cannot be built)."""
+    joints, points = placed_configurations(scene, compiled, values.reshape(1, -1), branch.reshape(1, -1))
+    if not np.isfinite(points).all():
+        return AssemblyMode({}, tuple(int(s) for s in branch), {}, math.inf)  # a radicand was negative
+    return mode_of(compiled, joints, values, branch, points[0], joint_residuals(scene, joints, points)[0])
+
+
+def mode_of(compiled: CompiledSystem, joints: list[str], values: np.ndarray, branch: np.ndarray,
+            points: np.ndarray, residual: float) -> AssemblyMode:
+    """The :class:`AssemblyMode` at parameter ``values`` on ``branch``, joints ``joints``
+    at ``points`` (complex)."""
+    return AssemblyMode({parameter_name(pair): float(v) for pair, v in zip(compiled.parameters, values, strict=True)},
+                        tuple(int(s) for s in branch),
+                        {j: (float(p.real), float(p.imag)) for j, p in zip(joints, points, strict=True)},
+                        float(residual))
+
+
+def orientation(at: dict, i: str, j: str, k: str, flat: float):
+    """The orientation of △P_i P_j P_k (joint positions as complex numbers or arrays):
+    ±1, or 0 where its doubled area is at most ``flat`` times the product of its two sides
+    from P_i."""
+    first, second = at[j] - at[i], at[k] - at[i]
+    cross = (first.conjugate() * second).imag
+    return np.where(np.abs(cross) <= flat * np.abs(first) * np.abs(second), 0, np.where(cross > 0, 1, -1))
+
+
+def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray],
+              flat: float = FLAT_AREA) -> tuple[np.ndarray, np.ndarray]:
+    """The plan's parameter values and free-sign branch of configurations given as joint
+    positions (complex arrays of one shape S): arrays of shape S + (parameters,) and
+    S + (free-sign triangles,). A triangle whose doubled area is below FLAT_AREA of the
+    product of its two sides from P_i gets sign 0 (flat): placed with ±1 at parameters
+    read back to rounding, its radicand can come out a few ulps negative, and the mode
+    would be lost (9/N28 of the collinear-joints sweep). ``flat`` replaces FLAT_AREA
+    (NEARLY_FLAT for configurations known only to √ε: a double root, numeric.py)."""
+    shape = np.shape(next(iter(at.values())))
+
+    def stacked(columns: list) -> np.ndarray:
+        return np.stack(columns, axis=-1) if columns else np.zeros((*shape, 0))
+
+    parameters = stacked([np.abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters])
+    branch = stacked([orientation(at, *triangle, flat) for triangle in compiled.free_triangles])
+    return parameters, branch
+
+
+def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -> AssemblyMode:
+    """``mode`` rebuilt with its nearly flat free-sign triangles flat (sign 0), if that
+    configuration verifies too. Next to a mode with a flat triangle the two branches meet
+    like ±√δ, so candidates from either side verify to 1e-8 while their joints differ by
+    ~√(1e-10) — at a double root of the characteristic polynomial the same mode was
+    reported twice, 5e-5 apart (9/N20 of the collinear-joints sweep). Snapped flat, they
+    are one; two genuinely distinct modes this close keep a triangle area whose removal
+    breaks the verification (the merging pair of docs/stability.md)."""
+    at = {joint: complex(*point) for joint, point in mode.joints.items()}
+    flat = [index for index, triangle in enumerate(compiled.free_triangles)
+            if orientation(at, *triangle, NEARLY_FLAT) == 0]
+    if not flat or not mode.parameters:
+        return mode
+    branch = np.array(mode.signs)
+    branch[flat] = 0
+    snapped = configuration(scene, compiled, np.array(list(mode.parameters.values())), branch)
+    return snapped if snapped.max_residual < RESIDUAL_TOLERANCE else mode
+
+
+def polished_configurations(scene: Scene, compiled: CompiledSystem, joints: list[str], points: np.ndarray,
+                            steps: int = POLISH_STEPS, monotone: bool = True):
+    """Configurations (complex (K, J)) polished on the link constraints
+    (:func:`polish_configurations`), with their parameters and free-sign branches read back
+    and their residuals: ``(points, values, branches, residuals)``."""
+    real = np.stack([points.real, points.imag], axis=-1)
+    real, _ = polish_configurations(scene, joints, real, steps, monotone)
+    polished = real[..., 0] + 1j * real[..., 1]
+    values, branches = read_back(compiled, {j: polished[:, n] for n, j in enumerate(joints)})
+    return polished, values, branches, joint_residuals(scene, joints, polished)
+
+
+def polished_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode, steps: int = POLISH_STEPS,
+                  monotone: bool = True) -> AssemblyMode:
+    """``mode`` polished on the link constraints (:func:`polish_configurations`, with
+    ``steps`` and ``monotone``), its parameters and free-sign branch read back from the
+    polished configuration."""
+    joints = sorted(mode.joints)
+    points, values, branches, residuals = polished_configurations(
+        scene, compiled, joints, np.array([[complex(*mode.joints[j]) for j in joints]]), steps, monotone)
+    return mode_of(compiled, joints, values[0], branches[0], points[0], residuals[0])

@@ -1,0 +1,88 @@
+"""Whether a configuration is an assembly mode, and whether two are one: the relative
+residual of joint positions on every link dimension (the same measure for every backend
+and baseline, so that their residuals compare), and mode equality relative to the
+linkage's size."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from baranov.scene import Scene
+
+from .modes import AssemblyMode
+
+#: A candidate is an assembly mode when every link dimension holds to this (relative).
+RESIDUAL_TOLERANCE = 1e-8
+
+
+#: Two configurations are one mode when every joint agrees to this (relative to the
+#: linkage's size): :func:`same_mode`, :func:`first_of_each_mode`.
+SAME_MODE = 1e-6
+
+
+def distance_bound(scene: Scene) -> float:
+    """Sum of the link diameters: no two joints are farther apart. The linkage's size, to
+    which every tolerance on positions is relative (never to a fixed unit: issue 22, a
+    triad scaled by 1e-6 had its two modes merged and a 3-RPR scaled by 1e6 failed to
+    verify its modes when tolerances were floored at 1)."""
+    return sum(math.sqrt(max(float(v) for v in link.squared_distances.values())) for link in scene.links)
+
+
+def joint_residual(scene: Scene, points: dict[str, complex]) -> float:
+    """The largest relative error of joint positions (complex) on every link dimension
+    and ground joint (:func:`joint_residuals` of one configuration). Shared by every
+    method, baselines included, so their residuals compare."""
+    joints = sorted(points)
+    return float(joint_residuals(scene, joints, np.array([[points[j] for j in joints]]))[0])
+
+
+def joint_residuals(scene: Scene, joints: list[str], points: np.ndarray) -> np.ndarray:
+    """For configurations ``points`` (complex (K, J), joints named ``joints``): the largest
+    relative error on every link dimension and ground joint; 1.0 if a rigid link is
+    mirrored (its widest triangle reversed); inf where a joint is not finite. For
+    coincident joints (target 0) the error is relative to the link's size."""
+    at = {j: points[:, n] for n, j in enumerate(joints)}
+    residual = np.zeros(len(points))
+    for link in scene.links:
+        size = max(float(target) for target in link.squared_distances.values())
+        for pair, target in link.squared_distances.items():
+            u, v = tuple(pair)
+            residual = np.maximum(residual, np.abs(np.abs(at[u] - at[v]) ** 2 - float(target)) / (float(target) or size))
+        triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
+        if triangle is not None:
+            i, j, k = (at[n] for n in triangle)
+            cross = ((j - i).conjugate() * (k - i)).imag
+            mirrored = np.where(cross > 0, 1, -1) != scene.orientation(triangle)
+            residual = np.where(mirrored, np.maximum(residual, 1.0), residual)
+    size = distance_bound(scene)
+    for joint, (x, y) in scene.world.items():
+        target = complex(float(x), float(y))
+        residual = np.maximum(residual, np.abs(at[joint] - target) / max(abs(target), size))
+    return np.where(np.isfinite(points).all(axis=1), residual, np.inf)
+
+
+def same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:
+    """Whether two modes place every joint within 1e-6 of the linkage's size."""
+    scale = distance_bound(scene)
+    return all(
+        math.dist(first.joints[j], second.joints[j]) < SAME_MODE * scale for j in first.joints
+    )
+
+
+def first_of_each_mode(points: np.ndarray, scene: Scene) -> np.ndarray:
+    """Indices of the configurations (complex (K, J)) that do not repeat an earlier one:
+    the first of each group placing every joint within 1e-6 of the linkage's size
+    (:func:`same_mode`). Cost O(K · n · J) for n distinct configurations."""
+    tolerance = SAME_MODE * distance_bound(scene)
+    first: list[int] = []
+    for k in range(len(points)):
+        if not first or (np.abs(points[first] - points[k]).max(axis=1) >= tolerance).all():
+            first.append(k)
+    return np.array(first, int)
+
+
+def sorted_modes(modes) -> tuple[AssemblyMode, ...]:
+    """``modes`` by parameter values, then signs (the order every backend reports)."""
+    return tuple(sorted(modes, key=lambda m: (tuple(m.parameters.values()), m.signs)))
