@@ -17,6 +17,7 @@ Python data (:func:`scene_from_dict`) integers, :class:`fractions.Fraction`,
 :class:`decimal.Decimal` and strings are exact, and a ``float`` is a binary float: it
 marks the scene inexact (give ``"5/2"`` or ``Fraction(5, 2)`` for exactness).
 
+Slider joints are listed under ``"sliders"`` (:mod:`~baranov.scene.sliders`; docs/scenes.md).
 A linkage with mobility F = 3(L − 1) − 2J > 0 (a four-bar, a six-bar) is a scene too,
 with up to F named ``"inputs"`` (a driven angle or distance: :mod:`~baranov.scene.inputs`);
 the backends solve rigid scenes (F = 0) and refuse it.
@@ -56,6 +57,7 @@ from baranov.topology import (
 
 from .inputs import INPUT_KEYS, SceneInput
 from .numbers import Number, rational_sqrt
+from .sliders import SLIDER_KEYS, AngleError, SliderAxis, SliderJoint, angle_direction, slider_loop
 
 #: A link triangle whose area is below this fraction of the link's squared size is flat
 #: (its orientation is not defined by the link's shape).
@@ -93,6 +95,16 @@ class Scene:
     exact: bool
     world: Mapping[str, tuple[Number, Number]] = field(default_factory=dict)
     inputs: tuple[SceneInput, ...] = ()
+    sliders: tuple[SliderJoint, ...] = ()
+
+    def point_name(self, link: str, joint: str) -> str:
+        """The name of ``joint``'s point on ``link``: the joint's own name for a revolute
+        joint; for a slider joint, ``P9'`` on the first of its links in scene order and
+        ``P9''`` on the second (thesis §4.1: the slider splits P_i into P_i', P_i'')."""
+        for slider in self.sliders:
+            if slider.joint == joint:
+                return joint + ("'" if slider.axes[0].link == link else "''")
+        return joint
 
     @property
     def mobility(self) -> int:
@@ -102,8 +114,10 @@ class Scene:
 
     @cached_property
     def chain(self) -> KinematicChain:
-        """The topology (links in scene order, labelled by their names)."""
-        return chain_from_links([link.joints for link in self.links], [link.name for link in self.links])
+        """The topology (links in scene order, labelled by their names; slider joints of
+        kind slider)."""
+        chain = chain_from_links([link.joints for link in self.links], [link.name for link in self.links])
+        return chain.with_joint_kinds(slider.joint for slider in self.sliders) if self.sliders else chain
 
     @cached_property
     def known(self) -> dict[frozenset[str], Number]:
@@ -316,7 +330,7 @@ def _require_positive(name: str, joints: tuple[str, ...], squared: Mapping[froze
 
 
 #: The keys a scene and a link may have (the module docstring says what each means).
-SCENE_KEYS = ("links", "ground", "inputs", "comment", "verified_modes", "generating_configuration",
+SCENE_KEYS = ("links", "ground", "inputs", "sliders", "comment", "verified_modes", "generating_configuration",
               "generating_tolerance")
 LINK_KEYS = ("name", "joints", "squared_length", "squared_distances", "orientation", "comment")
 
@@ -434,9 +448,63 @@ def scene_from_dict(data) -> Scene:
             require_rigid_chain(scene.chain)
     except TopologyError as error:
         raise SceneError(f"topology: {error}") from None
+    if "sliders" in data:
+        sliders = _parse_sliders(data["sliders"], links)
+        exact = scene.exact and all(isinstance(c, Fraction) for s in sliders for a in s.axes for c in a.direction)
+        scene = Scene(links, ground, exact, world, sliders=sliders)
     if "inputs" in data:
-        scene = Scene(links, ground, scene.exact, world, _parse_inputs(data["inputs"], scene))
+        scene = Scene(links, ground, scene.exact, world, _parse_inputs(data["inputs"], scene), scene.sliders)
     return scene
+
+
+def _parse_sliders(entries, links: tuple[SceneLink, ...]) -> tuple[SliderJoint, ...]:
+    """The slider joints (:mod:`~baranov.scene.sliders`), validated: each a joint of two
+    links with one angle on each, no joint twice, no loop of links closed by sliders."""
+    if not isinstance(entries, list):
+        raise SceneError("sliders: expected a list such as [{\"joint\": \"P9\", \"angles\": {\"A\": {\"P5\": "
+                         "\"pi - atan(5/2)\"}, \"B\": {\"P7\": \"atan(3)\"}}}]")
+    sliders = [_parse_slider(entry, index, links) for index, entry in enumerate(entries)]
+    names = [slider.joint for slider in sliders]
+    if len(set(names)) != len(names):
+        raise SceneError(f"slider {next(n for n in names if names.count(n) > 1)}: given twice")
+    loop = slider_loop({slider.joint: (slider.axes[0].link, slider.axes[1].link) for slider in sliders})
+    if loop is not None:
+        joined = {link for slider in sliders if slider.joint in loop for link in (a.link for a in slider.axes)}
+        raise SceneError(f"sliders {', '.join(loop)}: they close the loop of links {', '.join(sorted(joined))} "
+                         "by sliders only, which cannot fix the links' rotations (not an Assur chain); make one a "
+                         "revolute joint")
+    return tuple(sliders)
+
+
+def _parse_slider(entry, index: int, links: tuple[SceneLink, ...]) -> SliderJoint:
+    if not isinstance(entry, Mapping) or "joint" not in entry:
+        raise SceneError(f"slider #{index + 1}: expected an object with \"joint\" and \"angles\"")
+    joint = str(entry["joint"])
+    _require_known_keys(entry, SLIDER_KEYS, f"slider {joint}")
+    on = [link for link in links if joint in link.joints]
+    if not on:
+        raise SceneError(f"slider {joint}: no link has this joint")
+    angles = entry.get("angles")
+    names = sorted(link.name for link in on)
+    if not isinstance(angles, Mapping) or sorted(angles) != names:
+        raise SceneError(f"slider {joint}: \"angles\" should give one angle on each of its links {' and '.join(names)}, "
+                         "e.g. {\"" + names[0] + "\": {\"<joint>\": \"atan(2)\"}, …}")
+    axes = []
+    for link in on:
+        given = angles[link.name]
+        if not isinstance(given, Mapping) or len(given) != 1:
+            raise SceneError(f"slider {joint}: on link {link.name}, give the angle of exactly one other joint "
+                             f"({', '.join(j for j in link.joints if j != joint)})")
+        ((reference, value),) = given.items()
+        if reference == joint or reference not in link.joints:
+            raise SceneError(f"slider {joint}: on link {link.name}, {reference} is not another joint of that link "
+                             f"({', '.join(j for j in link.joints if j != joint)})")
+        try:
+            direction = angle_direction(value)
+        except AngleError as error:
+            raise SceneError(f"slider {joint}: on link {link.name}, angle of {reference}: {error}") from None
+        axes.append(SliderAxis(link.name, reference, direction))
+    return SliderJoint(joint, (axes[0], axes[1]))
 
 
 def _parse_inputs(entries, scene: Scene) -> tuple[SceneInput, ...]:

@@ -24,6 +24,10 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
         raise SolverError(f"mobility {scene.mobility} (3(L-1) - 2J with L = {len(scene.links)} links): the linkage "
                           "moves by its topology, and the backends find the assembly modes of rigid linkages "
                           "(mobility 0); tracing a mobile linkage is not available yet")
+    if scene.sliders:
+        joints = ", ".join(slider.joint for slider in scene.sliders)
+        raise SolverError(f"slider joints {joints}: the backends do not solve slider joints yet (thesis ch. 4); "
+                          "the msolve oracle does (baranov.solvers.msolve.msolve_modes)")
     return backend(method).load()(scene, **options)
 
 

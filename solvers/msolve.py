@@ -126,21 +126,21 @@ def _text(p: dict) -> str:
 
 def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = ()
                      ) -> tuple[list[str], list[dict], dict[str, tuple[str, str]], dict[str, int]]:
-    """(variables, polynomials, joint → (x variable, y variable), auxiliary variable →
+    """(variables, polynomials, point → (x variable, y variable), auxiliary variable →
     required sign) of the Cartesian system described in the module docstring, with
     P_u = P_v added for each pair of ``coincident``. Needs exact dimensions (integers or
     rationals)."""
     if not scene.exact:
         raise ValueError("the msolve oracle needs exact (integer or rational) dimensions")
     ground = scene.link_of(scene.ground)
-    world = {j: (Fraction(x), Fraction(y)) for j, (x, y) in scene.world.items()}
-    joints = sorted({j for link in scene.links for j in link.joints} - set(ground.joints))
-    names = {j: (f"x{n}", f"y{n}") for n, j in enumerate(joints)}
-    variables = [v for j in joints for v in names[j]]
+    world = {scene.point_name(ground.name, j): (Fraction(x), Fraction(y)) for j, (x, y) in scene.world.items()}
+    points = sorted({scene.point_name(link.name, j) for link in scene.links for j in link.joints} - set(world))
+    names = {point: (f"x{n}", f"y{n}") for n, point in enumerate(points)}
+    variables = [v for point in points for v in names[point]]
     signs: dict[str, int] = {}
 
-    def coordinate(joint: str, axis: int) -> dict:
-        return _linear({None: world[joint][axis]}) if joint in world else _linear({names[joint][axis]: 1})
+    def coordinate(point: str, axis: int) -> dict:
+        return _linear({None: world[point][axis]}) if point in world else _linear({names[point][axis]: 1})
 
     polynomials = []
     for link in scene.links:
@@ -149,8 +149,9 @@ def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = ()
         a, b = link.joints[:2]
         s = {pair: Fraction(value) for pair, value in link.squared_distances.items()}
         sab = s[frozenset((a, b))]
-        dx = _add(coordinate(b, 0), coordinate(a, 0), scale=(1, -1))
-        dy = _add(coordinate(b, 1), coordinate(a, 1), scale=(1, -1))
+        pa, pb = scene.point_name(link.name, a), scene.point_name(link.name, b)
+        dx = _add(coordinate(pb, 0), coordinate(pa, 0), scale=(1, -1))
+        dy = _add(coordinate(pb, 1), coordinate(pa, 1), scale=(1, -1))
         polynomials.append(_add(_multiply(dx, dx), _multiply(dy, dy), _linear({None: -sab})))
         for c in link.joints[2:]:
             sac, sbc = s[frozenset((a, c))], s[frozenset((b, c))]
@@ -168,14 +169,60 @@ def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = ()
                                         _linear({None: -area16})))
                 across = _linear({auxiliary: 1 / (2 * sab)})
             # P_c − P_a − λ d − μ J d = 0, J d = (−d_y, d_x)
-            polynomials.append(_add(coordinate(c, 0), coordinate(a, 0), dx, _multiply(across, dy),
+            pc = scene.point_name(link.name, c)
+            polynomials.append(_add(coordinate(pc, 0), coordinate(pa, 0), dx, _multiply(across, dy),
                                     scale=(1, -1, -along, 1)))
-            polynomials.append(_add(coordinate(c, 1), coordinate(a, 1), dy, _multiply(across, dx),
+            polynomials.append(_add(coordinate(pc, 1), coordinate(pa, 1), dy, _multiply(across, dx),
                                     scale=(1, -1, -along, -1)))
+    polynomials += [equation for slider in scene.sliders for equation in _slider_equations(scene, slider, coordinate)]
     for pair in coincident:
         u, v = sorted(pair)
         polynomials += [_add(coordinate(u, axis), coordinate(v, axis), scale=(1, -1)) for axis in (0, 1)]
     return variables, polynomials, names, signs
+
+
+def _axis_direction(scene: Scene, slider, link: str, coordinate) -> tuple[dict, dict]:
+    """A slider's sliding direction in world coordinates as fixed in ``link``, up to a
+    positive factor: the vector from the slider's point to the reference joint, turned
+    by −α (its angle from the sliding direction). Linear in the coordinates."""
+    axis = slider.axis_on(link)
+    foot, reference = scene.point_name(link, slider.joint), scene.point_name(link, axis.reference)
+    vx = _add(coordinate(reference, 0), coordinate(foot, 0), scale=(1, -1))
+    vy = _add(coordinate(reference, 1), coordinate(foot, 1), scale=(1, -1))
+    p, q = (Fraction(c) for c in axis.direction)
+    return _add(vx, vy, scale=(p, q)), _add(vy, vx, scale=(p, -q))  # (v_x + i v_y)(p − i q)
+
+
+def _cross(first: tuple[dict, dict], second: tuple[dict, dict]) -> dict:
+    return _add(_multiply(first[0], second[1]), _multiply(first[1], second[0]), scale=(1, -1))
+
+
+def _slider_equations(scene: Scene, slider, coordinate) -> list[dict]:
+    """A slider joint between links A and B: the sliding directions fixed in A and in B
+    are parallel, and B's point of the joint lies on A's axis (thesis §4.1). That the
+    two directions have the same sense is checked on the solutions (:func:`_same_sense`)."""
+    first, second = (axis.link for axis in slider.axes)
+    along_first = _axis_direction(scene, slider, first, coordinate)
+    along_second = _axis_direction(scene, slider, second, coordinate)
+    foot_first, foot_second = scene.point_name(first, slider.joint), scene.point_name(second, slider.joint)
+    offset = tuple(_add(coordinate(foot_second, axis), coordinate(foot_first, axis), scale=(1, -1)) for axis in (0, 1))
+    return [_cross(along_first, along_second), _cross(along_first, offset)]
+
+
+def _same_sense(scene: Scene, configuration: dict[str, tuple[float, float]]) -> bool:
+    """Whether every slider's two sliding directions point the same way (the Cartesian
+    system only asks them to be parallel)."""
+    for slider in scene.sliders:
+        directions = []
+        for axis in slider.axes:
+            foot = configuration[scene.point_name(axis.link, slider.joint)]
+            reference = configuration[scene.point_name(axis.link, axis.reference)]
+            vx, vy = reference[0] - foot[0], reference[1] - foot[1]
+            p, q = (float(c) for c in axis.direction)
+            directions.append((vx * p + vy * q, vy * p - vx * q))
+        if directions[0][0] * directions[1][0] + directions[0][1] * directions[1][1] <= 0:
+            return False
+    return True
 
 
 _NUMBER = re.compile(r"(-?\d+)(?:\s*/\s*(\d+)(?:\^(\d+))?)?")
@@ -252,7 +299,9 @@ def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISIO
         width = max(width, *(float(hi - lo) for lo, hi in box))
         point = {j: (float((box[index[x]][0] + box[index[x]][1]) / 2), float((box[index[y]][0] + box[index[y]][1]) / 2))
                  for j, (x, y) in names.items()}
-        point.update({j: (float(x), float(y)) for j, (x, y) in scene.world.items()})
+        point.update({scene.point_name(scene.ground, j): (float(x), float(y)) for j, (x, y) in scene.world.items()})
+        if not _same_sense(scene, point):
+            continue  # one link's axis reversed: another mechanism
         configurations.append(point)
     return OracleResult("finite", tuple(configurations), width, seconds, **size)
 

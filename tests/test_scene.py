@@ -36,15 +36,24 @@ def test_scene_errors_name_the_link(change, message):
         scene_from_dict(data)
 
 
-def test_non_rigid_topology_is_a_scene_error():
+def test_a_mobile_topology_is_a_scene_and_an_over_constrained_one_an_error():
+    """A four-bar (F = 1) is a scene (tests/test_scene_inputs.py); a four-bar whose
+    coupler is also jointed to the ground (F = −1) is not."""
     four_bar = {"links": [
         {"name": "ground", "joints": {"A": [0, 0], "D": [4, 0]}},
         {"name": "crank", "joints": ["A", "B"], "squared_length": 1},
         {"name": "coupler", "joints": ["B", "C"], "squared_length": 16},
         {"name": "rocker", "joints": ["C", "D"], "squared_length": 4},
     ], "ground": "ground"}
-    with pytest.raises(SceneError, match=r"topology: mobility F = 3\(L-1\) - 2J = 1"):
-        scene_from_dict(four_bar)
+    assert scene_from_dict(four_bar).mobility == 1
+    braced = {"links": [
+        {"name": "ground", "joints": {"A": [0, 0], "D": [4, 0], "E": [2, 3]}},
+        {"name": "crank", "joints": ["A", "B"], "squared_length": 1},
+        {"name": "coupler", "joints": {"B": [0, 0], "C": [4, 0], "E": [2, 2]}},
+        {"name": "rocker", "joints": ["C", "D"], "squared_length": 4},
+    ], "ground": "ground"}
+    with pytest.raises(SceneError, match=r"topology: mobility F = 3\(L-1\) - 2J = -1"):
+        scene_from_dict(braced)
 
 
 def test_inconsistent_quaternary_distances():
@@ -91,7 +100,7 @@ def test_decimal_literals_of_a_file_are_exact(tmp_path):
 @pytest.mark.parametrize("where, key, message", [
     (None, "grund", "scene: unknown key 'grund' (did you mean \"ground\"?)"),
     (1, "squared_lenght", "link b13: unknown key 'squared_lenght' (did you mean \"squared_length\"?)"),
-    (None, "mass", "scene: unknown key 'mass' (expected one of links, ground, comment"),
+    (None, "mass", "scene: unknown key 'mass' (expected one of links, ground, inputs, sliders, comment"),
 ])
 def test_unknown_keys_are_errors_with_a_suggestion(where, key, message):
     data = json.loads((EXAMPLES / "3-B1.json").read_text())

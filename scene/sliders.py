@@ -1,0 +1,177 @@
+"""Slider (prismatic) joints of a scene (thesis ch. 4, paper 003 §3).
+
+A slider joint P_i between links A and B lets B translate along an axis fixed in both
+links, without rotating relative to A. Following the thesis, the joint keeps its name and
+its place on each link: on A it is the point P_i' of the axis whose squared distances to
+A's other joints are A's dimensions, on B the point P_i'' likewise (the two coincide
+only when the translation is 0). The axis is fixed in each link by one angle: α_j, the
+polar angle of the vector P_i'→P_j (P_j another joint of that link) measured from the
+sliding direction, so that √s_{i',j} sin α_j is P_j's oriented distance to the axis
+(thesis §4.1; the same sense of the axis on both links). The angles of the link's other
+joints follow from its shape.
+
+In a scene (JSON)::
+
+    "sliders": [{"joint": "P9", "angles": {"t569": {"P5": "pi - atan(5/2)"},
+                                           "t789": {"P7": "2 pi - atan(5/3)"}}}]
+
+An angle is exact when written as a sum of multiples of π/2 and arctangents of rationals
+(``"atan(5/2)"``, ``"atan2(-5, 3)"``, ``"pi + atan(1/2)"``: the thesis's angles are all of
+this form), or as a direction ``[x, y]`` (the angle of that vector); a plain number is in
+degrees (exact at multiples of 45°). Internally an angle is its direction (cos α, sin α)
+up to a positive factor: rational wherever the input is exact.
+
+A set of sliders that closes a loop of links is refused: a loop closed by sliders only
+cannot fix its links' rotations, and the chain is no Assur kinematic chain (thesis ch. 4
+introduction; :func:`~baranov.enumerate.sliders.admissible_slider_sets`).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from decimal import Decimal
+from fractions import Fraction
+
+import networkx as nx
+
+from .numbers import Number
+
+#: The keys of a slider entry in a scene.
+SLIDER_KEYS = ("joint", "angles", "comment")
+
+
+@dataclass(frozen=True)
+class SliderAxis:
+    """The axis of a slider joint as fixed in one of its links.
+
+    Attributes:
+        link: the link's name.
+        reference: the joint P_j of that link whose angle is given.
+        direction: (cos α_j, sin α_j) up to a positive factor, α_j the angle of the
+            vector from the slider's point on this link to P_j, from the sliding
+            direction.
+    """
+
+    link: str
+    reference: str
+    direction: tuple[Number, Number]
+
+
+@dataclass(frozen=True)
+class SliderJoint:
+    """A slider joint: its name and its axis in each of its two links."""
+
+    joint: str
+    axes: tuple[SliderAxis, SliderAxis]
+
+    def axis_on(self, link: str) -> SliderAxis:
+        """The axis as fixed in ``link`` (one of the joint's two links)."""
+        return next(axis for axis in self.axes if axis.link == link)
+
+
+class AngleError(ValueError):
+    """An angle could not be read; the message says what is expected."""
+
+
+_RATIONAL = r"[+-]?\s*\d+(?:\.\d+)?(?:\s*/\s*\d+(?:\.\d+)?)?"
+_TERM = re.compile(
+    r"\s*(?P<sign>[+-])?\s*(?:"
+    rf"(?P<atan2>atan2\(\s*(?P<y>{_RATIONAL})\s*,\s*(?P<x>{_RATIONAL})\s*\))"
+    rf"|(?P<atan>atan\(\s*(?P<ratio>{_RATIONAL})\s*\))"
+    rf"|(?P<pi>(?P<times>\d+(?:/\d+)?)?\s*\*?\s*pi(?:\s*/\s*(?P<over>\d+))?)"
+    r")\s*")
+
+
+def _rational(text: str) -> Fraction:
+    return Fraction(re.sub(r"\s+", "", text))
+
+
+def _times(first: tuple, second: tuple) -> tuple:
+    """Directions of α and β → direction of α + β (complex multiplication)."""
+    (a, b), (c, d) = first, second
+    return a * c - b * d, a * d + b * c
+
+
+def _pi_direction(multiple: Fraction) -> tuple[Number, Number]:
+    """Direction of multiple·π, up to a positive factor: exact at multiples of π/4."""
+    if (4 * multiple).denominator == 1:
+        return ((1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1))[int(4 * multiple) % 8]
+    angle = math.pi * float(multiple)
+    return math.cos(angle), math.sin(angle)
+
+
+def angle_direction(value) -> tuple[Number, Number]:
+    """The direction (cos α, sin α), up to a positive factor, of an angle written as in
+    the module docstring; exact (Fractions) where the angle is.
+
+    >>> angle_direction("pi - atan(5/2)")
+    (Fraction(-1, 1), Fraction(5, 2))
+    >>> angle_direction("2 pi - atan(1/2)"), angle_direction("atan2(-5, 3)")
+    ((Fraction(1, 1), Fraction(-1, 2)), (Fraction(3, 1), Fraction(-5, 1)))
+    >>> angle_direction(90), angle_direction([3, 4])
+    ((Fraction(0, 1), Fraction(1, 1)), (Fraction(3, 1), Fraction(4, 1)))
+    """
+    if isinstance(value, (list, tuple)):
+        if len(value) != 2:
+            raise AngleError(f"{value!r}: a direction is two numbers [x, y]")
+        direction = tuple(Fraction(str(c)) if not isinstance(c, float) else c for c in value)
+    elif isinstance(value, bool):
+        raise AngleError(f"{value!r}: not an angle")
+    elif isinstance(value, (int, Fraction, Decimal)):
+        turns = Fraction(str(value)) / 180
+        direction = _pi_direction(turns)
+    elif isinstance(value, float):
+        direction = math.cos(math.radians(value)), math.sin(math.radians(value))
+    elif isinstance(value, str):
+        direction = _parsed_angle(value)
+    else:
+        raise AngleError(f"{value!r}: expected an angle such as \"pi - atan(5/2)\", [x, y] or degrees")
+    if direction[0] == 0 and direction[1] == 0:
+        raise AngleError(f"{value!r}: the direction [0, 0] has no angle")
+    return tuple(Fraction(c) if isinstance(c, int) else c for c in direction)
+
+
+def _parsed_angle(text: str) -> tuple[Number, Number]:
+    if re.fullmatch(rf"\s*{_RATIONAL}\s*", text):  # degrees, as a number would be
+        return _pi_direction(_rational(text) / 180) if "." not in text else angle_direction(float(text))
+    direction: tuple = (Fraction(1), Fraction(0))
+    position, terms = 0, 0
+    while position < len(text.rstrip()):
+        match = _TERM.match(text, position)
+        if match is None or match.end() == position or (terms and not match["sign"]):
+            raise AngleError(f"{text!r}: expected an angle such as \"pi - atan(5/2)\", \"atan2(5, -2)\", "
+                             "[x, y] or degrees")
+        if match["atan2"]:
+            term = (_rational(match["x"]), _rational(match["y"]))
+        elif match["atan"]:
+            term = (Fraction(1), _rational(match["ratio"]))
+        else:
+            multiple = Fraction(match["times"] or 1) / int(match["over"] or 1)
+            term = _pi_direction(multiple)
+        if match["sign"] == "-":
+            term = (term[0], -term[1])
+        direction = _times(direction, term)
+        position, terms = match.end(), terms + 1
+    if not terms:
+        raise AngleError(f"{text!r}: an empty angle")
+    return direction
+
+
+def slider_loop(links_of_sliders: dict[str, tuple[str, str]]) -> list[str] | None:
+    """The slider joints of a loop of links closed by sliders only (each slider given by
+    the two links it joins), or None if there is none. O(number of sliders).
+
+    >>> slider_loop({"P1": ("A", "B"), "P2": ("B", "C")}) is None
+    True
+    >>> sorted(slider_loop({"P1": ("A", "B"), "P2": ("B", "C"), "P3": ("C", "A")}))
+    ['P1', 'P2', 'P3']
+    """
+    graph = nx.MultiGraph()
+    for joint, (a, b) in links_of_sliders.items():
+        graph.add_edge(a, b, key=joint)
+    try:
+        return [key for _, _, key in nx.find_cycle(graph)]
+    except nx.NetworkXNoCycle:
+        return None

@@ -1,0 +1,141 @@
+"""Slider joints (scene/sliders.py, thesis ch. 4, paper 003): the scene format, its
+validation, exact angles, and the three published 7/B3 slider chains of thesis
+§4.2.2–4.2.4 reproduced by the independent msolve oracle on the Cartesian system."""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+from fractions import Fraction
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from baranov.scene import SceneError, load_scene, scene_from_dict
+from baranov.scene.sliders import angle_direction
+from baranov.solvers import SolverError, solve
+from baranov.solvers.msolve import find_msolve, msolve_modes
+from baranov.topology.chain import JointKind
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+needs_msolve = pytest.mark.skipif(find_msolve() is None, reason="msolve binary not installed (make installs it)")
+
+
+def _s16(configuration: dict, first: str = "P1") -> float:
+    (x1, y1), (x6, y6) = configuration[first], configuration["P6"]
+    return (x1 - x6) ** 2 + (y1 - y6) ** 2
+
+
+@needs_msolve
+@pytest.mark.parametrize("example, published", [
+    ("7-B3-slider-P9", [49.5561, 50.1965, 50.6270, 85.0000]),   # thesis §4.2.2
+    ("7-B3-sliders-P8-P9", [48.1037, 85.0000, 88.2000, 88.5483]),  # §4.2.3, erratum alpha7 = pi - atan(4/5)
+])
+def test_the_published_slider_chains_have_the_published_roots(example, published):
+    result = msolve_modes(load_scene(EXAMPLES / f"{example}.json"))
+    assert result.status == "finite"
+    assert sorted(round(_s16(c), 4) for c in result.configurations) == published
+
+
+@needs_msolve
+def test_a_slider_at_an_end_of_the_variable_segment_gives_the_published_t():
+    """§4.2.4: the variable is t, P6's oriented distance to the slider's axis (the line
+    P1 P2 of the ground, sliding towards P2: +x); published real roots 7.4867, 8.7825."""
+    scene = load_scene(EXAMPLES / "7-B3-slider-P1.json")
+    result = msolve_modes(scene)
+    assert result.status == "finite"
+    assert sorted(round(c["P6"][1] - c["P1'"][1], 4) for c in result.configurations) == [7.4867, 8.7825]
+    for configuration in result.configurations:  # P1'' slides on the ground's axis, y = 0
+        assert abs(configuration["P1''"][1]) < 1e-12
+
+
+@needs_msolve
+def test_a_reversed_axis_is_another_mechanism():
+    """The Cartesian system asks the two links' axes to be parallel; turning one by π
+    (the same line, opposite sense) gives a different chain, whose modes are not these."""
+    data = json.loads((EXAMPLES / "7-B3-slider-P9.json").read_text())
+    data["sliders"][0]["angles"]["t789"]["P7"] = "pi - atan(5/3)"  # 2 pi - atan(5/3) turned by pi
+    reversed_modes = msolve_modes(scene_from_dict(data)).configurations
+    assert sorted(round(_s16(c), 4) for c in reversed_modes) != [49.5561, 50.1965, 50.6270, 85.0]
+
+
+def test_a_slider_scene_names_the_two_points_of_the_joint():
+    scene = load_scene(EXAMPLES / "7-B3-sliders-P8-P9.json")
+    kinds = {joint.name: joint.kind for joint in scene.chain.joints}
+    assert kinds["P9"] == kinds["P8"] == JointKind.SLIDER and kinds["P5"] == JointKind.REVOLUTE
+    assert (scene.point_name("t569", "P9"), scene.point_name("t789", "P9")) == ("P9'", "P9''")
+    assert (scene.point_name("t789", "P8"), scene.point_name("b28", "P8")) == ("P8'", "P8''")
+    assert scene.point_name("t789", "P7") == "P7"
+    axis = scene.sliders[1].axis_on("b28")
+    assert (axis.reference, axis.direction) == ("P2", (Fraction(-1), Fraction(4, 5)))
+    assert scene.exact
+
+
+def test_the_backends_refuse_sliders_with_a_clear_message():
+    with pytest.raises(SolverError, match="slider joints P9: the backends do not solve slider joints yet"):
+        solve(load_scene(EXAMPLES / "7-B3-slider-P9.json"))
+
+
+def _with_sliders(sliders) -> dict:
+    data = json.loads((EXAMPLES / "7-B3-section-4.2.1.json").read_text())
+    data["sliders"] = copy.deepcopy(sliders)
+    return data
+
+
+P9 = {"joint": "P9", "angles": {"t569": {"P5": "pi - atan(5/2)"}, "t789": {"P7": "2 pi - atan(5/3)"}}}
+
+
+@pytest.mark.parametrize("sliders, message", [
+    ([P9, {"joint": "P5", "angles": {"b15": {"P1": 0}, "t569": {"P6": 0}}},
+      {"joint": "P1", "angles": {"q1234": {"P2": 0}, "b15": {"P5": 0}}},
+      {"joint": "P3", "angles": {"q1234": {"P2": 0}, "b36": {"P6": 0}}},
+      {"joint": "P6", "angles": {"b36": {"P3": 0}, "t569": {"P5": 0}}}], "close the loop of links"),
+    ([P9, P9], "slider P9: given twice"),
+    ([{"joint": "P10", "angles": {}}], "slider P10: no link has this joint"),
+    ([{"joint": "P9", "angles": {"t569": {"P5": 0}}}], 'should give one angle on each of its links t569 and t789'),
+    ([{"joint": "P9", "angles": {"t569": {"P5": 0, "P6": 1}, "t789": {"P7": 0}}}], "exactly one other joint"),
+    ([{"joint": "P9", "angles": {"t569": {"P9": 0}, "t789": {"P7": 0}}}], "P9 is not another joint of that link"),
+    ([{"joint": "P9", "angles": {"t569": {"P7": 0}, "t789": {"P7": 0}}}], "P7 is not another joint of that link"),
+    ([{"joint": "P9", "angles": {"t569": {"P5": "pi minus 2"}, "t789": {"P7": 0}}}], "angle of P5: 'pi minus 2'"),
+    ([{"joint": "P9", "angles": {"t569": {"P5": [0, 0]}, "t789": {"P7": 0}}}], "has no angle"),
+    ([{"joint": "P9", "angle": {}}], 'unknown key .angle. \\(did you mean "angles"'),
+    ({"joint": "P9"}, "sliders: expected a list"),
+])
+def test_bad_sliders_name_the_joint_and_the_fault(sliders, message):
+    with pytest.raises(SceneError, match=message):
+        scene_from_dict(_with_sliders(sliders))
+
+
+def test_a_loop_of_sliders_is_refused_by_name():
+    loop = [{"joint": joint, "angles": {link: {other: 0} for link, other in links}} for joint, links in (
+        ("P5", (("b15", "P1"), ("t569", "P6"))), ("P1", (("q1234", "P2"), ("b15", "P5"))),
+        ("P3", (("q1234", "P2"), ("b36", "P6"))), ("P6", (("b36", "P3"), ("t569", "P5"))))]
+    with pytest.raises(SceneError, match=r"sliders P\d, P\d, P\d, P\d: they close the loop of links b15, b36, q1234, "
+                                         "t569 by sliders only"):
+        scene_from_dict(_with_sliders(loop))
+
+
+def test_angles_in_degrees_are_exact_at_multiples_of_45():
+    assert angle_direction(135) == (Fraction(-1), Fraction(1))
+    assert isinstance(angle_direction(30)[0], float)
+
+
+rationals = st.fractions(min_value=-50, max_value=50, max_denominator=12)
+
+
+@settings(max_examples=200, deadline=None)
+@given(rationals, rationals, rationals, st.integers(-4, 4))
+def test_written_angles_have_the_direction_of_their_value(x, y, ratio, quarters):
+    """'k pi/2 + atan2(y, x) - atan(r)' against the float angle it denotes."""
+    if x == 0 and y == 0:
+        return
+    text = f"{quarters}*pi/2 + atan2({y}, {x}) - atan({ratio})"
+    angle = quarters * math.pi / 2 + math.atan2(y, x) - math.atan(ratio)
+    direction = angle_direction(text)
+    assert all(isinstance(c, Fraction) for c in direction)
+    length = math.hypot(*direction)
+    assert math.isclose(direction[0] / length, math.cos(angle), abs_tol=1e-12)
+    assert math.isclose(direction[1] / length, math.sin(angle), abs_tol=1e-12)
