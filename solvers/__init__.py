@@ -24,11 +24,13 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
         raise SolverError(f"mobility {scene.mobility} (3(L-1) - 2J with L = {len(scene.links)} links): the linkage "
                           "moves by its topology, and the backends find the assembly modes of rigid linkages "
                           "(mobility 0); tracing a mobile linkage is not available yet")
-    if scene.sliders:
+    chosen = backend(method)
+    if scene.sliders and not chosen.sliders:
         joints = ", ".join(slider.joint for slider in scene.sliders)
-        raise SolverError(f"slider joints {joints}: the backends do not solve slider joints yet (thesis ch. 4); "
-                          "the msolve oracle does (baranov.solvers.msolve.msolve_modes)")
-    return backend(method).load()(scene, **options)
+        takers = ", ".join(name for name in available_backends() if backend(name).sliders)
+        raise SolverError(f"slider joints {joints}: the {method} method does not solve slider joints yet "
+                          f"(thesis ch. 4); use --method {takers}")
+    return chosen.load()(scene, **options)
 
 
 __all__ = [

@@ -24,6 +24,7 @@ class Backend:
     name: str
     location: str
     summary: str
+    sliders: bool = False  # whether it solves scenes with slider joints
 
     def load(self) -> Callable[..., Solution]:
         module, function = self.location.split(":")
@@ -33,9 +34,10 @@ class Backend:
 BACKENDS: dict[str, Backend] = {}
 
 
-def register_backend(name: str, location: str, summary: str) -> None:
-    """Register a backend (a later registration under the same name replaces it)."""
-    BACKENDS[name] = Backend(name, location, summary)
+def register_backend(name: str, location: str, summary: str, sliders: bool = False) -> None:
+    """Register a backend (a later registration under the same name replaces it);
+    ``sliders``: it solves scenes with slider joints."""
+    BACKENDS[name] = Backend(name, location, summary, sliders)
 
 
 def available_backends() -> tuple[str, ...]:
@@ -56,6 +58,8 @@ register_backend("numeric", "baranov.solvers.numeric:solve_numeric",
                  "every sign branch sampled and bracketed in floating point (docs/numeric.md)")
 register_backend("exact", "baranov.solvers.exact:solve_exact",
                  "characteristic polynomial over Q, certified real roots and modes (docs/exact.md)")
+register_backend("msolve", "baranov.solvers.msolve_backend:solve_msolve",
+                 "msolve (exact Groebner-basis solver) on the Cartesian system; slider joints too", sliders=True)
 register_backend("cartesian", "baranov.baselines.cartesian:solve_cartesian",
                  "baseline: Gauss-Newton on the Cartesian system from random starts (no completeness)")
 register_backend("loop-equations", "baranov.baselines.loop_equations:solve_loop_equations",

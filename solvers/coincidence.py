@@ -21,14 +21,14 @@ chooses the plan accordingly.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Iterable
 
-from baranov.planner import ALTERNATIVE_PLANS, Plan, best_plan, parameter_name, plan_avoiding
+from baranov.planner import ALTERNATIVE_PLANS, Plan, best_plan, plan_avoiding
 from baranov.scene import Scene
 
 from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
 from .msolve import find_msolve, msolve_modes
+from .msolve_backend import described_mode, verified_modes
 from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residual, same_mode, sorted_modes
 
 
@@ -83,16 +83,13 @@ def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[Plan, tuple[As
     one point, which both backends refused where msolve lists 4 modes)."""
     if find_msolve() is None or not scene.exact:
         raise error
-    result = msolve_modes(scene)
-    if result.status != "finite":
-        raise NoPlanError(f"{error}; msolve: {result.status} {result.message}".strip())
     plan = best_plan(scene.chain)
-    modes = []
-    for configuration in result.configurations:
-        residual = joint_residual(scene, {j: complex(*p) for j, p in configuration.items()})
-        if residual >= RESIDUAL_TOLERANCE:
-            raise NoPlanError(f"{error}; msolve's mode does not verify (residual {residual:.1e})")
-        modes.append(_in_plan_terms(scene, plan, configuration, residual))
+    try:
+        modes = verified_modes(scene, plan)
+    except MovableLinkageError:
+        raise
+    except SolverError as failure:
+        raise NoPlanError(f"{error}; {failure}") from None
     pairs = ", ".join(sorted("=".join(sorted(pair)) for pair, value in scene.known.items() if value == 0))
     return plan, sorted_modes(modes), NO_PLAN_NOTE.format(pairs=pairs)
 
@@ -160,7 +157,7 @@ def _with_alternative_modes(scene: Scene, plan: Plan, pairs: set[frozenset[str]]
     for mode in solution.assembly_modes:
         values = accept([_squared_distance(mode, *pair) for pair in plan.parameters], mode)
         if values is not None and not any(same_mode(mode, other, scene) for other in found):
-            found.append(_in_plan_terms(scene, plan, mode.joints, mode.max_residual, values))
+            found.append(described_mode(scene, plan, mode.joints, mode.max_residual, values))
     certificate = getattr(solution, "certificate", None)
     return sorted_modes(found), certificate is None or certificate.complete
 
@@ -203,7 +200,7 @@ def with_modes_from_msolve(scene: Scene, plan: Plan, pairs: Iterable[frozenset[s
                 gaps.append(f"msolve's mode with {where} does not verify (residual {residual:.1e})")
             else:  # msolve's configuration replaces a float one of the same mode (3-RPR-II: 5.9e-10 off s1,5 = 0)
                 found = [other for other in found if not same_mode(mode, other, scene)]
-                found.append(_in_plan_terms(scene, plan, configuration, residual))
+                found.append(described_mode(scene, plan, configuration, residual))
     return sorted_modes(found), True, tuple(gaps)
 
 
@@ -232,31 +229,6 @@ def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:
                  "are not examined" for pair in sorted(pairs, key=sorted))
 
 
-def _in_plan_terms(scene: Scene, plan: Plan, joints: dict[str, tuple[float, float]], residual: float,
-                   values: list[float] | None = None) -> AssemblyMode:
-    """The mode at configuration ``joints`` described in ``plan``'s terms: its parameters
-    (``values``, or measured on the configuration) and its free-sign branch
-    (:func:`_branch_signs`)."""
-    mode = AssemblyMode({}, (), joints, residual)
-    values = values if values is not None else [_squared_distance(mode, *pair) for pair in plan.parameters]
-    names = [parameter_name(pair) for pair in plan.parameters]
-    scale = distance_bound(scene) ** 2
-    return AssemblyMode(dict(zip(names, values, strict=True)), _branch_signs(mode, plan, scale), joints, residual)
-
-
 def _squared_distance(mode: AssemblyMode, u: str, v: str) -> float:
     (xu, yu), (xv, yv) = mode.joints[u], mode.joints[v]
     return (xu - xv) ** 2 + (yu - yv) ** 2
-
-
-def _branch_signs(mode: AssemblyMode, plan: Plan, scale: float) -> tuple[int, ...]:
-    """The orientation of each free-sign triangle of ``plan`` in ``mode``: 0 where its
-    doubled area is below 1e-6 of the squared size, since at a coincidence the numeric
-    method places joints to about √ε of the size only (a tangency: thesis §5.1.3.2's
-    quadruple root)."""
-    signs = []
-    for i, j, k in plan.free_sign_triangles:
-        (xi, yi), (xj, yj), (xk, yk) = mode.joints[i], mode.joints[j], mode.joints[k]
-        cross = (xj - xi) * (yk - yi) - (yj - yi) * (xk - xi)
-        signs.append(0 if abs(cross) <= 1e-6 * scale else int(math.copysign(1, cross)))
-    return tuple(signs)

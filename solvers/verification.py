@@ -39,28 +39,56 @@ def joint_residual(scene: Scene, points: dict[str, complex]) -> float:
 
 
 def joint_residuals(scene: Scene, joints: list[str], points: np.ndarray) -> np.ndarray:
-    """For configurations ``points`` (complex (K, J), joints named ``joints``): the largest
-    relative error on every link dimension and ground joint; 1.0 if a rigid link is
-    mirrored (its widest triangle reversed); inf where a joint is not finite. For
-    coincident joints (target 0) the error is relative to the link's size."""
+    """For configurations ``points`` (complex (K, J), points named ``joints``: joint
+    names, and ``P9'``, ``P9''`` for a slider's two points, :meth:`Scene.point_name`): the
+    largest relative error on every link dimension, slider and ground joint; 1.0 if a
+    rigid link is mirrored (its widest triangle reversed) or a slider's axis reversed on
+    one link; inf where a joint is not finite. For coincident joints (target 0) the
+    error is relative to the link's size."""
     at = {j: points[:, n] for n, j in enumerate(joints)}
     residual = np.zeros(len(points))
     for link in scene.links:
+        point = {joint: at[scene.point_name(link.name, joint)] for joint in link.joints}
         size = max(float(target) for target in link.squared_distances.values())
         for pair, target in link.squared_distances.items():
             u, v = tuple(pair)
-            residual = np.maximum(residual, np.abs(np.abs(at[u] - at[v]) ** 2 - float(target)) / (float(target) or size))
+            error = np.abs(np.abs(point[u] - point[v]) ** 2 - float(target)) / (float(target) or size)
+            residual = np.maximum(residual, error)
         triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
         if triangle is not None:
-            i, j, k = (at[n] for n in triangle)
+            i, j, k = (point[n] for n in triangle)
             cross = ((j - i).conjugate() * (k - i)).imag
             mirrored = np.where(cross > 0, 1, -1) != scene.orientation(triangle)
             residual = np.where(mirrored, np.maximum(residual, 1.0), residual)
     size = distance_bound(scene)
+    for slider in scene.sliders:
+        residual = np.maximum(residual, _slider_residuals(scene, slider, at, size))
     for joint, (x, y) in scene.world.items():
         target = complex(float(x), float(y))
-        residual = np.maximum(residual, np.abs(at[joint] - target) / max(abs(target), size))
+        residual = np.maximum(residual, np.abs(at[scene.point_name(scene.ground, joint)] - target) / max(abs(target), size))
     return np.where(np.isfinite(points).all(axis=1), residual, np.inf)
+
+
+def slider_axis(scene: Scene, slider, link: str, at: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """(point, unit direction) of a slider's axis as fixed in ``link``, in world
+    coordinates (complex arrays): the vector from the slider's point on that link to the
+    reference joint, turned back by its angle α (thesis §4.1)."""
+    axis = slider.axis_on(link)
+    foot = at[scene.point_name(link, slider.joint)]
+    turned = (at[scene.point_name(link, axis.reference)] - foot) * complex(float(axis.direction[0]),
+                                                                            -float(axis.direction[1]))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return foot, turned / np.abs(turned)
+
+
+def _slider_residuals(scene: Scene, slider, at: dict[str, np.ndarray], size: float) -> np.ndarray:
+    """A slider's errors: the sine of the angle between its two links' axes, the
+    distance of the second link's point from the first link's axis (relative to the
+    linkage's size), and 1.0 where the axes point opposite ways (another mechanism)."""
+    (foot, direction), (other_foot, other_direction) = (slider_axis(scene, slider, axis.link, at) for axis in slider.axes)
+    turn = direction.conjugate() * other_direction
+    off_axis = np.abs((direction.conjugate() * (other_foot - foot)).imag) / size
+    return np.where(turn.real > 0, np.maximum(np.abs(turn.imag), off_axis), 1.0)
 
 
 def same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:

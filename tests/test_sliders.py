@@ -74,9 +74,47 @@ def test_a_slider_scene_names_the_two_points_of_the_joint():
     assert scene.exact
 
 
-def test_the_backends_refuse_sliders_with_a_clear_message():
-    with pytest.raises(SolverError, match="slider joints P9: the backends do not solve slider joints yet"):
+def test_the_bilateration_backends_refuse_sliders_with_a_clear_message():
+    with pytest.raises(SolverError, match="slider joints P9: the numeric method does not solve slider joints yet.*"
+                                          "use --method msolve"):
         solve(load_scene(EXAMPLES / "7-B3-slider-P9.json"))
+
+
+@needs_msolve
+@pytest.mark.parametrize("example, name, published", [
+    ("7-B3-slider-P9", "s1,6", [49.5561, 50.1965, 50.6270, 85.0000]),
+    ("7-B3-sliders-P8-P9", "s1,6", [48.1037, 85.0000, 88.2000, 88.5483]),
+    ("7-B3-slider-P1", "t1,6", [7.4867, 8.7825]),
+])
+def test_the_msolve_method_solves_slider_chains_in_the_thesis_variable(example, name, published):
+    solution = solve(load_scene(EXAMPLES / f"{example}.json"), method="msolve")
+    assert solution.parameters == (name,)
+    assert [round(mode.parameters[name], 4) for mode in solution.assembly_modes] == published
+    assert all(mode.max_residual < 1e-12 for mode in solution.assembly_modes)
+
+
+@needs_msolve
+def test_a_slider_residual_sees_a_turned_or_shifted_axis():
+    """The verification every method shares (solvers/verification.py): a configuration
+    of the P9 chain verifies to rounding; turning link t789 about P9'' by 1e-3 rad, or
+    moving it off the axis, is an error of that size; reversing it is 1."""
+    from baranov.solvers.verification import joint_residual
+
+    scene = load_scene(EXAMPLES / "7-B3-slider-P9.json")
+    mode = {name: complex(*xy) for name, xy in msolve_modes(scene).configurations[0].items()}
+    assert joint_residual(scene, mode) < 1e-12
+    moved = ("P7", "P8", "P9''")
+
+    def changed(transform):
+        return {name: transform(point) if name in moved else point for name, point in mode.items()}
+
+    pivot = mode["P9''"]
+    turned = changed(lambda p: pivot + (p - pivot) * complex(math.cos(1e-3), math.sin(1e-3)))
+    assert 5e-4 < joint_residual(scene, turned) < 2e-3
+    shifted = changed(lambda p: p + 1e-3j * (mode["P9'"] - mode["P9''"]) / abs(mode["P9'"] - mode["P9''"]))
+    assert joint_residual(scene, shifted) > 1e-6
+    reversed_link = changed(lambda p: pivot - (p - pivot))
+    assert joint_residual(scene, reversed_link) >= 1.0
 
 
 def _with_sliders(sliders) -> dict:

@@ -1,0 +1,106 @@
+"""msolve as a solving method (issue 24): every real assembly mode of a scene — slider
+joints included — from the Cartesian system, solved exactly by msolve
+(:mod:`~baranov.solvers.msolve`), each configuration verified on every link dimension
+and slider, and described in the terms of the truss's best plan.
+
+A plan parameter s_{u,v} is measured on the configuration; where u is a slider joint it
+becomes t_{u,v}, the signed distance of P_v to the slider's axis (thesis §4.2.4: a
+slider at an end of the variable segment). The free-sign branch is given for
+all-revolute scenes only (a triangle with a vertex at infinity has no finite orientation
+to measure here).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from baranov.planner import Plan, best_plan, parameter_name
+from baranov.scene import Scene
+
+from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
+from .msolve import MsolveUnavailable, msolve_modes
+from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residual, slider_axis, sorted_modes
+
+
+def solve_msolve(scene: Scene, timeout: float = 600.0) -> Solution:
+    """All real assembly modes of ``scene`` by msolve (exact dimensions needed). Raises
+    :class:`MovableLinkageError` where the solution set has positive dimension and
+    :class:`SolverError` where msolve is missing, fails or a mode does not verify.
+
+    >>> from baranov.scene import load_scene
+    >>> solution = solve_msolve(load_scene("examples/7-B3-slider-P9.json"))  # doctest: +SKIP
+    >>> [round(mode.parameters["s1,6"], 4) for mode in solution.assembly_modes]  # doctest: +SKIP
+    [49.5561, 50.1965, 50.627, 85.0]
+    """
+    plan = best_plan(scene.chain)
+    return Solution("msolve", plan.number_of_parameters, tuple(_names(scene, plan)),
+                    () if scene.sliders else plan.free_sign_triangles, verified_modes(scene, plan, timeout))
+
+
+def verified_modes(scene: Scene, plan: Plan, timeout: float = 600.0) -> tuple[AssemblyMode, ...]:
+    """msolve's configurations of ``scene``, each verified on every link dimension and
+    slider and described in ``plan``'s terms, sorted. Errors as :func:`solve_msolve`."""
+    if not scene.exact:
+        raise SolverError("the msolve method needs exact dimensions (integers, decimals or fractions such as "
+                          "\"9/5\"; a float from Python is binary)")
+    try:
+        result = msolve_modes(scene, timeout=timeout)
+    except MsolveUnavailable as error:
+        raise SolverError(str(error)) from None
+    if result.status == "infinite":
+        raise MovableLinkageError("msolve: a positive-dimensional solution set; the linkage moves with these "
+                                  "dimensions (or a complex curve of solutions passes through its real ones)")
+    if result.status != "finite":
+        raise SolverError(f"msolve: {result.message}")
+    modes = []
+    for configuration in result.configurations:
+        residual = joint_residual(scene, {j: complex(*p) for j, p in configuration.items()})
+        if residual >= RESIDUAL_TOLERANCE:
+            raise SolverError(f"msolve's configuration does not verify (residual {residual:.1e})")
+        modes.append(described_mode(scene, plan, configuration, residual))
+    return sorted_modes(modes)
+
+
+def _names(scene: Scene, plan: Plan) -> list[str]:
+    sliders = {slider.joint for slider in scene.sliders}
+    return [parameter_name((u, v)).replace("s", "t", 1) if u in sliders or v in sliders else parameter_name((u, v))
+            for u, v in plan.parameters]
+
+
+def described_mode(scene: Scene, plan: Plan, configuration: dict[str, tuple[float, float]], residual: float,
+                   values: list[float] | None = None) -> AssemblyMode:
+    """The mode at ``configuration`` in ``plan``'s terms: its parameters (``values``, or
+    measured on the configuration) and, for an all-revolute scene, its free-sign branch
+    (:func:`branch_signs`)."""
+    if values is not None:
+        return AssemblyMode(dict(zip(_names(scene, plan), values, strict=True)),
+                            branch_signs(configuration, plan, scene), configuration, residual)
+    at = {name: np.array([complex(*xy)]) for name, xy in configuration.items()}
+    sliders = {slider.joint: slider for slider in scene.sliders}
+    values = []
+    for u, v in plan.parameters:
+        if u in sliders or v in sliders:
+            slider, other = (sliders[u], v) if u in sliders else (sliders[v], u)
+            link = next(axis.link for axis in slider.axes)
+            foot, direction = slider_axis(scene, slider, link, at)
+            values.append(float((direction.conjugate() * (at[other] - foot)).imag[0]))
+        else:
+            values.append(abs(at[u][0] - at[v][0]) ** 2)
+    signs = () if scene.sliders else branch_signs(configuration, plan, scene)
+    return AssemblyMode(dict(zip(_names(scene, plan), values, strict=True)), signs, configuration, residual)
+
+
+def branch_signs(joints: dict[str, tuple[float, float]], plan: Plan, scene: Scene) -> tuple[int, ...]:
+    """The orientation of each free-sign triangle of ``plan`` in the configuration
+    ``joints``: 0 where its doubled area is below 1e-6 of the squared size, since at a
+    coincidence the numeric method places joints to about √ε of the size only (a
+    tangency: thesis §5.1.3.2's quadruple root)."""
+    scale = distance_bound(scene) ** 2
+    signs = []
+    for i, j, k in plan.free_sign_triangles:
+        (xi, yi), (xj, yj), (xk, yk) = joints[i], joints[j], joints[k]
+        cross = (xj - xi) * (yk - yi) - (yj - yi) * (xk - xi)
+        signs.append(0 if abs(cross) <= 1e-6 * scale else int(math.copysign(1, cross)))
+    return tuple(signs)
