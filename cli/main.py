@@ -102,8 +102,9 @@ def run_solve(args: argparse.Namespace) -> int:
     from baranov.scene import load_scene
     from baranov.solvers import ExactSolution, available_backends
     from baranov.solvers import solve as solve_scene
+    from baranov.solvers.progress import watching
 
-    from .output import mode_table, modes_csv
+    from .output import characteristic_lines, mode_table, modes_csv
 
     if args.method not in available_backends():
         raise UsageError(f"--method {args.method}: choose from {', '.join(available_backends())}")
@@ -113,7 +114,8 @@ def run_solve(args: argparse.Namespace) -> int:
         raise UsageError(f"--time-limit {args.time_limit:g}: a positive number of seconds, for the numeric method")
     scene = load_scene(args.scene)
     options = {"time_limit": args.time_limit} if args.time_limit is not None else {}
-    solution = solve_scene(scene, method=args.method, **options)
+    with watching():  # a status line on a terminal while the solve runs
+        solution = solve_scene(scene, method=args.method, **options)
     if args.plot is not None:
         from baranov.solvers.drawing import render_modes  # matplotlib only when drawing
 
@@ -130,9 +132,7 @@ def run_solve(args: argparse.Namespace) -> int:
           f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} ({solution.method})")
     if isinstance(solution, ExactSolution):
         if solution.characteristic_polynomial is not None:
-            polynomial = solution.characteristic_polynomial
-            print(f"characteristic polynomial in {polynomial.variable}: degree {polynomial.degree}, "
-                  f"{len(polynomial.real_roots())} real roots (isolated in certified enclosures)")
+            print("\n".join(characteristic_lines(solution)))
         print(f"assembly modes: {solution.certificate.summary()}")
     for sentence in solution.undecided:
         print(f"undecided: {sentence}")

@@ -36,6 +36,47 @@ def mode_table(solution: Solution, joints: bool = False, width: int = 100) -> li
     return lines
 
 
+#: Names of root multiplicities.
+MULTIPLICITY = {2: "double", 3: "triple", 4: "quadruple"}
+#: Multiple roots and rootless roots listed by name (more are counted).
+LISTED = 5
+
+
+def characteristic_lines(solution) -> list[str]:
+    """What ``baranov solve --method exact`` says of the characteristic polynomial: its
+    degree and real roots, naming the multiple ones (where modes merge: thesis §3.3.3,
+    and 3-RPR-I's double root at 49 printed "2 real roots" above "1 assembly mode"
+    without a word, issue 26) and the real roots that give no assembly mode (their
+    configurations are not real on any branch)."""
+    polynomial = solution.characteristic_polynomial
+    roots = polynomial.distinct_real_roots()
+    total = sum(multiplicity for _, multiplicity in roots)
+    line = (f"characteristic polynomial in {polynomial.variable}: degree {polynomial.degree}, "
+            f"{total} real root{'s' if total != 1 else ''}")
+    multiple = [(root, multiplicity) for root, multiplicity in roots if multiplicity > 1]
+    if multiple:
+        named = ", ".join(f"{_shown(root)} {MULTIPLICITY.get(m, f'of multiplicity {m}')}" for root, m in multiple[:LISTED])
+        line += (f" counted with multiplicity ({len(roots)} distinct; {named}{' …' if len(multiple) > LISTED else ''}:"
+                 " modes merge there)")
+    lines = [line + ", isolated in certified enclosures"]
+    values = [mode.parameters.get(polynomial.variable) for mode in solution.assembly_modes]
+    rootless = [root for root, _ in roots if not any(value is not None and _within(root, value) for value in values)]
+    if rootless:
+        named = ", ".join(_shown(root) for root in rootless[:LISTED]) + (" …" if len(rootless) > LISTED else "")
+        lines.append(f"{len(rootless)} real root{'s' if len(rootless) != 1 else ''} ({named}) "
+                     f"give{'s' if len(rootless) == 1 else ''} no assembly mode: no real configuration on any branch")
+    return lines
+
+
+def _shown(root) -> str:
+    return coordinate(float(root.mid()))
+
+
+def _within(root, value: float) -> bool:
+    middle, radius = float(root.mid()), float(root.rad())
+    return abs(value - middle) <= radius + 1e-9 * max(1.0, abs(middle))
+
+
 def _wrapped(items: list[str], width: int, indent: int) -> list[str]:
     lines, current = [], ""
     for item in items:

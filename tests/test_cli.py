@@ -240,6 +240,31 @@ def test_exact_solve_says_what_it_certifies():
     assert data["certificate"] == {"complete": True, "probabilistic": None, "gaps": []}
 
 
+def test_exact_solve_names_a_double_root():
+    """3-RPR-I (thesis §5.1.3.1): degree 6 with a double real root at s1,5 = 49 and one
+    mode; the output says why there are two roots and one mode (issue 26)."""
+    result = run("solve", str(REPO / "examples" / "3-RPR-I.json"), "--method", "exact")
+    assert result.returncode == 0, result.stderr
+    assert ("characteristic polynomial in s1,5: degree 6, 2 real roots counted with multiplicity "
+            "(1 distinct; 49 double: modes merge there)") in result.stdout
+
+
+def test_characteristic_lines_name_roots_without_modes():
+    """A real root of the norm whose configurations are complex on every branch gives
+    no mode, and the output says so (a solution with its modes removed stands in)."""
+    from dataclasses import replace
+
+    from baranov.cli.output import characteristic_lines
+    from baranov.scene import load_scene
+    from baranov.solvers import solve
+
+    solution = solve(load_scene(REPO / "examples" / "5-B1.json"), method="exact")
+    lines = characteristic_lines(replace(solution, assembly_modes=solution.assembly_modes[1:]))
+    assert lines[0].endswith("degree 6, 6 real roots, isolated in certified enclosures")
+    first = solution.assembly_modes[0].parameters["s1,5"]
+    assert lines[1].startswith(f"1 real root ({first:.10g}) gives no assembly mode")
+
+
 @pytest.mark.parametrize("args", [["--time-limit", "5", "--method", "exact"], ["--time-limit", "0"],
                                   ["--time-limit", "-1"]])
 def test_time_limit_is_positive_and_numeric_only(args):

@@ -52,6 +52,7 @@ from ..coincidence import (
 )
 from ..modes import AssemblyMode, Certificate, ExactSolution
 from ..placement import compile_scene, placed_from_ground
+from ..progress import report_stage
 from ..verification import RESIDUAL_TOLERANCE, joint_residual, same_mode, sorted_modes
 from .characteristic import (
     TEST_BITS,
@@ -95,10 +96,14 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     if plan.number_of_parameters == 0:
         modes = assembly_modes(scene, compile_scene(scene, plan), [(np.zeros(0), branch) for branch in branches])
     elif plan.number_of_parameters == 1:
+        report_stage("exact: deriving the characteristic polynomial")
         polynomial = characteristic_polynomial(scene, plan)
+        report_stage(f"exact: isolating the real roots (degree {polynomial.degree}) and placing the modes")
         modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches)
     elif plan.number_of_parameters == 2:
+        report_stage("exact: the characteristic polynomial from its images modulo primes (coupling degree 2)")
         polynomial, fibers = characteristic_polynomial_two(scene, plan)
+        report_stage(f"exact: isolating the real roots (degree {polynomial.degree}) and placing the modes")
         modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches, fibers)
         notes.append(LIFTING_NOTE)
         # coupling 2: where a base pair (a parameter's included) coincides the plan is undefined

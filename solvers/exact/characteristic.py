@@ -172,12 +172,16 @@ class CharacteristicPolynomial:
     def real_roots(self) -> list[flint.arb]:
         """Certified enclosures of the real roots, increasing, each repeated by its
         multiplicity (flint's complex root isolation returns real roots as real balls)."""
-        roots = []
-        for factor, multiplicity in self.factors:
-            for root, _ in factor.complex_roots():
-                if root.imag == 0:
-                    roots += [root.real] * multiplicity
-        return sorted(roots, key=lambda r: float(r.mid()))
+        return [root for root, multiplicity in self.distinct_real_roots() for _ in range(multiplicity)]
+
+    def distinct_real_roots(self) -> list[tuple[flint.arb, int]]:
+        """The distinct real roots, increasing, each as (certified enclosure,
+        multiplicity): a root of multiplicity m > 1 is where m modes merge (a singular
+        configuration, thesis §3.3.3) or a double root of two branches' conditions. The
+        factors are distinct and irreducible, so no two share a root."""
+        roots = [(root.real, multiplicity) for factor, multiplicity in self.factors
+                 for root, _ in factor.complex_roots() if root.imag == 0]
+        return sorted(roots, key=lambda item: float(item[0].mid()))
 
     def to_dict(self) -> dict:
         """JSON form: integer coefficients (highest degree first, as exact strings) and

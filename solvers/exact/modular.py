@@ -52,6 +52,7 @@ import flint
 from baranov.planner import Plan
 from baranov.scene import Scene
 
+from ..progress import report_stage
 from .characteristic import ExactMethodError, RadicalTower, eliminate_radicals, radical_tower
 from .resultant import chinese_remainder, coefficients_in_v, resultants_modulo
 
@@ -247,6 +248,8 @@ def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0,
             residues, modulus, previous = [0] * len(image), 1, None
         residues = chinese_remainder(residues, modulus, image, prime)
         modulus *= prime
+        report_stage(f"exact: characteristic polynomial of degree {len(image) - 1} modulo primes, "
+                     f"{modulus.bit_length()} bits so far")
         fractions = [rational_reconstruction(r, modulus) for r in residues]
         stable = stable + 1 if None not in fractions and fractions == previous else 0
         previous = fractions

@@ -31,6 +31,7 @@ from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
 from ..modes import MovableLinkageError, signs_text
+from ..progress import report_stage
 
 #: A local minimum of |f| below this but not below 1e-7 (a root where f is not smooth:
 #: f ≈ c√|s − s0| at a singular mode, issue 25's 7/N3 instance at s1,9 = 13 with P6 = P9
@@ -158,6 +159,7 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
         if time.monotonic() > deadline:
             left.append(signs_text(branch))
             continue
+        report_stage(f"numeric: sign branch {b + 1} of {len(branches)}")
 
         def sampled(points: np.ndarray, branch=branch) -> np.ndarray:
             return compiled.residuals(points[:, None], branch[None, :])[0, :, 0]

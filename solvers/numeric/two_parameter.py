@@ -35,6 +35,7 @@ from scipy.ndimage import maximum_filter, minimum_filter
 from baranov.closure import CompiledSystem
 
 from ..candidates import distinct_candidates
+from ..progress import report_stage
 
 #: Samples per axis of the first grid (uniform in the distances √u, √v).
 GRID = 160
@@ -110,10 +111,12 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
         if time.monotonic() > deadline:
             unsearched = interior
             break
+        report_stage(f"numeric: two-parameter search, level {depth + 2} of {DEPTH + 1} ({len(interior)} cells)")
         interior, boundary, windows, starts = _examine(compiled, branches, interior, SPLIT,
                                                        last=low if depth == DEPTH - 1 else None)
         all_starts.append(starts)
     to_polish.append(boundary)
+    report_stage("numeric: Newton's method from the suspect cells")
     roots, stalled = _newton(compiled, branches, *(np.concatenate(parts) for parts in zip(*all_starts, strict=True)))
     polish_points = np.concatenate([stalled[0]] + [points for points, _ in to_polish])
     polish_branches = np.concatenate([stalled[1]] + [cells.branch for _, cells in to_polish])
