@@ -81,25 +81,117 @@ def modes_figure(scene: Scene, solution: Solution, columns: int | None = None) -
 
 
 def _draw_mode(axis, scene: Scene, mode, extent: float) -> None:
-    """The links (ground hatched, k-ary links filled, bars), joints and their labels."""
+    """The links (ground hatched, k-ary links filled, bars), slider axes (dashed, the
+    joint's two points as squares), joints and their labels (:func:`_label_directions`)."""
+    segments, polygons = [], []
     for link in scene.links:
-        points = [mode.joints[j] for j in link.joints]
+        points = [mode.joints[scene.point_name(link.name, j)] for j in link.joints]
         ground = link.name == scene.ground
         if len(points) == 2:
             (x1, y1), (x2, y2) = points
             axis.plot([x1, x2], [y1, y2], color="0.15", linewidth=3 if not ground else 5,
                       solid_capstyle="round", zorder=2)
+            segments.append((points[0], points[1]))
         else:
-            axis.add_patch(Polygon(_hull(points), closed=True, facecolor="0.82" if not ground else "0.95",
+            hull = _hull(points)
+            axis.add_patch(Polygon(hull, closed=True, facecolor="0.82" if not ground else "0.95",
                                    edgecolor="0.15", linewidth=1.5, hatch="////" if ground else None, zorder=1))
-    centre = (sum(x for x, _ in mode.joints.values()) / len(mode.joints),
-              sum(y for _, y in mode.joints.values()) / len(mode.joints))
-    for names, (x, y) in _label_groups(mode.joints, 1e-6 * extent):
-        axis.plot(x, y, "o", markersize=6, markerfacecolor="white", markeredgecolor="0.1", zorder=3)
-        dx, dy = x - centre[0], y - centre[1]
-        length = math.hypot(dx, dy) or 1.0
-        axis.annotate("=".join(names), (x, y), textcoords="offset points", xytext=(9 * dx / length, 9 * dy / length),
-                      ha="left" if dx >= 0 else "right", va="bottom" if dy >= 0 else "top", fontsize=8, zorder=4)
+            segments += [(hull[n], hull[(n + 1) % len(hull)]) for n in range(len(hull))]
+            polygons.append(hull)
+    sliders = {scene.point_name(axis_.link, slider.joint) for slider in scene.sliders for axis_ in slider.axes}
+    for slider in scene.sliders:
+        segments.append(_draw_slider_axis(axis, scene, slider, mode, extent))
+    groups = _label_groups(mode.joints, 1e-6 * extent)
+    directions = _label_directions(groups, segments, polygons, extent)
+    for (names, (x, y)), angle in zip(groups, directions, strict=True):
+        marker = "s" if any(name in sliders for name in names) else "o"
+        axis.plot(x, y, marker, markersize=6, markerfacecolor="white", markeredgecolor="0.1", zorder=3)
+        dx, dy = math.cos(angle), math.sin(angle)
+        axis.annotate("=".join(names), (x, y), textcoords="offset points", xytext=(10 * dx, 10 * dy),
+                      ha="left" if dx > 0.3 else "right" if dx < -0.3 else "center",
+                      va="bottom" if dy > 0.3 else "top" if dy < -0.3 else "center", fontsize=8, zorder=4)
+
+
+def _draw_slider_axis(axis, scene: Scene, slider, mode, extent: float):
+    """A slider's axis, dashed, through its two points and a little beyond; returns it as
+    a segment (labels keep off it)."""
+    first, second = (mode.joints[scene.point_name(a.link, slider.joint)] for a in slider.axes)
+    axis_link = slider.axes[0]
+    reference = mode.joints[scene.point_name(axis_link.link, axis_link.reference)]
+    turned = complex(reference[0] - first[0], reference[1] - first[1]) * complex(
+        float(axis_link.direction[0]), -float(axis_link.direction[1]))
+    unit = turned / abs(turned)
+    along = [0.0, ((complex(*second) - complex(*first)) * unit.conjugate()).real]
+    low, high = min(along) - 0.15 * extent, max(along) + 0.15 * extent
+    start, end = complex(*first) + low * unit, complex(*first) + high * unit
+    axis.plot([start.real, end.real], [start.imag, end.imag], color="0.35", linewidth=1, linestyle="--", zorder=2)
+    return (start.real, start.imag), (end.real, end.imag)
+
+
+#: Directions tried for a joint's label; the label's offset from its joint, and a
+#: character's width and height, relative to the drawing's extent (a 10-point offset and
+#: 8-point text in a 3.6-inch panel, whose width spans about 1.24 extents).
+LABEL_DIRECTIONS = 16
+LABEL_OFFSET = 0.048
+CHARACTER = (0.021, 0.038)
+
+
+def _label_directions(groups: list[tuple[list[str], tuple[float, float]]], segments: list, polygons: list,
+                      extent: float) -> list[float]:
+    """For each joint (group), the direction of its label: of LABEL_DIRECTIONS around
+    it, the one whose label box — its corners and centre, the box anchored as
+    :func:`_draw_mode` anchors the text — keeps farthest from every link edge, bar,
+    slider axis, joint and label already placed (a point inside a filled link counts as
+    touching it); ties go away from the drawing's centre. Greedy, O(J · D · (S + J)) for
+    J joints, D directions, S segments."""
+    joints = [at for _, at in groups]
+    centre = (sum(x for x, _ in joints) / len(joints), sum(y for _, y in joints) / len(joints))
+    placed: list[tuple[float, float]] = []
+    chosen = []
+    for names, (x, y) in groups:
+        away = math.atan2(y - centre[1], x - centre[0])
+        width = CHARACTER[0] * extent * len("=".join(names))
+        best, best_score, best_box = away, -math.inf, []
+        for step in range(LABEL_DIRECTIONS):
+            angle = away + 2 * math.pi * step / LABEL_DIRECTIONS
+            box = _label_box((x, y), angle, width, CHARACTER[1] * extent, LABEL_OFFSET * extent)
+            clearance = min([_segment_distance(point, a, b) for point in box for a, b in segments]
+                            + [math.dist(point, other) for point in box for other in joints + placed] + [extent])
+            if any(_inside(point, polygon) for point in box for polygon in polygons):
+                clearance = 0.0
+            score = clearance + 1e-3 * extent * math.cos(angle - away)
+            if score > best_score:
+                best, best_score, best_box = angle, score, box
+        chosen.append(best)
+        placed += best_box
+    return chosen
+
+
+def _label_box(joint, angle: float, width: float, height: float, offset: float) -> list[tuple[float, float]]:
+    """Centre and corners of a label anchored ``offset`` from ``joint`` in direction
+    ``angle`` (left/right/centre and bottom/top/centre as :func:`_draw_mode` aligns it)."""
+    dx, dy = math.cos(angle), math.sin(angle)
+    x, y = joint[0] + offset * dx, joint[1] + offset * dy
+    left = x if dx > 0.3 else x - width if dx < -0.3 else x - width / 2
+    bottom = y if dy > 0.3 else y - height if dy < -0.3 else y - height / 2
+    return [(left + width / 2, bottom + height / 2), (left, bottom), (left + width, bottom),
+            (left, bottom + height), (left + width, bottom + height)]
+
+
+def _segment_distance(point, start, end) -> float:
+    (px, py), (ax, ay), (bx, by) = point, start, end
+    dx, dy = bx - ax, by - ay
+    length = dx * dx + dy * dy
+    t = 0.0 if length == 0 else max(0.0, min(1.0, ((px - ax) * dx + (py - ay) * dy) / length))
+    return math.hypot(px - ax - t * dx, py - ay - t * dy)
+
+
+def _inside(point, polygon) -> bool:
+    """Whether ``point`` lies inside the convex, counter-clockwise ``polygon``."""
+    (px, py) = point
+    return len(polygon) >= 3 and all(
+        (bx - ax) * (py - ay) - (by - ay) * (px - ax) > 0
+        for (ax, ay), (bx, by) in zip(polygon, polygon[1:] + polygon[:1], strict=True))
 
 
 def _label_groups(joints: dict, tolerance: float) -> list[tuple[list[str], tuple[float, float]]]:

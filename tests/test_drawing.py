@@ -1,7 +1,6 @@
 """Pictures of assembly modes (solvers/drawing.py): no text runs into another text or
 into a panel it does not belong to, for every example (issue 26)."""
 
-import json
 from pathlib import Path
 
 import pytest
@@ -10,9 +9,24 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from baranov.scene import load_scene
 from baranov.solvers import solve
 from baranov.solvers.drawing import modes_figure, render_modes
+from baranov.solvers.msolve import find_msolve
 
 EXAMPLES = sorted(p.stem for p in (Path(__file__).resolve().parents[1] / "examples").glob("*.json")
-                  if not p.stem.startswith(("11-", "13-")) and "sliders" not in json.loads(p.read_text()))
+                  if not p.stem.startswith(("11-", "13-")))
+#: At most this fraction of an example's joint labels may cross a link, bar or slider axis
+#: (measured with this layout: 38 of the 568 labels of the all-revolute examples, where 107
+#: crossed with labels pushed straight away from the centre; 44 of 671 with the slider
+#: chains; 26 of 168 on the crowded 9-B28).
+CROSSING = 0.2
+
+
+def _figure(example: str):
+    scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / f"{example}.json")
+    if scene.sliders:
+        if find_msolve() is None:
+            pytest.skip("slider chains are solved by msolve, not installed")
+        return modes_figure(scene, solve(scene, method="msolve"))
+    return modes_figure(scene, solve(scene))
 
 
 def _overlap(a, b) -> bool:
@@ -21,8 +35,7 @@ def _overlap(a, b) -> bool:
 
 @pytest.mark.parametrize("example", EXAMPLES)
 def test_titles_and_labels_do_not_collide(example):
-    scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / f"{example}.json")
-    figure = modes_figure(scene, solve(scene))
+    figure = _figure(example)
     renderer = FigureCanvasAgg(figure).get_renderer()
     figure.draw(renderer)
     panels = [axis for axis in figure.axes if axis.axison]
@@ -33,11 +46,40 @@ def test_titles_and_labels_do_not_collide(example):
         assert not _overlap(title, heading), f"title {n + 1} runs into the heading"
         assert not any(_overlap(title, frame) for frame in frames), f"title {n + 1} runs into a panel"
         assert not any(_overlap(title, other) for m, other in enumerate(titles) if m != n)
+    labels = crossing = 0
     for axis in panels:
+        segments = _segments(axis)
         for text in axis.texts:
             box = text.get_window_extent(renderer)
             assert not any(_overlap(box, title) for title in titles), f"label {text.get_text()} on a title"
             assert not _overlap(box, heading)
+            labels += 1
+            crossing += any(_crosses(start, end, box) for start, end in segments)
+    assert crossing <= CROSSING * labels, f"{crossing} of {labels} joint labels cross a link"
+
+
+def _segments(axis) -> list:
+    """Every bar, slider axis and edge of a filled link, in display coordinates."""
+    segments = [axis.transData.transform(line.get_xydata()) for line in axis.lines if len(line.get_xydata()) == 2]
+    for patch in axis.patches:
+        corners = patch.get_transform().transform(patch.get_path().vertices)
+        segments += [(corners[n], corners[(n + 1) % len(corners)]) for n in range(len(corners))]
+    return segments
+
+
+def _crosses(start, end, box) -> bool:
+    """Whether the segment meets the box (Liang–Barsky clipping)."""
+    dx, dy = end[0] - start[0], end[1] - start[1]
+    low, high = 0.0, 1.0
+    for p, q in ((-dx, start[0] - box.x0), (dx, box.x1 - start[0]), (-dy, start[1] - box.y0), (dy, box.y1 - start[1])):
+        if p == 0:
+            if q < 0:
+                return False
+        elif p < 0:
+            low = max(low, q / p)
+        else:
+            high = min(high, q / p)
+    return low <= high
 
 
 def test_a_png_is_written():
