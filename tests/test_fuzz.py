@@ -18,21 +18,26 @@ from hypothesis import strategies as st
 
 from baranov.scene import scene_from_dict
 from baranov.solvers import solve
+from baranov.solvers.msolve import find_msolve
 
 REPO = Path(__file__).resolve().parents[1]
 SMALL_EXAMPLES = ["3-B1", "5-B1", "7-B1", "7-B2"]
+SLIDER_EXAMPLES = ["7-B3-slider-P9", "7-B3-sliders-P8-P9", "7-B3-slider-P1"]
 EXAMPLES = {name: json.loads((REPO / "examples" / f"{name}.json").read_text(encoding="utf-8"))
-            for name in SMALL_EXAMPLES}
+            for name in SMALL_EXAMPLES + SLIDER_EXAMPLES}
 FUZZ_EXAMPLES = int(os.environ.get("BARANOV_FUZZ_EXAMPLES", "60"))
 FUZZ = settings(max_examples=FUZZ_EXAMPLES, deadline=None, suppress_health_check=[HealthCheck.too_slow],
                 derandomize="BARANOV_FUZZ_EXAMPLES" not in os.environ)
 
 SCALARS = (st.none() | st.booleans() | st.integers(-10**30, 10**30)
            | st.floats(allow_nan=True, allow_infinity=True) | st.text(max_size=12)
-           | st.sampled_from(["9/5", "-1", "0", "1e400", "P1,P2", "ccw", "cw", "P1", "ground", "2.5", "1/0"]))
+           | st.sampled_from(["9/5", "-1", "0", "1e400", "P1,P2", "ccw", "cw", "P1", "ground", "2.5", "1/0",
+                            "pi - atan(5/2)", "atan2(0, 0)", "atan(1/0)", "2 pi", "pi/3 + atan(1e400)"]))
 JSON_VALUES = st.recursive(SCALARS, lambda inner: st.lists(inner, max_size=4)
                            | st.dictionaries(st.sampled_from(["links", "ground", "name", "joints", "squared_length",
-                                                              "squared_distances", "orientation", "P1", "x"])
+                                                              "squared_distances", "orientation", "P1", "x",
+                                                              "sliders", "joint", "angles", "inputs", "angle",
+                                                              "distance", "degrees", "squared_distance"])
                                              | st.text(max_size=6), inner, max_size=4), max_leaves=12)
 
 
@@ -114,6 +119,24 @@ def test_perturbed_examples_give_modes_or_an_error(name, method, data):
         return
     options = {"time_limit": 20.0} if method == "numeric" else {}
     solution = _accepts_or_explains(lambda: solve(scene, method=method, **options))
+    event(f"{method}: {'solved' if solution is not None else 'refused'}")
+    if solution is not None:
+        for mode in solution.assembly_modes:
+            assert all(math.isfinite(c) for point in mode.joints.values() for c in point)
+
+
+@FUZZ
+@given(st.sampled_from(SLIDER_EXAMPLES), st.data())
+def test_perturbed_slider_chains_give_modes_or_an_error(name, data):
+    """Slider scenes (angles, joints, links perturbed): a scene or a SceneError; a scene
+    gives msolve's verified modes or a SolverError (the numeric method refuses sliders)."""
+    scene_data = _mutated(EXAMPLES[name], data.draw)
+    scene = _accepts_or_explains(lambda: scene_from_dict(scene_data))
+    if scene is None:
+        event("no scene")
+        return
+    method = "msolve" if find_msolve() is not None and scene.exact else "numeric"
+    solution = _accepts_or_explains(lambda: solve(scene, method=method))
     event(f"{method}: {'solved' if solution is not None else 'refused'}")
     if solution is not None:
         for mode in solution.assembly_modes:

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from shared import same_modes
 
 from baranov.enumerate import baranov_trusses
 from baranov.scene import load_scene, scene_from_dict
@@ -107,3 +108,16 @@ def test_match_configurations_pairs_modes_one_to_one():
     b = {"P1": (0.0, 0.0), "P2": (1.0, 1e-9)}
     assert match_configurations([a, b], [a]) == ([], [1])  # two found cannot both match one
     assert match_configurations([], [a]) == ([0], [])
+
+
+@needs_msolve
+@pytest.mark.parametrize("example", ["3-B1", "5-B1", "7-B1", "7-B2", "7-B3", "7-B3-section-4.2.1", "3-RPR-I",
+                                     "3-RPR-II", "3-RPR-III", "3-RPR-IV", "3-RPR-VI"])
+def test_the_msolve_method_returns_the_exact_backends_modes(example):
+    """Issue 24: ``method="msolve"`` returns exactly the exact backend's modes on the
+    examples (3-RPR-V has irrational link areas: no exact solve), mode for mode, with the
+    same parameters."""
+    scene = load_scene(Path(__file__).resolve().parents[1] / "examples" / f"{example}.json")
+    by_msolve, exact = solve(scene, method="msolve"), solve(scene, method="exact")
+    assert same_modes(scene, by_msolve.assembly_modes, exact.assembly_modes)
+    assert by_msolve.parameters == exact.parameters
