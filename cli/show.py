@@ -25,7 +25,8 @@ class ShowError(ValueError):
 def resolve_chain(argument: str, catalog: Path | None = None) -> tuple[str, KinematicChain]:
     """A title and the chain for a thesis name (9/B28) or a catalog id (11/N123)
     (:func:`baranov.catalog.named_truss`), a file (graph6, an edge list "u v" per line,
-    or JSON: a list of link pairs, or {"links": [[joint names], ...]}), or a graph6 string."""
+    or JSON: a list of link pairs, {"links": [[joint names], ...]}, or a scene file), or a
+    graph6 string."""
     path = Path(argument)
     if TRUSS_NAME.match(argument.upper()) and not path.is_file():
         return named_truss(argument, catalog)
@@ -41,6 +42,11 @@ def _chain_from_text(text: str, source: str) -> KinematicChain:
             data = json.loads(text)
         except ValueError as error:
             raise ShowError(f"{source}: not valid JSON ({error.msg}, line {error.lineno})") from None
+        if isinstance(data, dict) and isinstance(data.get("links"), list) and data["links"] \
+                and all(isinstance(link, dict) for link in data["links"]):
+            from baranov.scene import scene_from_dict  # a scene file: its linkage's chain
+
+            return scene_from_dict(data).chain
         if isinstance(data, dict) and "links" in data:
             return chain_from_links(data["links"])
         return chain_from_link_graph([tuple(edge) for edge in data])

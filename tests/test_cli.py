@@ -161,6 +161,14 @@ def test_show_latex_catalog_id_graph6_and_file(tmp_path):
     assert "plan 3 of 3" in run("show", "7/B3", "--plans", "3").stdout
 
 
+def test_show_reads_a_scene_file_as_its_linkage():
+    """``baranov show examples/7-B1.json`` (a scene) shows its chain and plans; it was
+    read as a chain file and refused ("joint name: lies on 7 links")."""
+    result = run("show", str(REPO / "examples" / "7-B3-section-4.2.1.json"))
+    assert result.returncode == 0, result.stderr
+    assert "links 7, joints 9" in result.stdout and "parameters s1,6" in result.stdout
+
+
 def test_show_finds_catalog_names_from_any_folder(tmp_path):
     """The catalog is package data: a name identified only in catalog/trusses-9.json (9/B5)
     resolves wherever the command runs."""
