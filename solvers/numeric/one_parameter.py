@@ -170,8 +170,8 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
         def failing(points: np.ndarray, branch=branch) -> np.ndarray:
             return compiled.first_failures(points[:, None], branch[None, :])[0]
 
-        points, values = _with_windows(grid, table[b], failures[b], radicands[b], margins[b], sampled, failing,
-                                       len(compiled.plan.steps))
+        points, values, narrow = _with_windows(grid, table[b], failures[b], radicands[b], margins[b], sampled,
+                                               failing, len(compiled.plan.steps))
         points, values, edges = _with_edges(points, values, sampled)
         roots = [edge for edge, value in edges if abs(value) < 1e-7]
         near: list[float] = []
@@ -193,6 +193,7 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
             candidates.append((np.array([root]), branch))
         candidates += _roots_at_folds(compiled, branch, edges)
         candidates += _roots_at_touching_radicands(compiled, branch, grid, failures[b], radicands[b])
+        candidates += _roots_at_crossing_radicands(compiled, branch, narrow)
         near_roots += [(np.array([x]), branch) for x in near]
     if left:
         undecided.append(f"branches {', '.join(left)}: not searched, the time limit was reached")
@@ -340,6 +341,48 @@ def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, g
     return found
 
 
+#: At most this many of the narrowest windows are searched for a one-point domain.
+MAX_NARROW = 16
+
+
+def _roots_at_crossing_radicands(compiled: CompiledSystem, branch: np.ndarray, cells: list[tuple[float, float]]):
+    """Candidates where the branch's feasible domain is a single point at which one
+    free-sign radicand turns negative as another turns positive: left of it one step
+    fails, right of it another, and window refinement narrows the cell forever without
+    a sample landing on the point (issue 25's 9/N17 drawn at a double root, seed 28:
+    P11 P4 P3 and P12 P5 P6 both flat at s10,1 = 1 exactly, the generating mode, missed).
+    Of the first MAX_NARROW cells left by :func:`_with_windows`, those across which one
+    free-sign radicand turns negative and another positive (one vectorised evaluation of
+    their ends: a window edge between two failing steps, two per branch on 7-B1, has no
+    such pair) have the largest negated relative radicand of the free-sign steps
+    minimised (bounded Brent); where the minimum is at most TOUCH_TOLERANCE the point is
+    a candidate with every nearly flat triangle (FLAT_MARGIN) flat, verified like every
+    other."""
+    cells = cells[:MAX_NARROW]
+    if not cells:
+        return []
+    ends = np.array(cells, dtype=float).ravel()
+    at_ends = compiled.failure_profile(ends[:, None], branch[None, :])[2][0].reshape(len(cells), 2, -1)
+    left, right = np.nan_to_num(at_ends[:, 0], nan=-1.0), np.nan_to_num(at_ends[:, 1], nan=-1.0)
+    # a one-point domain needs one radicand turning negative and another turning positive
+    crossing = ((left >= 0) & (right < 0)).any(axis=1) & ((left < 0) & (right >= 0)).any(axis=1)
+    found = []
+    for low, high in (cell for cell, keep in zip(cells, crossing, strict=True) if keep):
+
+        def infeasibility(s: float) -> float:
+            margins = compiled.failure_profile(np.array([[s]]), branch[None, :])[2][0, 0]
+            return float(np.max(-np.nan_to_num(margins, nan=-10.0))) if margins.size else 10.0
+
+        best = minimize_scalar(infeasibility, bounds=(low, high), method="bounded",
+                               options={"xatol": 1e-15 * max(abs(high), 1e-300)})
+        if best.success and best.fun <= TOUCH_TOLERANCE:
+            margins = compiled.failure_profile(np.array([[best.x]]), branch[None, :])[2][0, 0]
+            flat = branch.copy()
+            flat[np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN] = 0
+            found.append((np.array([float(best.x)]), flat))
+    return found
+
+
 def _failing_at(compiled: CompiledSystem, branch: np.ndarray, step: int, inside: float, outside: float,
                 failure: int, radicand: float) -> tuple[float, float] | None:
     """The neighbour of a radicand bump at ``inside`` on the side of ``outside`` (which
@@ -466,7 +509,10 @@ def _radicand_dips(codes: np.ndarray, margins: np.ndarray, feasible: int) -> np.
 def _with_windows(grid, values, failures, radicands, margins, sampled, failing, feasible):
     """The grid plus dense samples wherever a feasible window may hide between samples:
     neighbours failing at different steps, or a local maximum of a failing radicand;
-    refined level by level (all cells of a level in one vectorised evaluation)."""
+    refined level by level (all cells of a level in one vectorised evaluation). Also
+    returns the cells still failing at different steps on both sides after WINDOW_DEPTH
+    levels: windows narrower than 64^-6 of a cell, possibly a single point
+    (:func:`_roots_at_crossing_radicands`)."""
     extra = []
     cells = [(grid[i], grid[i + 1]) for i in _window_cells(failures, feasible)]
     cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_bumps(failures, radicands, feasible)]
@@ -482,12 +528,13 @@ def _with_windows(grid, values, failures, radicands, margins, sampled, failing, 
             part = slice(c * WINDOW_SAMPLES, (c + 1) * WINDOW_SAMPLES)
             following += [(points[part][i], points[part][i + 1]) for i in _window_cells(codes[part], feasible)]
         if len(following) > WINDOW_CROWD:  # the failing step flickers at rounding noise: no window converges
+            cells = []
             break
         cells = following
     if not extra:
-        return grid, values
+        return grid, values, []
     added = np.unique(np.concatenate(extra))
-    return _merge(grid, values, added, sampled(added))
+    return (*_merge(grid, values, added, sampled(added)), cells)
 
 
 def _merge(points: np.ndarray, values: np.ndarray, more_points: np.ndarray, more_values: np.ndarray):
