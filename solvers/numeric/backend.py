@@ -41,7 +41,7 @@ from ..placement import NEARLY_FLAT, compile_scene, placed_from_ground, polished
 from ..polish import polish_configurations
 from ..verification import RESIDUAL_TOLERANCE, distance_bound
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
-from .two_parameter import shared_curve, two_parameter_roots
+from .two_parameter import ridge_roots, shared_curve, two_parameter_roots
 
 
 def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *,
@@ -77,6 +77,7 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     elif degree == 2:
         upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
         candidates, (stalled, stalled_branches), unsearched = two_parameter_roots(compiled, branches, upper, deadline)
+        candidates += ridge_roots(compiled, branches, upper)
         _require_no_shared_curve(scene, compiled, branches, candidates)
         candidates += _polished(scene, compiled, stalled, branches[stalled_branches])
         undecided += _unsearched_cells(compiled, branches, unsearched)

@@ -31,11 +31,13 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.ndimage import maximum_filter, minimum_filter
+from scipy.optimize import brentq, minimize_scalar
 
 from baranov.closure import CompiledSystem
 
 from ..candidates import distinct_candidates
 from ..progress import report_stage
+from .one_parameter import TOUCH_SEARCH, TOUCH_TOLERANCE
 
 #: Samples per axis of the first grid (uniform in the distances √u, √v).
 GRID = 160
@@ -428,3 +430,89 @@ def _continued(compiled: CompiledSystem, signs: np.ndarray, x0: np.ndarray) -> n
     if not np.isfinite(f).all() or np.abs(f).max() >= CANDIDATE_TOLERANCE or (moved < step / 2).any():
         return None
     return np.concatenate([x0[None, :], x])
+
+
+#: Samples along one parameter when looking for a ridge of the feasible domain.
+RIDGE_SAMPLES = 2000
+
+
+def ridge_roots(compiled: CompiledSystem, branches: np.ndarray, upper: tuple[float, float]) -> list:
+    """Candidates on a zero-width strip of the feasible domain: a free-sign triangle
+    whose radicand depends on one parameter only and touches 0 from below at p = p*, so
+    that the branch is defined only on the line p = p* (issue 25's seventh run: 9/N2
+    drawn at a double root, seed 28, its one mode at (s1,10, s1,12) = (13, 1) where
+    P10 P3 P4 is flat; no cell of the plane has a defined corner there and the mode was
+    missed). For each parameter, the free-sign radicands that the other parameter does
+    not change (two vectorised evaluations along the parameter, at two values of the
+    other) are searched for such a touch (bounded Brent on the radicand's local maxima
+    within TOUCH_SEARCH of 0, as for one parameter); on each line found, with that
+    triangle flat, both conditions are sampled along the other parameter and every sign
+    change of either gives a candidate (Brent), verified by the caller like every other.
+    Cost: 4 · RIDGE_SAMPLES evaluations per branch, plus the lines found."""
+    found = []
+    for along in (0, 1):
+        other = 1 - along
+        line = np.linspace(math.sqrt(upper[along]) * 1e-6, math.sqrt(upper[along]), RIDGE_SAMPLES) ** 2
+        profiles = []
+        for fraction in (0.3, 0.7):
+            points = np.empty((RIDGE_SAMPLES, 2))
+            points[:, along], points[:, other] = line, fraction * upper[other]
+            profiles.append(compiled.failure_profile(points, branches)[2])  # (B, N, free)
+        first, second = profiles
+        difference = np.where(np.isfinite(first - second), np.abs(first - second), 0.0).max(axis=1)
+        size = np.where(np.isfinite(first), np.abs(first), 0.0).max(axis=1)
+        unchanged = (difference <= 1e-9 * size) & (size > 0)  # (B, free); a step never defined has size 0
+        for b, k in zip(*np.nonzero(unchanged), strict=True):
+            margin = first[b, :, k]
+            inner = margin[1:-1]
+            peaks = np.flatnonzero((inner >= margin[:-2]) & (inner >= margin[2:]) & (inner < 0)
+                                   & (inner > -TOUCH_SEARCH)) + 1
+            for i in peaks[:4]:
+                touch = _touching_value(compiled, branches[b], along, other, k, line[i - 1], line[i + 1],
+                                        0.3 * upper[other], TOUCH_TOLERANCE)
+                if touch is not None:
+                    flat = branches[b].copy()
+                    flat[k] = 0
+                    found += _roots_on_line(compiled, flat, along, touch, upper[other])
+    return found
+
+
+def _touching_value(compiled, branch, along, other, k, low, high, at_other, tolerance) -> float | None:
+    """Where free-sign radicand ``k`` (independent of the other parameter) reaches its
+    maximum on [low, high], if that maximum is within ``tolerance`` of 0."""
+    def negative_margin(value: float) -> float:
+        point = np.empty((1, 2))
+        point[0, along], point[0, other] = value, at_other
+        margin = compiled.failure_profile(point, branch[None, :])[2][0, 0, k]
+        return -margin if np.isfinite(margin) else 10.0
+
+    best = minimize_scalar(negative_margin, bounds=(low, high), method="bounded", options={"xatol": 1e-14 * high})
+    return float(best.x) if best.success and best.fun <= tolerance else None
+
+
+def _roots_on_line(compiled, branch, along, value, bound) -> list:
+    """Candidates on the line (parameter ``along`` = ``value``), branch ``branch``: the
+    sign changes of either condition along the other parameter, refined by Brent."""
+    other = 1 - along
+    grid = np.linspace(math.sqrt(bound) * 1e-6, math.sqrt(bound), RIDGE_SAMPLES) ** 2
+
+    def conditions(values: np.ndarray) -> np.ndarray:
+        points = np.empty((len(values), 2))
+        points[:, along], points[:, other] = value, values
+        return compiled.residuals(points, branch[None, :])[0]  # (N, 2)
+
+    table = conditions(grid)
+    found = []
+    for c in range(table.shape[1]):
+        column = table[:, c]
+        changes = np.flatnonzero(np.isfinite(column[:-1]) & np.isfinite(column[1:]) & (column[:-1] * column[1:] <= 0))
+        for i in changes[:CROWDED_ROOTS]:
+            try:
+                root = brentq(lambda q, c=c: float(conditions(np.array([q]))[0, c]), grid[i], grid[i + 1],
+                              xtol=1e-14 * grid[i + 1], rtol=1e-15)
+            except ValueError:
+                continue
+            point = np.empty(2)
+            point[along], point[other] = value, root
+            found.append((point, branch))
+    return found
