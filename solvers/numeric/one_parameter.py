@@ -104,16 +104,23 @@ FLAT_SAMPLES = 16
 
 def _flat_along_branches(branches: np.ndarray, margins: np.ndarray) -> np.ndarray:
     """``branches`` with sign 0 for each free-sign triangle that stays flat along the
-    parameter (its radicand is 0 at FLAT_SAMPLES samples: a polynomial in the parameter
-    that vanishes that often vanishes identically on the branch). Rounding then makes the
-    radicand flip between ±1e-16, and the feasible domain between defined and undefined,
-    at every sample: issue 25's 7/N3 instance drawn with P8, P3, P4 in line, whose
-    alternative plan keeps s8,3 constant on a branch, ran for over 300 s in edge searches
-    and Brent brackets across that noise. Flat, the branch is one smooth curve."""
-    flat = (np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_NOISE).sum(axis=1) >= FLAT_SAMPLES
+    parameter (its radicand is 0 at FLAT_SAMPLES samples and at all but a twentieth of
+    the samples where it is defined: a polynomial in the parameter that vanishes that
+    often vanishes identically on the branch). Rounding then makes the radicand flip
+    between ±1e-16, and the feasible domain between defined and undefined, at every
+    sample: issue 25's 7/N3 instance drawn with P8, P3, P4 in line, whose alternative
+    plan keeps s8,3 constant on a branch, ran for over 300 s in edge searches and Brent
+    brackets across that noise. Flat, the branch is one smooth curve. A triangle flat on
+    a stretch only (an earlier step clamped at a fold: issue 25's 9/N12 small box, seed
+    29, P11 P4 P3 flat for s10,1 in [4.8, 19.4] and not below, where six modes lie) keeps
+    its ±1 branches beside the flat one."""
+    flat_samples = (np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_NOISE).sum(axis=1)
+    defined = np.isfinite(margins).sum(axis=1)
+    flat = flat_samples >= FLAT_SAMPLES
     if not flat.any():
         return branches
-    return np.unique(np.where(flat, 0, branches), axis=0)
+    everywhere = flat & (flat_samples >= 0.95 * defined)
+    return np.unique(np.concatenate([np.where(everywhere, 0, branches), np.where(flat, 0, branches)]), axis=0)
 
 
 def _require_isolated_roots(compiled: CompiledSystem, branches: np.ndarray, grid: np.ndarray,
