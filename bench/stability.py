@@ -343,8 +343,22 @@ the window refinement multiplied its cells by up to 64 per level (215 million sa
 the fourth); it now stops past 4096 cells, and the solve raises MovableLinkageError in
 51 s with 194 MB (`movable/9-N9-domain-flicker.json`; still slow). The bench also caps
 each worker's memory now (`--memory`, 8 GiB), so that a runaway solve is recorded as an
-error. The issue-25 targets — 10⁴
-instances with no miss, p99 ≤ 10 × median — are not met yet.
+error.
+
+The seventh run (`adversarial-b153983` below: seed 28, at the solving code of commit
+b153983, where that 9/N9 solve takes 2.6 s since all domain edges of a branch are searched
+together) ran its 4200 nine-link instances and found two numeric misses, both fixed: 9/N17
+drawn at a double root, whose branch is defined at one point only, between two steps that
+fail on either side (`9-N17-crossing-radicands.json`), and 9/N2 (coupling 2) drawn at a
+double root, whose branch is defined only on a line of the parameter plane
+(`9-N2-ridge-domain.json`). 1402 of its nine-link rows were lost from the results file (a
+`git stash` in the working copy replaced the file while the run appended to it; the run's
+log kept both failures). A run at the first fix (3270841, seed 29) found a third miss in its
+first 698 instances: 9/N12 in a small box, six modes on a stretch below one where a
+free-sign triangle is flat, whose ±1 branches had been replaced by the flat one
+(`9-N12-flat-on-a-stretch.json`). The count restarted at the commit with the three fixes
+(c2da5af, seed 30). The issue-25 targets — 10⁴ instances with no miss, p99 ≤ 10 × median —
+are not met yet.
 
 {adversarial}
 
