@@ -9,6 +9,7 @@ from baranov.catalog.lookup import TRUSS_NAME, named_truss
 from baranov.closure import closure_system
 from baranov.planner import bilateration_plans
 from baranov.topology import (
+    JointKind,
     KinematicChain,
     automorphism_group,
     chain_from_link_graph,
@@ -95,6 +96,10 @@ def show(argument: str, catalog: Path | None = None, latex: bool = False, refere
         f"coupling degree {ranked[0].number_of_parameters}"
         + (" (with the given constraints)" if reference or parameters else ""),
     ]
+    sliders = [joint.name for joint in chain.joints if joint.kind is JointKind.SLIDER]
+    if sliders:  # a slider chain: its truss's plans and conditions, the sliders at infinity (thesis ch. 4)
+        lines.insert(2, f"slider joints: {', '.join(sliders)} (an Assur kinematic chain derived from this truss, "
+                        "thesis ch. 4: the plans below are the truss's; solve it with --method msolve)")
     for number, plan in enumerate(ranked, 1):
         system = closure_system(plan)
         lines.append("")

@@ -167,6 +167,9 @@ def test_show_reads_a_scene_file_as_its_linkage():
     result = run("show", str(REPO / "examples" / "7-B3-section-4.2.1.json"))
     assert result.returncode == 0, result.stderr
     assert "links 7, joints 9" in result.stdout and "parameters s1,6" in result.stdout
+    sliders = run("show", str(REPO / "examples" / "7-B3-sliders-P8-P9.json"))
+    assert sliders.returncode == 0, sliders.stderr
+    assert "slider joints: P8, P9 (an Assur kinematic chain derived from this truss" in sliders.stdout
 
 
 def test_show_finds_catalog_names_from_any_folder(tmp_path):
