@@ -54,29 +54,31 @@ def first_steps(s16: float, signs) -> tuple[complex, complex, complex] | None:
     return p6, p5, (p5 - p6) * (1 - 3j) / 10  # (P5 − P6)(along − iΔh)/s5,6 with along 1, Δh 3
 
 
-def slider_p9(s16: float, signs) -> float:
-    """§4.2.2: s2,8 − 82 with P9 a slider."""
+def through_p7(s16: float, signs) -> tuple[complex, complex] | None:
+    """P7 (free sign, from P4 and slider P9's axis: signed distances −5 for P7 and, for
+    P4, 2 plus its offset from P6 across the axis) and the axis's unit direction."""
     placed = first_steps(s16, signs)
     if placed is None:
-        return math.nan
+        return None
     p6, _, axis = placed
     p7 = off_axis(P4, axis, 2 + ((P4 - p6) * axis.conjugate()).imag, -5, 52, signs[2])
-    if p7 is None:
-        return math.nan
-    p8 = p7 + (1 + 3j) * axis  # P7 → P8 on link t789: one unit along, three across
-    return abs(p8 - P2) ** 2 - 82
+    return None if p7 is None else (p7, axis)
+
+
+def slider_p9(s16: float, signs) -> float:
+    """§4.2.2: s2,8 − 82 with P9 a slider (P7 → P8 on link t789: one unit along the axis,
+    three across)."""
+    placed = through_p7(s16, signs)
+    return math.nan if placed is None else abs(placed[0] + (1 + 3j) * placed[1] - P2) ** 2 - 82
 
 
 def sliders_p8_p9(s16: float, signs) -> float:
     """§4.2.3: P2's signed distance to slider P8's axis, minus its own 4√2 (P8 a slider
-    too; its axis turned by 45° from P9's in link t789)."""
-    placed = first_steps(s16, signs)
+    too; its axis turned by 45° from P9's in link t789, through P8' = P7 + (1 + 3i) u)."""
+    placed = through_p7(s16, signs)
     if placed is None:
         return math.nan
-    p6, _, axis = placed
-    p7 = off_axis(P4, axis, 2 + ((P4 - p6) * axis.conjugate()).imag, -5, 52, signs[2])
-    if p7 is None:
-        return math.nan
+    p7, axis = placed
     second = axis * complex(math.cos(math.pi / 4), math.sin(math.pi / 4))
     return ((P2 - (p7 + (1 + 3j) * axis)) * second.conjugate()).imag - math.sqrt(82) * 4 / math.sqrt(41)
 

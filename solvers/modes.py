@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from baranov.planner import parameter_name
+
 
 class SolverError(ValueError):
     """The scene is valid but this method cannot solve it (the message says why)."""
@@ -81,6 +83,14 @@ class Solution:
     #: what the method could not resolve, one sentence each (numeric: e.g. a stretch where
     #: the closure condition is flat to rounding, reported as one mode)
     undecided: tuple[str, ...] = ()
+
+    @classmethod
+    def of_plan(cls, method: str, plan, modes: tuple[AssemblyMode, ...], **extra) -> Solution:
+        """The solution of ``method`` in the terms of ``plan`` (its coupling degree,
+        parameter names and free-sign triangles), with the fields only ``cls`` has in
+        ``extra``."""
+        names = tuple(parameter_name(pair) for pair in plan.parameters)
+        return cls(method, plan.number_of_parameters, names, plan.free_sign_triangles, modes, **extra)
 
     def to_dict(self) -> dict:
         """The JSON form printed by ``baranov solve --json``."""

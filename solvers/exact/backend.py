@@ -86,9 +86,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         plan = plan or solvable_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
         described, modes, note = modes_without_plan(scene, error)
-        return ExactSolution("exact", described.number_of_parameters,
-                             tuple(parameter_name(p) for p in described.parameters), described.free_sign_triangles,
-                             modes, certificate=Certificate(True, note, ()))
+        return ExactSolution.of_plan("exact", described, modes, certificate=Certificate(True, note, ()))
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None
     gaps: tuple[str, ...] = ()
@@ -143,9 +141,8 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         modes, more, by_msolve = _modes_where_undefined(scene, plan, polynomial, undefined, modes, coincidences)
         gaps += more
         notes += [MSOLVE_NOTE] if by_msolve and MSOLVE_NOTE not in notes else []
-    return ExactSolution("exact", plan.number_of_parameters, tuple(parameter_name(p) for p in plan.parameters),
-                         plan.free_sign_triangles, modes, characteristic_polynomial=polynomial,
-                         certificate=Certificate(not gaps, "; ".join(notes) or None, gaps))
+    return ExactSolution.of_plan("exact", plan, modes, characteristic_polynomial=polynomial,
+                                 certificate=Certificate(not gaps, "; ".join(notes) or None, gaps))
 
 
 #: What the coupling-2 certificate says of its one Monte Carlo step.

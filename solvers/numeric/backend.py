@@ -56,9 +56,7 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         plan = plan or solvable_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
         described, modes, note = modes_without_plan(scene, error)
-        return Solution("numeric", described.number_of_parameters,
-                        tuple(parameter_name(p) for p in described.parameters), described.free_sign_triangles,
-                        modes, undecided=(note,))
+        return Solution.of_plan("numeric", described, modes, undecided=(note,))
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
@@ -88,8 +86,7 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         modes = _modes_of_coincident_joints(scene, plan, samples, modes)
     modes, valleys = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
     modes, near_misses = _without_near_misses(scene, compiled, modes)
-    return Solution("numeric", degree, tuple(parameter_name(p) for p in plan.parameters),
-                    plan.free_sign_triangles, modes, undecided=tuple(undecided) + valleys + near_misses)
+    return Solution.of_plan("numeric", plan, modes, undecided=tuple(undecided) + valleys + near_misses)
 
 
 #: A verified mode whose residual stays above this after NEAR_MISS_STEPS polishing steps
