@@ -166,20 +166,6 @@ def test_regressions_match_msolve(path):
         assert compare_modes(found, list(oracle.configurations))[:2] == (0, 0), method
 
 
-@needs_msolve
-@pytest.mark.xfail(strict=True, reason="open (issue 25): two near-tangent simple roots merged as one singular valley")
-def test_two_near_tangent_roots_are_two_modes():
-    """tests/regressions/open/9-N18-two-roots-one-valley.json: 9/N18 (coupling 2) drawn at
-    a double root has two modes 0.046 apart on one branch, where the conditions' zero
-    curves are nearly tangent; the numeric backend merges them (and the configurations
-    between them) as one valley flat to rounding, then drops it as a near miss. Strict:
-    this test fails the suite once the backend keeps both, so that the instance moves
-    to tests/regressions/."""
-    scene = load_scene(REGRESSIONS / "open" / "9-N18-two-roots-one-valley.json")
-    found = [mode.joints for mode in solve(scene).assembly_modes]
-    assert compare_modes(found, list(msolve_modes(scene).configurations))[:2] == (0, 0)
-
-
 def test_flat_valley_is_one_undecided_mode():
     """Where the closure condition is flat to rounding around a singular mode, the
     numeric backend reports one mode there and says which stretch it could not resolve
