@@ -357,8 +357,11 @@ log kept both failures). A run at the first fix (3270841, seed 29) found a third
 first 698 instances: 9/N12 in a small box, six modes on a stretch below one where a
 free-sign triangle is flat, whose ±1 branches had been replaced by the flat one
 (`9-N12-flat-on-a-stretch.json`). The count restarted at the commit with the three fixes
-(c2da5af, seed 30). The issue-25 targets — 10⁴ instances with no miss, p99 ≤ 10 × median —
-are not met yet.
+(c2da5af, seed 30): in 1800 nine-link instances one more miss, 9/N18 (coupling 2) drawn at a
+double root, whose two near-tangent modes 0.046 apart were merged as one singular valley and
+then dropped as a near miss (`9-N18-two-roots-one-valley.json`); fixed, and the count
+restarted again at that commit (1c67c01, seed 31). The issue-25 targets — 10⁴ instances with
+no miss, p99 ≤ 10 × median — are not met yet.
 
 {adversarial}
 
