@@ -7,12 +7,14 @@ from __future__ import annotations
 import io
 import math
 
+import numpy as np
 from matplotlib.figure import Figure  # a bare Figure draws to files without pyplot's global backend
 from matplotlib.patches import Polygon
 
 from baranov.scene import Scene
 
 from .modes import Solution
+from .verification import slider_axis
 
 
 def _hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
@@ -115,15 +117,13 @@ def _draw_mode(axis, scene: Scene, mode, extent: float) -> None:
 def _draw_slider_axis(axis, scene: Scene, slider, mode, extent: float):
     """A slider's axis, dashed, through its two points and a little beyond; returns it as
     a segment (labels keep off it)."""
-    first, second = (mode.joints[scene.point_name(a.link, slider.joint)] for a in slider.axes)
-    axis_link = slider.axes[0]
-    reference = mode.joints[scene.point_name(axis_link.link, axis_link.reference)]
-    turned = complex(reference[0] - first[0], reference[1] - first[1]) * complex(
-        float(axis_link.direction[0]), -float(axis_link.direction[1]))
-    unit = turned / abs(turned)
-    along = [0.0, ((complex(*second) - complex(*first)) * unit.conjugate()).real]
+    at = {name: np.array([complex(*xy)]) for name, xy in mode.joints.items()}
+    foot, direction = slider_axis(scene, slider, slider.axes[0].link, at)
+    first, unit = complex(foot[0]), complex(direction[0])
+    second = mode.joints[scene.point_name(slider.axes[1].link, slider.joint)]
+    along = [0.0, ((complex(*second) - first) * unit.conjugate()).real]
     low, high = min(along) - 0.15 * extent, max(along) + 0.15 * extent
-    start, end = complex(*first) + low * unit, complex(*first) + high * unit
+    start, end = first + low * unit, first + high * unit
     axis.plot([start.real, end.real], [start.imag, end.imag], color="0.35", linewidth=1, linestyle="--", zorder=2)
     return (start.real, start.imag), (end.real, end.imag)
 
