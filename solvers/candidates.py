@@ -32,15 +32,25 @@ def distinct_candidates(values: np.ndarray, branches: np.ndarray) -> list[tuple[
     return list(unique.values())
 
 
-def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates) -> tuple[AssemblyMode, ...]:
+def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates,
+                   configurations: tuple[list[str], np.ndarray, np.ndarray, np.ndarray] | None = None
+                   ) -> tuple[AssemblyMode, ...]:
     """The verified, distinct assembly modes among ``candidates`` (parameter values,
     branch), sorted by parameters then signs. All candidates are placed, verified and
     polished together (a coupling-2 solve can bring 10⁴ candidates: one at a time, they
     took 41 of 62 s on an issue-25 instance of 9/N18); the first candidate of each mode
     is kept. Cost O(K · J) array work for K candidates of J joints, and O(K · n · J) for
-    the duplicate check against the n modes."""
+    the duplicate check against the n modes.
+
+    ``configurations`` ``(joints, points (K', J) complex, values, branches)``: candidates
+    that are configurations already (polished on the link constraints), verified as they
+    are rather than placed again from their parameters. Next to the edge of the feasible
+    domain a parameter read back from a configuration is right to ~√ε only, and the
+    closure condition is as steep as √ of the distance to the edge there: placed again,
+    a mode 1e-6 from the edge came out with residual 3e-3 and was lost
+    (tests/regressions/9-N2-mode-next-to-edge.json)."""
     candidates = list(candidates)
-    if not candidates:
+    if not candidates and configurations is None:
         return ()
     values = np.array([np.asarray(v, float) for v, _ in candidates]).reshape(len(candidates), -1)
     branches = np.array([np.asarray(b) for _, b in candidates], int).reshape(len(candidates), -1)
@@ -50,7 +60,16 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates) -> tuple[
     if len(polish):
         points[polish], values[polish], branches[polish], residual[polish] = polished_configurations(
             scene, compiled, joints, points[polish])
+    if configurations is not None:
+        given_joints, given_points, given_values, given_branches = configurations
+        order = [given_joints.index(j) for j in joints]
+        points = np.concatenate([points, given_points[:, order]])
+        values = np.concatenate([values, given_values])
+        branches = np.concatenate([branches, np.asarray(given_branches, int)])
+        residual = np.concatenate([residual, joint_residuals(scene, joints, given_points[:, order])])
     kept = np.flatnonzero(residual < RESIDUAL_TOLERANCE)
+    if len(kept) == 0:
+        return ()
     kept = kept[first_of_each_mode(points[kept], scene)]
     modes = [flattened_mode(scene, compiled, mode_of(compiled, joints, values[k], branches[k], points[k], residual[k]))
              for k in kept]

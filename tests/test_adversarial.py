@@ -166,17 +166,6 @@ def test_regressions_match_msolve(path):
         assert compare_modes(found, list(oracle.configurations))[:2] == (0, 0), method
 
 
-@needs_msolve
-@pytest.mark.xfail(strict=True, reason="open (issue 25): a coupling-2 mode 1e-6 from a domain edge is missed")
-def test_a_coupling_two_mode_next_to_the_domain_edge_is_found():
-    """tests/regressions/open/9-N2-mode-next-to-edge.json (seed 31 at 1c67c01): the
-    numeric backend misses (9.999999, 5.815993). Strict: fails the suite once fixed, so
-    that the instance moves to tests/regressions/."""
-    scene = load_scene(REGRESSIONS / "open" / "9-N2-mode-next-to-edge.json")
-    found = [mode.joints for mode in solve(scene).assembly_modes]
-    assert compare_modes(found, list(msolve_modes(scene).configurations))[:2] == (0, 0)
-
-
 def test_flat_valley_is_one_undecided_mode():
     """Where the closure condition is flat to rounding around a singular mode, the
     numeric backend reports one mode there and says which stretch it could not resolve

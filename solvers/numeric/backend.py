@@ -24,7 +24,7 @@ from baranov.closure import CompiledSystem, sign_branches
 from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
-from ..candidates import assembly_modes, distinct_candidates
+from ..candidates import assembly_modes
 from ..coincidence import (
     NoPlanError,
     coincidence_possible,
@@ -64,24 +64,25 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         raise SolverError(f"time_limit {time_limit}: must be a number of seconds, 0 or more")
     deadline = time.monotonic() + time_limit if time_limit is not None else math.inf
     undecided: list[str] = []
+    polished = None  # configurations polished on the link constraints
     if degree == 0:
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
         candidates, near = one_parameter_roots(compiled, branches, distance_bound(scene) ** 2, samples,
                                                 undecided, deadline)
         if near:  # a root where f is not smooth (a singular mode): polished on the links, then verified
-            candidates += _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
+            polished = _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
         candidates += roots_at_critical_values(compiled, branches, critical_values(scene, plan))
     elif degree == 2:
         upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
         candidates, (stalled, stalled_branches), unsearched = two_parameter_roots(compiled, branches, upper, deadline)
         candidates += ridge_roots(compiled, branches, upper)
         _require_no_shared_curve(scene, compiled, branches, candidates)
-        candidates += _polished(scene, compiled, stalled, branches[stalled_branches])
+        polished = _polished(scene, compiled, stalled, branches[stalled_branches])
         undecided += _unsearched_cells(compiled, branches, unsearched)
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
-    modes = assembly_modes(scene, compiled, candidates)
+    modes = assembly_modes(scene, compiled, candidates, polished)
     if degree > 0 and coincidences:
         modes = _modes_of_coincident_joints(scene, plan, samples, modes)
     modes, valleys = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
@@ -190,23 +191,26 @@ def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int,
 
 
 def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs: np.ndarray):
-    """Candidates ``(parameters, branch)`` from approximate roots, polished on the link
-    constraints (:func:`polish_configurations`), read back from the configurations."""
-    if len(values) == 0:
-        return []
-    placed = placed_from_ground(scene, compiled.paired_matrices(values, signs))
+    """Configurations ``(joints, points (K, J) complex, parameters, branches)`` from
+    approximate roots, polished on the link constraints (:func:`polish_configurations`),
+    their parameters and branches read back; for :func:`assembly_modes`, which verifies
+    them as they are."""
+    placed = placed_from_ground(scene, compiled.paired_matrices(values, signs)) if len(values) else {}
     joints = sorted(placed)
+    if len(values) == 0 or not joints:
+        return None
     complex_points = np.stack([placed[j] for j in joints], axis=1)
     usable = np.isfinite(complex_points).all(axis=1)
     points = np.stack([complex_points.real, complex_points.imag], axis=-1)[usable]
     points, residual = polish_configurations(scene, joints, points)
     points = points[residual < RESIDUAL_TOLERANCE]
-    at = {j: points[:, n, 0] + 1j * points[:, n, 1] for n, j in enumerate(joints)}
+    points = points[..., 0] + 1j * points[..., 1]
+    at = {j: points[:, n] for n, j in enumerate(joints)}
     parameters, branch = read_back(compiled, at)
     # at a double root on the domain's edge the polished joints are right to ~√ε only, a
     # flat triangle reads back ±1 and its radicand comes out negative: try it flat too
     # (tests/regressions/9-N28-double-root.json)
     _, flattened = read_back(compiled, at, NEARLY_FLAT)
     changed = (flattened != branch).any(axis=1)
-    return distinct_candidates(np.concatenate([parameters, parameters[changed]]),
-                               np.concatenate([branch, flattened[changed]]))
+    return (joints, np.concatenate([points, points[changed]]), np.concatenate([parameters, parameters[changed]]),
+            np.concatenate([branch, flattened[changed]]))
