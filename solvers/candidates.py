@@ -52,21 +52,26 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates,
     candidates = list(candidates)
     if not candidates and configurations is None:
         return ()
-    values = np.array([np.asarray(v, float) for v, _ in candidates]).reshape(len(candidates), -1)
-    branches = np.array([np.asarray(b) for _, b in candidates], int).reshape(len(candidates), -1)
-    joints, points = placed_configurations(scene, compiled, values, branches)
-    residual = joint_residuals(scene, joints, points)
-    polish = np.flatnonzero((RESIDUAL_TOLERANCE <= residual) & (residual < POLISH_LIMIT))
-    if len(polish):
-        points[polish], values[polish], branches[polish], residual[polish] = polished_configurations(
-            scene, compiled, joints, points[polish])
+    if candidates:
+        values = np.array([np.asarray(v, float) for v, _ in candidates]).reshape(len(candidates), -1)
+        branches = np.array([np.asarray(b) for _, b in candidates], int).reshape(len(candidates), -1)
+        joints, points = placed_configurations(scene, compiled, values, branches)
+        residual = joint_residuals(scene, joints, points)
+        polish = np.flatnonzero((RESIDUAL_TOLERANCE <= residual) & (residual < POLISH_LIMIT))
+        if len(polish):
+            points[polish], values[polish], branches[polish], residual[polish] = polished_configurations(
+                scene, compiled, joints, points[polish])
     if configurations is not None:
         given_joints, given_points, given_values, given_branches = configurations
-        order = [given_joints.index(j) for j in joints]
-        points = np.concatenate([points, given_points[:, order]])
-        values = np.concatenate([values, given_values])
-        branches = np.concatenate([branches, np.asarray(given_branches, int)])
-        residual = np.concatenate([residual, joint_residuals(scene, joints, given_points[:, order])])
+        given = (given_points, given_values, np.asarray(given_branches, int),
+                 joint_residuals(scene, given_joints, given_points))
+        if candidates:
+            order = [given_joints.index(j) for j in joints]
+            given = (given[0][:, order], *given[1:])
+            points, values, branches, residual = (np.concatenate(pair) for pair in
+                                                  zip((points, values, branches, residual), given, strict=True))
+        else:
+            joints, (points, values, branches, residual) = given_joints, given
     kept = np.flatnonzero(residual < RESIDUAL_TOLERANCE)
     if len(kept) == 0:
         return ()
