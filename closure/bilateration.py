@@ -144,6 +144,8 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
                  reduced_point: Callable[[Point], Point] | None = None,
                  reduced_distance: Callable[[Fraction2], Fraction2] | None = None,
                  after_step: Callable[[int, Any, Point], bool] | None = None,
+                 slider_step: Callable[[int, Any, dict, Fraction2, Callable], Point | None] | None = None,
+                 slider_frame: Callable[[], tuple[dict[str, Point], Fraction2] | None] | None = None,
                  ) -> tuple[dict[str, Point], Fraction2, Callable[[str, str], Fraction2]]:
     """Every joint of ``plan`` placed by bilateration, one step after another (thesis
     §2.5), in one arithmetic: the single kernel that numeric residuals, ball placements,
@@ -160,6 +162,12 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
         reduced_point, reduced_distance: lowest terms (floats divide through; the tower
             cancels a gcd); identity by default.
         after_step: called with (index, step, new point); False stops the placement.
+        slider_step: ``slider_step(index, step, points, reference, distance)`` places a
+            step that touches a slider joint (:class:`~.sliders.SliderPlacement`: the
+            limit of its bilateration) and returns the new point, or the axis direction
+            as a point for a slider located; None for a step it leaves to bilateration.
+        slider_frame: for a reference pair that holds a slider, the frame on its axis:
+            the other joint placed, and s_ref (world units: 1); None otherwise.
 
     Returns:
         (points, the reference distance s_{a,b}, a function giving s_{u,v} for any pair
@@ -169,8 +177,12 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
     reduced_point = reduced_point or (lambda point: point)
     reduced_distance = reduced_distance or (lambda pair: pair)
     a, b = plan.reference
-    points: dict[str, Point] = {a: (0, 0, 1), b: (1, 0, 1)}
-    reference = known(a, b)  # a link's pair or a parameter: nothing is computed yet
+    started = slider_frame() if slider_frame is not None else None
+    if started is None:
+        points: dict[str, Point] = {a: (0, 0, 1), b: (1, 0, 1)}
+        reference = known(a, b)  # a link's pair or a parameter: nothing is computed yet
+    else:
+        points, reference = started
 
     def distance(u: str, v: str, computed: bool = False) -> Fraction2:
         value = None if computed else known(u, v)
@@ -181,11 +193,13 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
     for index, step in enumerate(plan.steps):
         i, j = step.base
         k = step.joint
-        sides = common_sides(distance(i, j), distance(i, k), distance(j, k), multiply)
-        radicand = triangle_radicand(*sides, multiply)
-        root = signed_root(index, step, sides, radicand)
-        points[k] = reduced_point(bilaterated(points[i], points[j], sides, root, multiply))
-        if after_step is not None and after_step(index, step, points[k]) is False:
+        placed = slider_step(index, step, points, reference, distance) if slider_step is not None else None
+        if placed is None:
+            sides = common_sides(distance(i, j), distance(i, k), distance(j, k), multiply)
+            radicand = triangle_radicand(*sides, multiply)
+            root = signed_root(index, step, sides, radicand)
+            placed = points[k] = reduced_point(bilaterated(points[i], points[j], sides, root, multiply))
+        if after_step is not None and after_step(index, step, placed) is False:
             break
     return points, reference, distance
 

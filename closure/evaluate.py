@@ -15,11 +15,13 @@ from typing import NamedTuple
 
 import numpy as np
 
+from baranov.planner import parameter_name
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
 from .bilateration import dehomogenised, place_joints, signed_root
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
+from .sliders import SearchedParameter, SliderGeometry, SliderPlacement, height_above
 
 Triangle = tuple[str, str, str]
 Pair = frozenset[str]
@@ -42,10 +44,20 @@ class CompiledSystem:
         known: squared distance of every pair of joints on a common link.
         fixed_signs: orientation sign (±1) of every fixed-sign (link-step) triangle of the
             plan, keyed by the step's triangle (i, j, k).
+        sliders: the slider joints (:class:`~.sliders.SliderGeometry`): the steps that
+            touch one are placed by :class:`~.sliders.SliderPlacement`, a closure pair of
+            a slider and a joint compares the joint's oriented distance to the axis.
+        searched: the parameters searched through a map
+            (:class:`~.sliders.SearchedParameter`: an oriented distance t to a slider's
+            axis, or a parameter without bound); :meth:`reported` gives them back.
     """
 
-    def __init__(self, system: ClosureSystem, known: Mapping[Pair, float], fixed_signs: Mapping[Triangle, int]):
+    def __init__(self, system: ClosureSystem, known: Mapping[Pair, float], fixed_signs: Mapping[Triangle, int],
+                 sliders: Mapping[str, SliderGeometry] | None = None,
+                 searched: Mapping[Pair, SearchedParameter] | None = None):
         self.system = system
+        self.sliders = dict(sliders or {})
+        self.searched = {frozenset(pair): mapping for pair, mapping in (searched or {}).items()}
         self.plan = system.plan
         self.known = {frozenset(k): float(v) for k, v in known.items()}
         self.fixed_signs = dict(fixed_signs)
@@ -57,6 +69,25 @@ class CompiledSystem:
         for step in self.plan.steps:
             if not step.free_sign and step.triangle not in self.fixed_signs:
                 raise ValueError(f"triangle {step.triangle}: orientation sign of a link step missing")
+
+    @property
+    def parameter_names(self) -> tuple[str, ...]:
+        """The parameters' names: s_{u,v}, or t_{u,v} for a slider's pair."""
+        return tuple(parameter_name(pair, self.sliders) for pair in self.parameters)
+
+    def reported(self, values: np.ndarray) -> np.ndarray:
+        """Parameter values as searched (shape (..., p)) → as reported (``searched``)."""
+        values = np.array(values, dtype=float)
+        for n, pair in enumerate(self.parameters):
+            if frozenset(pair) in self.searched:
+                values[..., n] = self.searched[frozenset(pair)].value(values[..., n])
+        return values
+
+    def search_bound(self, n: int, bound: float) -> float:
+        """The upper end of the searched range of parameter ``n``: ``bound`` (a squared
+        distance's), or the map's scale² (``searched``)."""
+        mapping = self.searched.get(frozenset(self.parameters[n]))
+        return bound if mapping is None else mapping.scale**2
 
     def matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
         """M_k for every joint, and s_ref, broadcast over branches and parameter values.
@@ -125,7 +156,8 @@ class CompiledSystem:
             if pair in self.known:
                 return self.known[pair], 1
             if pair in self._parameter_index:
-                return parameter[self._parameter_index[pair]], 1
+                value = parameter[self._parameter_index[pair]]
+                return (self.searched[pair].value(value) if pair in self.searched else value), 1
             return None
 
         def root(index, step, sides, radicand):
@@ -136,22 +168,60 @@ class CompiledSystem:
                 sign = self.fixed_signs[step.triangle]
             if profile:
                 relative[:] = [radicand / np.maximum(np.maximum(sides[0], sides[1]), sides[2]) ** 2]
-                if step.free_sign:
-                    margins.append(relative[0])
+                if step.free_sign:  # a slider's step may take a constant radicand: broadcast
+                    margins.append(np.broadcast_to(relative[0], shape))
             return signed_root(radicand, sides, sign)
 
         def after_step(index, step, point):
             nonlocal failures, radicands
             newly = (failures == steps) & ~np.isfinite(point[0] + point[1])  # NaN and ±inf survive the sum
             failures = np.where(newly, index, failures)
-            if profile:
-                radicands = np.where(newly, relative[0], radicands)
+            if profile:  # a slider's link step takes no root: nothing to profile
+                radicands = np.where(newly, relative[0] if relative else np.nan, radicands)
+                relative.clear()
+                if step.free_sign and len(margins) == self._free_index[index]:
+                    # a free sign a slider construction does not use (two lines meet once)
+                    margins.append(np.ones(shape))
             return True
 
+        sliders = self._slider_placement(known, root) if self.sliders else None
         with np.errstate(invalid="ignore", divide="ignore"):  # an undefined step (NaN, s_ij = 0) is marked failed
             points, (s_ref, _), distance = place_joints(self.plan, known, root, reduced_point=dehomogenised,
-                                                        after_step=after_step)
-        return _Placement(points, distance, s_ref, shape, failures, radicands, margins)
+                                                        after_step=after_step,
+                                                        slider_step=sliders[1] if sliders else None,
+                                                        slider_frame=sliders[2] if sliders else None)
+        return _Placement(points, distance, s_ref, shape, failures, radicands, margins, sliders and sliders[0])
+
+    def _slider_placement(self, known, root) -> tuple[SliderPlacement, Callable, Callable]:
+        """The kernel's ``slider_step`` for the plan evaluated in numpy complex numbers."""
+        def parameter(u: str, v: str):
+            return known(u, v)[0] if frozenset((u, v)) in self._parameter_index else None
+
+        def along_root(index, step, squared, radicand):
+            # scaled to the form of a triangle radicand (sides³ → sides⁴) so that the
+            # rounding threshold and the failure profile read it alike
+            return root(index, step, (squared, 0.0, 0.0), radicand * squared) / np.sqrt(squared)
+
+        placement = SliderPlacement(self.sliders, parameter, along_root)
+
+        def slider_step(index, step, points, reference, distance):
+            at = {name: x + 1j * y for name, (x, y, _) in points.items()}
+            if not placement.step(index, step, at, reference[0], lambda u, v: distance(u, v)[0]):
+                return None
+            if step.joint in self.sliders:
+                direction = placement.axes[step.joint].direction
+                return direction.real, direction.imag, 1
+            points[step.joint] = (at[step.joint].real, at[step.joint].imag, 1)
+            return points[step.joint]
+
+        def slider_frame():
+            started = placement.frame(*self.plan.reference)
+            if started is None:
+                return None
+            (joint, point), = started[0].items()
+            return {joint: (point.real, point.imag, 1)}, (started[1], 1)
+
+        return placement, slider_step, slider_frame
 
     def residuals(self, parameter_values: np.ndarray, signs: np.ndarray | None = None) -> np.ndarray:
         """Relative closure residuals (computed s_{u,v} - known s_{u,v}) / known s_{u,v},
@@ -164,12 +234,28 @@ class CompiledSystem:
     def _closure_residuals(self, placement: _Placement) -> np.ndarray:
         columns = []
         for u, v in self.plan.closure_pairs:
+            if u in self.sliders or v in self.sliders:
+                columns.append(self._slider_closure(placement, u, v))
+                continue
             target = self.known[frozenset((u, v))]
             with np.errstate(invalid="ignore"):
                 columns.append((placement.distance(u, v, computed=True)[0] - target) / target)
         if not columns:
             return np.zeros((*placement.shape, 0))
         return np.stack(np.broadcast_arrays(*columns), axis=-1)
+
+    def _slider_closure(self, placement: _Placement, u: str, v: str) -> np.ndarray:
+        """The closure s_{i,v} of a slider P_i as δ → ∞: P_v's oriented distance to the
+        axis, computed, minus the link's, relative to the link's size."""
+        slider, joint = (u, v) if u in self.sliders else (v, u)
+        if joint in self.sliders:
+            raise NotImplementedError(f"a closure condition between the two sliders {u}, {v}")
+        geometry = self.sliders[slider]
+        target = geometry.offset(joint)
+        size = max(abs(z) for frame in geometry.offsets.values() for z in frame.values())
+        x, y, _ = placement.points[joint]
+        with np.errstate(invalid="ignore"):
+            return (height_above(placement.sliders.axes[slider], x + 1j * y, placement.s_ref) - target.imag) / size
 
 
 class _Placement(NamedTuple):
@@ -184,12 +270,17 @@ class _Placement(NamedTuple):
     failures: np.ndarray
     radicands: np.ndarray
     margins: list
+    sliders: SliderPlacement | None = None
 
     def matrices(self) -> dict[str, np.ndarray]:
-        """M_k = x + i y for every joint, shape (B, N) (a step from link sides alone gives
-        scalars: broadcast)."""
-        return {joint: np.broadcast_to(np.asarray(x + 1j * y, complex), self.shape)
-                for joint, (x, y, _) in self.points.items()}
+        """M_k = x + i y for every joint, and for every slider its points P_i', P_i''
+        on its two links, shape (B, N) (a step from link sides alone gives scalars:
+        broadcast)."""
+        at = {joint: x + 1j * y for joint, (x, y, _) in self.points.items()}
+        if self.sliders is not None:
+            with np.errstate(invalid="ignore"):
+                at.update(self.sliders.slider_points(at, self.s_ref))
+        return {joint: np.broadcast_to(np.asarray(value, complex), self.shape) for joint, value in at.items()}
 
 
 def known_distances(chain: KinematicChain, coordinates: Mapping[str, Sequence[float]]) -> dict[Pair, float]:

@@ -23,20 +23,23 @@ chain's coupling degree (thesis ch. 3).
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from dataclasses import dataclass
 from enum import Enum
 
 from baranov.topology import distance_name, thesis_subscript
 
 
-def parameter_name(pair: tuple[str, str]) -> str:
+def parameter_name(pair: tuple[str, str], sliders: Collection[str] = ()) -> str:
     """The name of a plan's parameter, the squared distance of a joint pair (thesis §2.2):
-    ``("P1", "P6")`` → ``"s1,6"``.
+    ``("P1", "P6")`` → ``"s1,6"``; where one joint is a slider (among ``sliders``), the
+    oriented distance t of the other to its axis (thesis §4.2.4): ``"t1,6"``.
 
-    >>> parameter_name(("P1", "P6"))
-    's1,6'
+    >>> parameter_name(("P1", "P6")), parameter_name(("P1", "P6"), sliders=["P1"])
+    ('s1,6', 't1,6')
     """
-    return distance_name(*pair)
+    name = distance_name(*pair)
+    return "t" + name[1:] if set(pair) & set(sliders) else name
 
 
 class StepKind(str, Enum):

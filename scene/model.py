@@ -169,7 +169,10 @@ class Scene:
     def largest_distance(self, u: str, v: str) -> float:
         """An upper bound on the distance between joints ``u`` and ``v`` in any assembly:
         the shortest path from ``u`` to ``v`` whose steps join two joints of one link,
-        each step as long as that link dimension (triangle inequality). O(E log V).
+        each step as long as that link dimension (triangle inequality). A slider joint's
+        two points are apart (a path may not slide; for a slider, the distance is to the
+        nearer of its points, which bounds the distance to its axis); inf where no path
+        joins them. O(E log V).
 
         >>> scene = scene_from_dict({"ground": "g", "links": [
         ...     {"name": "g", "joints": {"P1": [0, 0], "P2": [3, 0]}},
@@ -178,13 +181,22 @@ class Scene:
         >>> scene.largest_distance("P1", "P3"), scene.largest_distance("P2", "P3")
         (4.0, 2.0)
         """
-        return float(nx.shortest_path_length(self._distance_graph, u, v, weight="length"))
+        ends = [[self.point_name(link, joint) for link in self._links_of_slider(joint)] or [joint] for joint in (u, v)]
+        lengths = [nx.shortest_path_length(self._distance_graph, a, b, weight="length")
+                   for a in ends[0] for b in ends[1] if nx.has_path(self._distance_graph, a, b)]
+        return float(min(lengths, default=math.inf))
+
+    def _links_of_slider(self, joint: str) -> list[str]:
+        return [axis.link for slider in self.sliders if slider.joint == joint for axis in slider.axes]
 
     @cached_property
     def _distance_graph(self) -> nx.Graph:
+        """Joint points (a slider's two points apart: its slide has no bound of its own)
+        joined by the link dimensions."""
         graph = nx.Graph()
-        for pair, value in self.known.items():
-            graph.add_edge(*pair, length=math.sqrt(float(value)))
+        for link in self.links:
+            for pair, value in link.squared_distances.items():
+                graph.add_edge(*(self.point_name(link.name, joint) for joint in pair), length=math.sqrt(float(value)))
         return graph
 
     def orientation(self, triangle: tuple[str, str, str]) -> int:

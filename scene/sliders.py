@@ -175,3 +175,40 @@ def slider_loop(links_of_sliders: dict[str, tuple[str, str]]) -> list[str] | Non
         return [key for _, _, key in nx.find_cycle(graph)]
     except nx.NetworkXNoCycle:
         return None
+
+
+def sliding_direction(slider: SliderJoint, link) -> complex:
+    """The unit sliding direction of ``slider`` in the own frame of ``link`` (a
+    :class:`~baranov.scene.model.SceneLink`, one of its two links): the vector from the
+    slider's point to the reference joint, turned back by its angle α (thesis §4.1)."""
+    axis = slider.axis_on(link.name)
+    toward = complex(*link.local[axis.reference]) - complex(*link.local[slider.joint])
+    turned = toward * complex(float(axis.direction[0]), -float(axis.direction[1]))
+    return turned / abs(turned)
+
+
+def axis_frame(slider: SliderJoint, link) -> dict[str, complex]:
+    """The joints of ``link`` (one of the slider's two links) in the frame of the
+    slider's axis as fixed in that link: the slider's point on the link at 0, the sliding
+    direction (:func:`sliding_direction`) along +1, so that each other joint P_j sits at
+    a_j + i h_j with h_j = √s_{i',j} sin α_j its oriented distance to the axis (thesis
+    §4.1) and a_j = √s_{i',j} cos α_j its place along it. Floats (the link's own frame
+    is). O(joints of the link).
+
+    >>> from baranov.scene import load_scene
+    >>> scene = load_scene("examples/7-B3-slider-P9.json")
+    >>> frame = axis_frame(scene.sliders[0], scene.link_of("t569"))
+    >>> [complex(round(z.real, 9), round(z.imag, 9)) for z in (frame["P5"], frame["P6"])]
+    [(-2+5j), (-3+2j)]
+    """
+    foot = complex(*link.local[slider.joint])
+    direction = sliding_direction(slider, link)
+    return {joint: (complex(*link.local[joint]) - foot) / direction for joint in link.joints if joint != slider.joint}
+
+
+def axis_turn(first: SliderJoint, second: SliderJoint, link) -> complex:
+    """The direction of ``second``'s axis in the frame of ``first``'s (:func:`axis_frame`),
+    two sliders of one ``link``: a unit complex number e^{iγ}, γ the angle the link
+    fixes between the two sliding directions (thesis §4.2.3: the cosine theorem with that
+    angle)."""
+    return sliding_direction(second, link) / sliding_direction(first, link)

@@ -27,9 +27,9 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
     chosen = backend(method)
     if scene.sliders and not chosen.sliders:
         joints = ", ".join(slider.joint for slider in scene.sliders)
-        takers = ", ".join(name for name in available_backends() if backend(name).sliders)
+        takers = " or ".join(f"--method {name}" for name in available_backends() if backend(name).sliders)
         raise SolverError(f"slider joints {joints}: the {method} method does not solve slider joints yet "
-                          f"(thesis ch. 4); use --method {takers}")
+                          f"(thesis ch. 4); use {takers}")
     return chosen.load()(scene, **options)
 
 

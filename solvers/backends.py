@@ -55,7 +55,8 @@ def backend(name: str) -> Backend:
 
 
 register_backend("numeric", "baranov.solvers.numeric:solve_numeric",
-                 "every sign branch sampled and bracketed in floating point (docs/numeric.md)")
+                 "every sign branch sampled and bracketed in floating point (docs/numeric.md); slider joints too",
+                 sliders=True)
 register_backend("exact", "baranov.solvers.exact:solve_exact",
                  "characteristic polynomial over Q, certified real roots and modes (docs/exact.md)")
 register_backend("msolve", "baranov.solvers.msolve_backend:solve_msolve",

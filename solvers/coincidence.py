@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
-from baranov.planner import ALTERNATIVE_PLANS, Plan, best_plan, plan_avoiding
+from baranov.planner import ALTERNATIVE_PLANS, Plan, SliderPlanError, best_plan, plan_avoiding, slider_plan
 from baranov.scene import Scene
 
 from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
@@ -55,6 +55,11 @@ def solvable_plan(scene: Scene) -> Plan:
     """The best plan with no joint pair at known distance 0 as its reference or a base;
     raises :class:`NoPlanError` (naming the pair) if none of the ALTERNATIVE_PLANS best
     has that property (:class:`MovableLinkageError` if msolve finds the linkage moves)."""
+    if scene.sliders:
+        try:
+            return slider_plan(scene.chain, [slider.joint for slider in scene.sliders])
+        except SliderPlanError as error:
+            raise NoPlanError(str(error)) from None
     plan = plan_avoiding(scene.chain, scene.coincident_pairs)
     if plan is None:
         names = ", ".join(sorted(",".join(sorted(pair)) for pair in scene.coincident_pairs))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from dataclasses import dataclass
 from typing import Any
 
@@ -85,11 +86,12 @@ class Solution:
     undecided: tuple[str, ...] = ()
 
     @classmethod
-    def of_plan(cls, method: str, plan, modes: tuple[AssemblyMode, ...], **extra) -> Solution:
+    def of_plan(cls, method: str, plan, modes: tuple[AssemblyMode, ...], sliders: Collection[str] = (),
+                **extra) -> Solution:
         """The solution of ``method`` in the terms of ``plan`` (its coupling degree,
-        parameter names and free-sign triangles), with the fields only ``cls`` has in
-        ``extra``."""
-        names = tuple(parameter_name(pair) for pair in plan.parameters)
+        parameter names — t for a pair with one of the slider joints ``sliders`` — and
+        free-sign triangles), with the fields only ``cls`` has in ``extra``."""
+        names = tuple(parameter_name(pair, sliders) for pair in plan.parameters)
         return cls(method, plan.number_of_parameters, names, plan.free_sign_triangles, modes, **extra)
 
     def to_dict(self) -> dict:

@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from baranov.planner import Plan, best_plan, parameter_name
+from baranov.planner import Plan, SliderPlanError, best_plan, parameter_name, slider_plan
 from baranov.scene import Scene
 
 from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
@@ -34,7 +34,7 @@ def solve_msolve(scene: Scene, timeout: float = 600.0) -> Solution:
     >>> [round(mode.parameters["s1,6"], 4) for mode in solution.assembly_modes]  # doctest: +SKIP
     [49.5561, 50.1965, 50.627, 85.0]
     """
-    plan = best_plan(scene.chain)
+    plan = _plan(scene)
     return Solution("msolve", plan.number_of_parameters, tuple(_names(scene, plan)),
                     () if scene.sliders else plan.free_sign_triangles, verified_modes(scene, plan, timeout))
 
@@ -63,10 +63,19 @@ def verified_modes(scene: Scene, plan: Plan, timeout: float = 600.0) -> tuple[As
     return sorted_modes(modes)
 
 
+def _plan(scene: Scene) -> Plan:
+    """The plan whose terms describe the modes: the one the numeric method runs (with
+    sliders, :func:`~baranov.planner.slider_plan`), else the truss's best."""
+    if scene.sliders:
+        try:
+            return slider_plan(scene.chain, [slider.joint for slider in scene.sliders])
+        except SliderPlanError:
+            pass
+    return best_plan(scene.chain)
+
+
 def _names(scene: Scene, plan: Plan) -> list[str]:
-    sliders = {slider.joint for slider in scene.sliders}
-    return [parameter_name((u, v)).replace("s", "t", 1) if u in sliders or v in sliders else parameter_name((u, v))
-            for u, v in plan.parameters]
+    return [parameter_name(pair, [slider.joint for slider in scene.sliders]) for pair in plan.parameters]
 
 
 def described_mode(scene: Scene, plan: Plan, configuration: dict[str, tuple[float, float]], residual: float,
@@ -81,7 +90,9 @@ def described_mode(scene: Scene, plan: Plan, configuration: dict[str, tuple[floa
     sliders = {slider.joint: slider for slider in scene.sliders}
     values = []
     for u, v in plan.parameters:
-        if u in sliders or v in sliders:
+        if u in sliders and v in sliders:  # no plan the slider constructions run has such a pair
+            values.append(math.nan)
+        elif u in sliders or v in sliders:
             slider, other = (sliders[u], v) if u in sliders else (sliders[v], u)
             link = next(axis.link for axis in slider.axes)
             foot, direction = slider_axis(scene, slider, link, at)

@@ -9,12 +9,14 @@ import math
 import numpy as np
 
 from baranov.closure import CompiledSystem, closure_system
-from baranov.planner import Plan, parameter_name
+from baranov.closure.sliders import SearchedParameter, SliderGeometry
+from baranov.planner import Plan
 from baranov.scene import Scene
+from baranov.scene.sliders import axis_frame, axis_turn
 
 from .modes import AssemblyMode
 from .polish import POLISH_STEPS, polish_configurations
-from .verification import RESIDUAL_TOLERANCE, joint_residuals
+from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residuals
 
 #: Relative doubled area below which :func:`read_back` calls a triangle flat (sign 0).
 FLAT_AREA = 1e-10
@@ -27,12 +29,48 @@ NEARLY_FLAT = 1e-4
 
 def compile_scene(scene: Scene, plan: Plan) -> CompiledSystem:
     """The closure system of ``plan`` bound to the dimensions of ``scene`` (floats), with
-    the orientation of every link step read from the link's shape."""
+    the orientation of every link step read from the link's shape, and its sliders."""
     return CompiledSystem(
         closure_system(plan),
         {pair: float(value) for pair, value in scene.known.items()},
         {s.triangle: scene.orientation(s.triangle) for s in plan.steps if not s.free_sign},
+        slider_geometry(scene),
+        searched_parameters(scene, plan),
     )
+
+
+def searched_parameters(scene: Scene, plan: Plan) -> dict[tuple[str, str], SearchedParameter]:
+    """With sliders, the parameters searched through a map (:class:`SearchedParameter`):
+    an oriented distance t (a pair with a slider), bounded by the shortest path of link
+    dimensions to the nearer of the slider's points (:meth:`Scene.largest_distance`), and
+    a parameter no such path bounds, on the scale of the linkage's size."""
+    sliders = {slider.joint for slider in scene.sliders}
+    searched = {}
+    for pair in plan.parameters if sliders else ():
+        bound = scene.largest_distance(*pair)
+        if set(pair) & sliders or not math.isfinite(bound):
+            bounded = math.isfinite(bound)
+            searched[pair] = SearchedParameter(bool(set(pair) & sliders), bounded,
+                                               bound if bounded else distance_bound(scene))
+    return searched
+
+
+def slider_geometry(scene: Scene) -> dict[str, SliderGeometry]:
+    """Each slider joint's links, the other (revolute) joints of each in the frame of its
+    axis (:func:`~baranov.scene.sliders.axis_frame`) and the turns to the axes of the
+    sliders it shares a link with: what the slider constructions need."""
+    sliders = {slider.joint: slider for slider in scene.sliders}
+    geometry = {}
+    for slider in scene.sliders:
+        links = tuple(axis.link for axis in slider.axes)
+        frames = {link: axis_frame(slider, scene.link_of(link)) for link in links}
+        offsets = {link: {joint: z for joint, z in frame.items() if joint not in sliders} for link, frame in frames.items()}
+        slider_offsets = {link: {joint: z for joint, z in frame.items() if joint in sliders}
+                          for link, frame in frames.items()}
+        turns = {other: axis_turn(slider, sliders[other], scene.link_of(link))
+                 for link in links for other in scene.link_of(link).joints if other in sliders and other != slider.joint}
+        geometry[slider.joint] = SliderGeometry(links, offsets, turns, slider_offsets)
+    return geometry
 
 
 def placed_from_ground(scene: Scene, matrices: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
@@ -41,8 +79,8 @@ def placed_from_ground(scene: Scene, matrices: dict[str, np.ndarray]) -> dict[st
     joints onto their world coordinates. NaN where a radicand was negative or the ground
     joints coincide."""
     ground = scene.link_of(scene.ground)
-    g1, g2 = ground.joints[0], ground.joints[1]
-    world = {j: complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
+    g1, g2 = (scene.point_name(ground.name, joint) for joint in ground.joints[:2])  # P1' for a slider
+    world = {scene.point_name(ground.name, j): complex(float(x), float(y)) for j, (x, y) in scene.world.items()}
     with np.errstate(invalid="ignore", divide="ignore"):
         denominator = matrices[g2] - matrices[g1]
         reference = np.where(denominator != 0, (world[g2] - world[g1]) / np.where(denominator != 0, denominator, 1),
@@ -74,7 +112,8 @@ def mode_of(compiled: CompiledSystem, joints: list[str], values: np.ndarray, bra
             points: np.ndarray, residual: float) -> AssemblyMode:
     """The :class:`AssemblyMode` at parameter ``values`` on ``branch``, joints ``joints``
     at ``points`` (complex)."""
-    return AssemblyMode({parameter_name(pair): float(v) for pair, v in zip(compiled.parameters, values, strict=True)},
+    return AssemblyMode({name: float(v) for name, v in zip(compiled.parameter_names, compiled.reported(values),
+                                                          strict=True)},
                         tuple(int(s) for s in branch),
                         {j: (float(p.real), float(p.imag)) for j, p in zip(joints, points, strict=True)},
                         float(residual))
@@ -116,6 +155,8 @@ def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -
     reported twice, 5e-5 apart (9/N20 of the collinear-joints sweep). Snapped flat, they
     are one; two genuinely distinct modes this close keep a triangle area whose removal
     breaks the verification (the merging pair of docs/stability.md)."""
+    if scene.sliders:  # a triangle with a vertex at infinity has no area to snap
+        return mode
     at = {joint: complex(*point) for joint, point in mode.joints.items()}
     flat = [index for index, triangle in enumerate(compiled.free_triangles)
             if orientation(at, *triangle, NEARLY_FLAT) == 0]

@@ -10,14 +10,17 @@ import math
 from fractions import Fraction
 from pathlib import Path
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from baranov.planner import best_plan
 from baranov.scene import SceneError, load_scene, scene_from_dict
 from baranov.scene.sliders import angle_direction
 from baranov.solvers import SolverError, solve
-from baranov.solvers.msolve import find_msolve, msolve_modes
+from baranov.solvers.msolve import compare_modes, find_msolve, msolve_modes
+from baranov.solvers.msolve_backend import described_mode
 from baranov.topology.chain import JointKind
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -74,10 +77,27 @@ def test_a_slider_scene_names_the_two_points_of_the_joint():
     assert scene.exact
 
 
-def test_the_bilateration_backends_refuse_sliders_with_a_clear_message():
-    with pytest.raises(SolverError, match="slider joints P9: the numeric method does not solve slider joints yet.*"
-                                          "use --method msolve"):
-        solve(load_scene(EXAMPLES / "7-B3-slider-P9.json"))
+def test_the_exact_backend_refuses_sliders_with_a_clear_message():
+    with pytest.raises(SolverError, match="slider joints P9: the exact method does not solve slider joints yet.*"
+                                          "use --method numeric or --method msolve"):
+        solve(load_scene(EXAMPLES / "7-B3-slider-P9.json"), method="exact")
+
+
+@pytest.mark.parametrize("example, name, published", [
+    ("7-B3-slider-P9", "s1,6", [49.5561, 50.1965, 50.6270, 85.0000]),
+    ("7-B3-sliders-P8-P9", "s1,6", [48.1037, 85.0000, 88.2000, 88.5483]),
+    ("7-B3-slider-P1", "t1,6", [7.4867, 8.7825]),
+])
+def test_the_numeric_method_reproduces_the_published_roots(example, name, published):
+    """The slider constructions of closure/sliders.py in the numeric backend: every mode,
+    described in the thesis's variable (the truss's best plan; t1,6 for a slider at an
+    end of the variable segment, §4.2.4), verified to rounding."""
+    scene = load_scene(EXAMPLES / f"{example}.json")
+    thesis = best_plan(scene.chain)
+    modes = solve(scene).assembly_modes
+    values = sorted(described_mode(scene, thesis, mode.joints, mode.max_residual).parameters[name] for mode in modes)
+    assert [round(value, 4) for value in values] == published
+    assert all(mode.max_residual < 1e-12 for mode in modes)
 
 
 @needs_msolve
@@ -177,3 +197,39 @@ def test_written_angles_have_the_direction_of_their_value(x, y, ratio, quarters)
     length = math.hypot(*direction)
     assert math.isclose(direction[0] / length, math.cos(angle), abs_tol=1e-12)
     assert math.isclose(direction[1] / length, math.sin(angle), abs_tol=1e-12)
+
+
+def _random_slider_scene(links: int, seed: int) -> tuple[dict, object]:
+    from baranov.enumerate import baranov_trusses
+    from baranov.scene.slider_instances import random_slider_set, slider_instance_dict
+
+    rng = np.random.default_rng(seed)
+    trusses = baranov_trusses(links)
+    truss = trusses[int(rng.integers(len(trusses)))]
+    data = slider_instance_dict(truss, random_slider_set(truss, rng), rng)
+    return data, scene_from_dict(data)
+
+
+@settings(max_examples=40, deadline=None)
+@given(links=st.sampled_from([3, 5, 7]), seed=st.integers(0, 2**32 - 1))
+def test_a_random_slider_chain_is_solved_with_its_generating_configuration(links, seed):
+    """Issue 17's property: a random configuration of a random truss, a random admissible
+    slider set with random axes (scene/slider_instances.py) → the numeric backend lists
+    the generating configuration among its modes, and, where msolve is installed, exactly
+    msolve's modes (the oracle on the Cartesian system, modelled independently)."""
+    data, scene = _random_slider_scene(links, seed)
+    found = [mode.joints for mode in solve(scene).assembly_modes]
+    generating = {name: tuple(map(float, point)) for name, point in data["generating_configuration"].items()}
+    assert compare_modes(found, [generating])[0] == 0
+    if find_msolve() is not None:
+        assert compare_modes(found, list(msolve_modes(scene).configurations))[:2] == (0, 0)
+
+
+def test_slider_parameters_are_named_t_and_reported_as_oriented_distances():
+    """A plan parameter with a slider is t, the other joint's oriented distance to the
+    axis (§4.2.4), of either sign; the backends search it through a map of (0, B²]."""
+    scene = load_scene(EXAMPLES / "7-B3-slider-P1.json")
+    solution = solve(scene)
+    assert solution.parameters == ("t1,6",)
+    for mode in solution.assembly_modes:  # the axis is the ground's x-axis through P1
+        assert abs(mode.parameters["t1,6"] - (mode.joints["P6"][1] - mode.joints["P1'"][1])) < 1e-12

@@ -68,13 +68,13 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     if degree == 0:
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
-        candidates, near = one_parameter_roots(compiled, branches, distance_bound(scene) ** 2, samples,
+        candidates, near = one_parameter_roots(compiled, branches, _upper_bounds(scene, plan, compiled)[0], samples,
                                                 undecided, deadline)
         if near:  # a root where f is not smooth (a singular mode): polished on the links, then verified
             polished = _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
         candidates += roots_at_critical_values(compiled, branches, critical_values(scene, plan))
     elif degree == 2:
-        upper = tuple(scene.largest_distance(u, v) ** 2 for u, v in plan.parameters)
+        upper = _upper_bounds(scene, plan, compiled)
         candidates, (stalled, stalled_branches), unsearched = two_parameter_roots(compiled, branches, upper, deadline)
         candidates += ridge_roots(compiled, branches, upper)
         _require_no_shared_curve(scene, compiled, branches, candidates)
@@ -83,11 +83,24 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
     modes = assembly_modes(scene, compiled, candidates, polished)
+    if scene.sliders:  # no polishing on slider constraints yet (docs/sliders.md)
+        return Solution.of_plan("numeric", plan, modes, [slider.joint for slider in scene.sliders],
+                                undecided=tuple(undecided))
     if degree > 0 and coincidences:
         modes = _modes_of_coincident_joints(scene, plan, samples, modes)
     modes, valleys = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
     modes, near_misses = _without_near_misses(scene, compiled, modes)
     return Solution.of_plan("numeric", plan, modes, undecided=tuple(undecided) + valleys + near_misses)
+
+
+def _upper_bounds(scene: Scene, plan: Plan, compiled: CompiledSystem) -> tuple[float, ...]:
+    """The upper end of each parameter's searched range: the squared sum of the link
+    diameters for one parameter, the squared shortest path of link dimensions between
+    its joints for two (:meth:`Scene.largest_distance`); with sliders, that path, or the
+    map of a slider's t or an unbounded parameter (:class:`SearchedParameter`)."""
+    if plan.number_of_parameters == 1 and not scene.sliders:
+        return (distance_bound(scene) ** 2,)
+    return tuple(compiled.search_bound(n, scene.largest_distance(u, v) ** 2) for n, (u, v) in enumerate(plan.parameters))
 
 
 #: A verified mode whose residual stays above this after NEAR_MISS_STEPS polishing steps
@@ -195,9 +208,11 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
     approximate roots, polished on the link constraints (:func:`polish_configurations`),
     their parameters and branches read back; for :func:`assembly_modes`, which verifies
     them as they are."""
-    placed = placed_from_ground(scene, compiled.paired_matrices(values, signs)) if len(values) else {}
+    if len(values) == 0 or scene.sliders:  # no polishing on slider constraints yet
+        return None
+    placed = placed_from_ground(scene, compiled.paired_matrices(values, signs))
     joints = sorted(placed)
-    if len(values) == 0 or not joints:
+    if not joints:
         return None
     complex_points = np.stack([placed[j] for j in joints], axis=1)
     usable = np.isfinite(complex_points).all(axis=1)

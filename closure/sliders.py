@@ -1,0 +1,279 @@
+"""Slider joints in the bilateration kernel: a plan step that touches a slider is the
+limit of its bilateration as the slider's centre goes to infinity (thesis §4.1–4.2.4,
+paper 003 §3; docs/sliders.md).
+
+A slider P_i is a revolute joint whose centre has gone to infinity, perpendicular to its
+axis: every s_{i,j} = (δ + h_j)² with h_j the oriented distance of P_j to the axis (> 0 to
+the left of the sliding direction), and the truss's closure condition keeps its leading
+coefficient as δ → ∞. In the plan, P_i^∞ is therefore a line, the axis, and each step
+that touches it is one of four ruler-and-compass constructions, each the limit of a
+bilateration:
+
+==========================================  =============================================
+truss step                                  slider version
+==========================================  =============================================
+P_i from P_a, P_b                           :func:`axis_through` two points of known h
+P_k from P_i, P_j                           :func:`point_off_axis`: at h_k from the axis,
+                                            √s_{j,k} from P_j (a circle and a line)
+P_l from P_i, P_j, both sliders of a link   :func:`turned_axis`: P_i's axis turned by the
+                                            angle the link fixes between them
+P_k from P_i, P_l, both sliders             :func:`point_on_two_axes` (two lines)
+closure s_{i,v}                             :func:`height_above`: P_v's h, computed
+==========================================  =============================================
+
+The along-axis step between two joints is ``along`` = σ√(s_{j,k} − Δh²): σ the
+orientation of the triangle with a vertex at infinity, fixed by the link's shape when
+P_j, P_k lie on one of the slider's links (then ``along`` is a link constant), a free
+sign otherwise (thesis: "this possible sign change has to be taken into account").
+
+Arithmetic: complex numbers (numpy arrays, Python complex). Points are in the plan's
+frame (the reference pair at 0 and 1, so that one frame unit is √s_ref world units);
+heights, alongs and squared distances are in world units (docs/sliders.md). The exact
+backend does not run them yet: it needs them division-free, as :func:`~.bilateration.bilaterated`
+is, over the radical tower.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Axis:
+    """A slider's axis placed in the plan's frame.
+
+    Attributes:
+        direction: ũ, the frame vector of one world unit along the sliding direction
+            (|ũ|² = 1/s_ref).
+        anchor: a point of the frame.
+        height: the anchor's oriented distance to the axis, in world units.
+    """
+
+    direction: Any
+    anchor: Any
+    height: Any
+
+
+def height_above(axis: Axis, point, reference) -> Any:
+    """The oriented distance of ``point`` (frame) to ``axis``, in world units:
+    h = h_anchor + s_ref Im(conj(ũ)(p − anchor)), since a frame vector has s_ref times
+    the squared length in world units and ũ is 1/√s_ref long. O(1).
+
+    >>> float(height_above(Axis(1j, 0j, 2.0), 1 + 0j, 1.0))  # the axis x = 2 upwards, P = (1, 0)
+    1.0
+    """
+    return axis.height + reference * (axis.direction.conjugate() * (point - axis.anchor)).imag
+
+
+def axis_through(p_a, h_a, p_b, h_b, along) -> Axis:
+    """The axis from two points of known oriented distance to it: P_b − P_a =
+    (along + i Δh) ũ with Δh = h_b − h_a, so ũ = (p_b − p_a)/(along + iΔh), where
+    along² + Δh² = s_{a,b}. The limit of locating P_i from P_a, P_b. O(1).
+
+    >>> axis = axis_through(0j, 1.0, 4 + 0j, 1.0, 4.0)  # both 1 above: the x-axis
+    >>> complex(axis.direction), float(height_above(axis, 0j, 1.0))
+    ((1+0j), 1.0)
+    """
+    return Axis((p_b - p_a) / (along + 1j * (h_b - h_a)), p_a, h_a)
+
+
+def point_off_axis(axis: Axis, p_j, h_j, h_k, along) -> Any:
+    """P_k at oriented distance ``h_k`` from ``axis`` and √s_{j,k} from P_j (of distance
+    ``h_j``): p_k = p_j + (along + i(h_k − h_j)) ũ with along = σ√(s_{j,k} − (h_k − h_j)²)
+    (paper 003's circle and line). The limit of locating P_k from P_i^∞, P_j. O(1).
+
+    >>> complex(point_off_axis(Axis(1 + 0j, 0j, 0.0), 0j, 0.0, 3.0, 4.0))  # 5 from P_j, 3 above
+    (4+3j)
+    """
+    return p_j + (along + 1j * (h_k - h_j)) * axis.direction
+
+
+def turned_axis(axis: Axis, turn, anchor, height) -> Axis:
+    """The axis of a second slider of the link that holds ``axis``'s slider: the
+    direction turned by the unit complex ``turn`` = e^{iγ} the link fixes between the two
+    sliding directions (:func:`~baranov.scene.sliders.axis_turn`), through a point
+    ``anchor`` of known oriented distance ``height`` to it (thesis §4.2.3). O(1)."""
+    return Axis(axis.direction * turn, anchor, height)
+
+
+def point_on_two_axes(first: Axis, h_first, second: Axis, h_second, reference) -> Any:
+    """The point at oriented distances ``h_first``, ``h_second`` from two axes (two
+    lines meet once; NaN or inf where they are parallel): from p = a₁ + ũ₁(λ + i c),
+    c = (h_first − h_a₁)/(s_ref |ũ₁|²), the second distance fixes λ. The limit of
+    locating P_k from two sliders. O(1).
+
+    >>> complex(point_on_two_axes(Axis(1 + 0j, 0j, 0.0), 2.0, Axis(1j, 0j, 0.0), -3.0, 1.0))
+    (3+2j)
+    """
+    u1, u2 = first.direction, second.direction
+    across = (h_first - first.height) / (reference * (u1.conjugate() * u1).real)
+    start = first.anchor + 1j * across * u1
+    offset = (h_second - height_above(second, start, reference)) / reference
+    return start + offset / (u2.conjugate() * u1).imag * u1
+
+
+def slider_point(axis: Axis, p_x, offset) -> Any:
+    """The slider's point on a link (P_i' or P_i''), from a placed joint P_x of that link
+    whose place in the axis frame of the link is ``offset`` = a_x + i h_x
+    (:func:`~baranov.scene.sliders.axis_frame`): p_i = p_x − offset ũ. O(1)."""
+    return p_x - offset * axis.direction
+
+
+def along_radicand(s_jk, rise) -> Any:
+    """s_{j,k} − Δh², the squared along-axis step between two joints √s_{j,k} apart whose
+    heights differ by Δh (``rise``): negative where no such step exists."""
+    return s_jk - rise * rise
+
+
+@dataclass(frozen=True)
+class SearchedParameter:
+    """A plan parameter that is not a squared distance with a known bound, as the
+    backends search it: a value p in (0, scale²], like a squared distance, mapped to the
+    parameter by :meth:`value`. With sliders a parameter can be an oriented distance t
+    (thesis §4.2.4: of either sign), and a parameter whose joints no path of link
+    dimensions joins without sliding has no bound: a tangent maps (0, scale²] onto the
+    whole line (t) or half-line (s), evenly in √p around |value| ≈ scale.
+
+    Attributes:
+        signed: an oriented distance t rather than a squared distance s.
+        bounded: |t| ≤ scale (t = (2√p/scale − 1) scale); else the tangent map.
+        scale: the bound, or the linkage's size where there is none.
+    """
+
+    signed: bool
+    bounded: bool
+    scale: float
+
+    def value(self, searched):
+        """The parameter at the searched value(s) p (numpy)."""
+        fraction = np.sqrt(searched) / self.scale  # in (0, 1]
+        if self.signed:
+            return self.scale * (2 * fraction - 1 if self.bounded else np.tan(np.pi * (fraction - 0.5)))
+        return (self.scale * np.tan(np.pi / 2 * fraction)) ** 2
+
+
+@dataclass(frozen=True)
+class SliderGeometry:
+    """What a plan needs of one slider joint, from the scene.
+
+    Attributes:
+        links: the names of its two links, in scene order (P_i' on the first).
+        offsets: for each link, each of its other revolute joints in the axis frame of
+            the slider's point on it: a + i h (:func:`~baranov.scene.sliders.axis_frame`).
+        turns: for each slider sharing a link with this one, the direction of its axis
+            in this one's axis frame (:func:`~baranov.scene.sliders.axis_turn`).
+        slider_offsets: for each link, the points of its other sliders in that frame.
+    """
+
+    links: tuple[str, str]
+    offsets: Mapping[str, Mapping[str, complex]]
+    turns: Mapping[str, complex]
+    slider_offsets: Mapping[str, Mapping[str, complex]]
+
+    def offset(self, joint: str) -> complex | None:
+        """``joint``'s a + i h, if it lies on one of the slider's links."""
+        return next((frame[joint] for frame in self.offsets.values() if joint in frame), None)
+
+
+class SliderPlacement:
+    """The plan steps that touch a slider, for :func:`~.bilateration.place_joints` (its
+    ``slider_step``): the axes placed so far, and the constructions above chosen by which
+    of a step's joints are sliders. Complex arithmetic (the numeric evaluation).
+
+    Args:
+        geometry: the slider joints.
+        parameter: the value of a parameter pair, None for another pair; for a pair of a
+            slider and a joint, the joint's oriented distance t to the axis (thesis
+            §4.2.4).
+        along_root: ``along_root(index, step, s, radicand)``: σ√radicand (σ the step's
+            sign), for the radicand s − Δh² of a step with a free sign.
+    """
+
+    def __init__(self, geometry: Mapping[str, SliderGeometry], parameter: Callable[[str, str], Any],
+                 along_root: Callable[[int, Any, Any, Any], Any]):
+        self.geometry = geometry
+        self.parameter = parameter
+        self.along_root = along_root
+        self.axes: dict[str, Axis] = {}
+
+    def height(self, slider: str, joint: str, points: Mapping[str, Any], reference) -> Any:
+        """P_joint's oriented distance to ``slider``'s axis: a link constant, the
+        parameter t, or computed from the placed axis."""
+        offset = self.geometry[slider].offset(joint)
+        if offset is not None:
+            return offset.imag
+        value = self.parameter(slider, joint)
+        if value is not None:
+            return value
+        return height_above(self.axes[slider], points[joint], reference)
+
+    def frame(self, a: str, b: str) -> tuple[dict[str, Any], Any] | None:
+        """For a reference pair (a, b) with one slider: the frame on its axis, in world
+        units (the axis the real line, sliding towards +1, through 0): the other joint at
+        i h, and s_ref = 1 (thesis §4.2.4 puts the frame so). None without a slider."""
+        if a not in self.geometry and b not in self.geometry:
+            return None
+        slider, other = (a, b) if a in self.geometry else (b, a)
+        self.axes[slider] = Axis(1 + 0j, 0j, 0.0)
+        return {other: 1j * self.height(slider, other, {}, 1.0)}, 1.0
+
+    def _along(self, index: int, step, slider: str, first: str, second: str, squared, rise) -> Any:
+        """The along-axis step from ``first`` to ``second``: a constant of ``slider``'s
+        link where the step is a link step, else σ√(s − Δh²)."""
+        if not step.free_sign:
+            return (self.geometry[slider].offset(second) - self.geometry[slider].offset(first)).real
+        return self.along_root(index, step, squared, along_radicand(squared, rise))
+
+    def step(self, index: int, step, points: dict[str, Any], reference, distance: Callable[[str, str], Any]) -> bool:
+        """Place ``step`` if it touches a slider (an axis into :attr:`axes`, or a joint
+        into ``points``, as complex numbers); False if it does not."""
+        i, j = step.base
+        k = step.joint
+        if not {i, j, k} & self.geometry.keys():
+            return False
+        sliders = [name for name in (i, j) if name in self.geometry]
+        if k in self.geometry:
+            if len(sliders) == 2:
+                raise NotImplementedError(f"slider {k} located from the two sliders {i}, {j}")
+            if sliders:
+                other = j if sliders[0] == i else i
+                self.axes[k] = turned_axis(self.axes[sliders[0]], self.geometry[sliders[0]].turns[k], points[other],
+                                           self.height(k, other, points, reference))
+                return True
+            h_i, h_j = self.height(k, i, points, reference), self.height(k, j, points, reference)
+            along = self._along(index, step, k, i, j, distance(i, j), h_j - h_i)
+            self.axes[k] = axis_through(points[i], h_i, points[j], h_j, along)
+            return True
+        if len(sliders) == 2:
+            points[k] = point_on_two_axes(self.axes[i], self.height(i, k, points, reference),
+                                          self.axes[j], self.height(j, k, points, reference), reference)
+            return True
+        slider = sliders[0]
+        other = j if slider == i else i
+        h_other, h_k = self.height(slider, other, points, reference), self.height(slider, k, points, reference)
+        along = self._along(index, step, slider, other, k, distance(other, k), h_k - h_other)
+        points[k] = point_off_axis(self.axes[slider], points[other], h_other, h_k, along)
+        return True
+
+    def slider_points(self, points: Mapping[str, Any], reference) -> dict[str, Any]:
+        """Each slider's point on each of its links (``P9'`` on the first, ``P9''`` on
+        the second): from a placed revolute joint of that link (:func:`slider_point`),
+        or, on a link whose other joints are sliders, where its two axes put it: on its
+        own axis, and at the height from the other axis that brings the other slider's
+        point onto that one (:func:`point_on_two_axes`)."""
+        placed = {}
+        for name, geometry in self.geometry.items():
+            for link, mark in zip(geometry.links, ("'", "''"), strict=True):
+                if geometry.offsets[link]:
+                    joint, offset = next(iter(geometry.offsets[link].items()))
+                    placed[name + mark] = slider_point(self.axes[name], points[joint], offset)
+                    continue
+                other, offset = next(iter(geometry.slider_offsets[link].items()))
+                turn = geometry.turns[other]
+                placed[name + mark] = point_on_two_axes(self.axes[name], 0.0, self.axes[other],
+                                                        -(turn.conjugate() * offset).imag, reference)
+        return placed

@@ -1,0 +1,77 @@
+"""Plans for chains with slider joints (thesis ch. 4): a truss plan whose steps the
+slider constructions of :mod:`baranov.closure.sliders` can run.
+
+A slider chain has the plans of its Baranov truss (the sliders taken as revolute joints,
+thesis §4.2: "the closure conditions for the Baranov trusses ... can be directly used");
+every step that touches a slider becomes the limit of its bilateration; a reference pair
+with a slider puts the frame on its axis (thesis §4.2.4). A few steps have no such limit
+among the constructions implemented: a reference, parameter or closure pair made of two
+sliders (the
+thesis avoids both: "can always be avoided because all kinematic loops of an Assur
+kinematic chain contain at least one revolute joint"), and a slider located from two
+sliders. A parameter pair with one slider is the oriented distance t of the other joint
+to its axis (thesis §4.2.4).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection
+
+from baranov.topology import KinematicChain, TopologyError
+
+from .plan import Plan
+from .search import ALTERNATIVE_PLANS, bilateration_plans
+
+
+class SliderPlanError(TopologyError):
+    """No plan of the truss's best ones suits the slider joints; the message says why."""
+
+
+def slider_plan_obstacle(plan: Plan, sliders: Collection[str]) -> str | None:
+    """Why the slider constructions cannot run ``plan`` with the slider joints
+    ``sliders``, or None if they can. O(steps).
+
+    >>> from baranov.literature.trusses import thesis_truss
+    >>> from baranov.planner import best_plan
+    >>> plan = best_plan(thesis_truss("5/B1").chain())
+    >>> slider_plan_obstacle(plan, plan.reference)
+    'reference pair p1,2 joins two sliders'
+    """
+    sliders = set(sliders)
+
+    def name(pair: tuple[str, str]) -> str:
+        return "p" + ",".join(joint.lstrip("P") for joint in pair)
+
+    if set(plan.reference) <= sliders:
+        return f"reference pair {name(plan.reference)} joins two sliders"
+    for pair in plan.parameters:
+        if set(pair) <= sliders:
+            return f"parameter pair {name(pair)} joins two sliders"
+    for pair in plan.closure_pairs:
+        if set(pair) <= sliders:
+            return f"closure pair {name(pair)} joins two sliders"
+    for step in plan.steps:
+        if set(step.triangle) <= sliders:
+            return f"step {step.joint} from {', '.join(step.base)}: three sliders"
+    return None
+
+
+def slider_plan(chain: KinematicChain, sliders: Collection[str], count: int = ALTERNATIVE_PLANS) -> Plan:
+    """The best plan of ``chain`` (with ``sliders`` taken as revolute joints), among its
+    ``count`` best, that the slider constructions can run (:func:`slider_plan_obstacle`);
+    raises :class:`SliderPlanError` naming the best plan's obstacle if none can. The best
+    plan itself when there are no sliders. Cost: that of
+    :func:`~baranov.planner.bilateration_plans` with ``count`` plans.
+
+    >>> from baranov.literature.trusses import thesis_truss
+    >>> from baranov.planner import best_plan
+    >>> truss = thesis_truss("7/B3").chain()
+    >>> slider_plan(truss, ["P1"]) == best_plan(truss)  # a slider in the reference: the frame on its axis
+    True
+    """
+    plans = bilateration_plans(chain, count if sliders else 1)
+    for plan in plans:
+        if slider_plan_obstacle(plan, sliders) is None:
+            return plan
+    raise SliderPlanError(f"sliders {', '.join(sorted(sliders))}: none of the {len(plans)} best plans suits them "
+                          f"(the best: {slider_plan_obstacle(plans[0], sliders)})")
