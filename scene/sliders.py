@@ -36,7 +36,9 @@ from fractions import Fraction
 
 import networkx as nx
 
-from .numbers import Number
+from baranov.closure.bilateration import triangle_radicand
+
+from .numbers import Number, rational_sqrt
 
 #: The keys of a slider entry in a scene.
 SLIDER_KEYS = ("joint", "angles", "comment")
@@ -177,38 +179,78 @@ def slider_loop(links_of_sliders: dict[str, tuple[str, str]]) -> list[str] | Non
         return None
 
 
-def sliding_direction(slider: SliderJoint, link) -> complex:
-    """The unit sliding direction of ``slider`` in the own frame of ``link`` (a
-    :class:`~baranov.scene.model.SceneLink`, one of its two links): the vector from the
-    slider's point to the reference joint, turned back by its angle α (thesis §4.1)."""
-    axis = slider.axis_on(link.name)
-    toward = complex(*link.local[axis.reference]) - complex(*link.local[slider.joint])
-    turned = toward * complex(float(axis.direction[0]), -float(axis.direction[1]))
-    return turned / abs(turned)
-
-
-def axis_frame(slider: SliderJoint, link) -> dict[str, complex]:
+def axis_frame(slider: SliderJoint, link) -> dict[str, tuple[Number, Number]]:
     """The joints of ``link`` (one of the slider's two links) in the frame of the
     slider's axis as fixed in that link: the slider's point on the link at 0, the sliding
-    direction (:func:`sliding_direction`) along +1, so that each other joint P_j sits at
-    a_j + i h_j with h_j = √s_{i',j} sin α_j its oriented distance to the axis (thesis
-    §4.1) and a_j = √s_{i',j} cos α_j its place along it. Floats (the link's own frame
-    is). O(joints of the link).
+    direction along +1, so that each other joint P_j sits at (a_j, h_j), h_j = √s_{i',j}
+    sin α_j its oriented distance to the axis (thesis §4.1) and a_j = √s_{i',j} cos α_j
+    its place along it. The reference joint sits at √s_{i',ref} (cos α, sin α), every
+    other joint at that times the bilateration Z_{i',ref,j} (thesis eq. 2.7): exact
+    (Fractions) where the link's areas and √(s_{i',ref} / |direction|²) are rational,
+    floats otherwise. O(joints of the link).
 
     >>> from baranov.scene import load_scene
     >>> scene = load_scene("examples/7-B3-slider-P9.json")
     >>> frame = axis_frame(scene.sliders[0], scene.link_of("t569"))
-    >>> [complex(round(z.real, 9), round(z.imag, 9)) for z in (frame["P5"], frame["P6"])]
-    [(-2+5j), (-3+2j)]
+    >>> frame["P5"], frame["P6"]
+    ((Fraction(-2, 1), Fraction(5, 1)), (Fraction(-3, 1), Fraction(2, 1)))
     """
-    foot = complex(*link.local[slider.joint])
-    direction = sliding_direction(slider, link)
-    return {joint: (complex(*link.local[joint]) - foot) / direction for joint in link.joints if joint != slider.joint}
+    exact = _axis_frame(slider, link, exact=True)
+    return exact if exact is not None else _axis_frame(slider, link, exact=False)
 
 
-def axis_turn(first: SliderJoint, second: SliderJoint, link) -> complex:
+def _axis_frame(slider: SliderJoint, link, exact: bool) -> dict[str, tuple[Number, Number]] | None:
+    """:func:`axis_frame` in Fractions (None where a root is irrational) or in floats."""
+    def number(value):
+        return Fraction(value) if exact else float(value)
+
+    def root(value):
+        return rational_sqrt(value) if exact else math.sqrt(max(value, 0.0))
+
+    axis = slider.axis_on(link.name)
+    joint, reference = slider.joint, axis.reference
+    squared = {pair: number(value) for pair, value in link.squared_distances.items()}
+    x, y = (number(c) for c in axis.direction)
+    base = squared[frozenset((joint, reference))]
+    scale = root(base / (x * x + y * y)) if exact and all(isinstance(c, Fraction) for c in axis.direction) else (
+        None if exact else root(base / (x * x + y * y)))
+    if scale is None:
+        return None
+    start = complex(*link.local[joint])
+    toward = complex(*link.local[reference]) - start
+    frame = {reference: (scale * x, scale * y)}
+    for other in link.joints:
+        if other in (joint, reference):
+            continue
+        second, third = squared[frozenset((joint, other))], squared[frozenset((reference, other))]
+        area = root(triangle_radicand(base, second, third))  # 4 A, unsigned
+        if area is None:
+            return None
+        if ((toward.conjugate() * (complex(*link.local[other]) - start)).imag) < 0:
+            area = -area
+        real, imaginary = (base + second - third) / (2 * base), area / (2 * base)  # Z_{i',ref,j}
+        frame[other] = (scale * (x * real - y * imaginary), scale * (x * imaginary + y * real))
+    return frame
+
+
+def axis_offsets(slider: SliderJoint, link) -> dict[str, complex]:
+    """:func:`axis_frame` as complex floats, a_j + i h_j."""
+    return {joint: complex(float(a), float(h)) for joint, (a, h) in axis_frame(slider, link).items()}
+
+
+def axis_turn(first: SliderJoint, second: SliderJoint, link) -> tuple[Number, Number]:
     """The direction of ``second``'s axis in the frame of ``first``'s (:func:`axis_frame`),
-    two sliders of one ``link``: a unit complex number e^{iγ}, γ the angle the link
+    two sliders of one ``link``: the unit vector (cos γ, sin γ), γ the angle the link
     fixes between the two sliding directions (thesis §4.2.3: the cosine theorem with that
-    angle)."""
-    return sliding_direction(second, link) / sliding_direction(first, link)
+    angle); exact where both frames are: the vector between the two sliders' points of the
+    link, in the first frame over the same vector in the second.
+
+    >>> from baranov.scene import load_scene
+    >>> scene = load_scene("examples/7-B3-sliders-P8-P9.json")
+    >>> p8, p9 = sorted(scene.sliders, key=lambda slider: slider.joint)
+    >>> [round(c, 12) for c in axis_turn(p9, p8, scene.link_of("t789"))]  # 45°: the angle of §4.2.3
+    [0.707106781187, 0.707106781187]
+    """
+    (dx, dy), (u, v) = axis_frame(first, link)[second.joint], axis_frame(second, link)[first.joint]
+    norm = u * u + v * v  # the vector from the first's point to the second's: (dx + i dy) / (−u − i v)
+    return -(dx * u + dy * v) / norm, -(dy * u - dx * v) / norm

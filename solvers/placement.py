@@ -12,7 +12,7 @@ from baranov.closure import CompiledSystem, closure_system
 from baranov.closure.sliders import SearchedParameter, SliderGeometry
 from baranov.planner import Plan
 from baranov.scene import Scene
-from baranov.scene.sliders import axis_frame, axis_turn
+from baranov.scene.sliders import axis_offsets, axis_turn
 
 from .modes import AssemblyMode
 from .polish import POLISH_STEPS, polish_configurations
@@ -63,11 +63,11 @@ def slider_geometry(scene: Scene) -> dict[str, SliderGeometry]:
     geometry = {}
     for slider in scene.sliders:
         links = tuple(axis.link for axis in slider.axes)
-        frames = {link: axis_frame(slider, scene.link_of(link)) for link in links}
+        frames = {link: axis_offsets(slider, scene.link_of(link)) for link in links}
         offsets = {link: {joint: z for joint, z in frame.items() if joint not in sliders} for link, frame in frames.items()}
         slider_offsets = {link: {joint: z for joint, z in frame.items() if joint in sliders}
                           for link, frame in frames.items()}
-        turns = {other: axis_turn(slider, sliders[other], scene.link_of(link))
+        turns = {other: complex(*map(float, axis_turn(slider, sliders[other], scene.link_of(link))))
                  for link in links for other in scene.link_of(link).joints if other in sliders and other != slider.joint}
         geometry[slider.joint] = SliderGeometry(links, offsets, turns, slider_offsets)
     return geometry
