@@ -203,24 +203,8 @@ class CompiledSystem:
             return root(index, step, (squared, 0.0, 0.0), radicand * squared) / np.sqrt(squared)
 
         placement = SliderPlacement(self.sliders, parameter, along_root)
-
-        def slider_step(index, step, points, reference, distance):
-            at = {name: x + 1j * y for name, (x, y, _) in points.items()}
-            if not placement.step(index, step, at, reference[0], lambda u, v: distance(u, v)[0]):
-                return None
-            if step.joint in self.sliders:
-                direction = placement.axes[step.joint].direction
-                return direction.real, direction.imag, 1
-            points[step.joint] = (at[step.joint].real, at[step.joint].imag, 1)
-            return points[step.joint]
-
-        def slider_frame():
-            started = placement.frame(*self.plan.reference)
-            if started is None:
-                return None
-            (joint, point), = started[0].items()
-            return {joint: (point.real, point.imag, 1)}, (started[1], 1)
-
+        slider_step, slider_frame = placement.kernel_hooks(self.plan.reference, lambda point: point[0] + 1j * point[1],
+                                                           lambda number: (number.real, number.imag, 1))
         return placement, slider_step, slider_frame
 
     def residuals(self, parameter_values: np.ndarray, signs: np.ndarray | None = None) -> np.ndarray:

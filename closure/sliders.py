@@ -35,7 +35,7 @@ is, over the radical tower.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -179,6 +179,18 @@ class SliderGeometry:
         return next((frame[joint] for frame in self.offsets.values() if joint in frame), None)
 
 
+def takes_root(step, sliders: Collection[str]) -> bool:
+    """Whether ``step`` takes a square root of its own when the joints ``sliders`` are
+    sliders: a free-sign bilateration, or a slider construction with a free along-axis
+    sign (:func:`axis_through`, :func:`point_off_axis` off a link); not a turned axis or
+    a point on two axes (no sign), nor a link's constant step."""
+    touched = [joint for joint in step.triangle if joint in sliders]
+    if not touched or not step.free_sign:
+        return step.free_sign
+    in_base = [joint for joint in step.base if joint in sliders]
+    return not in_base if step.joint in sliders else len(in_base) == 1
+
+
 class SliderPlacement:
     """The plan steps that touch a slider, for :func:`~.bilateration.place_joints` (its
     ``slider_step``): the axes placed so far, and the constructions above chosen by which
@@ -218,8 +230,9 @@ class SliderPlacement:
         if a not in self.geometry and b not in self.geometry:
             return None
         slider, other = (a, b) if a in self.geometry else (b, a)
-        self.axes[slider] = Axis(1 + 0j, 0j, 0.0)
-        return {other: 1j * self.height(slider, other, {}, 1.0)}, 1.0
+        height = self.height(slider, other, {}, 1)
+        self.axes[slider] = Axis(1 + 0 * height, 0 * height, 0 * height)  # 1, 0, 0 in the height's arithmetic
+        return {other: 1j * height}, 1
 
     def _along(self, index: int, step, slider: str, first: str, second: str, squared, rise) -> Any:
         """The along-axis step from ``first`` to ``second``: a constant of ``slider``'s
@@ -258,6 +271,32 @@ class SliderPlacement:
         along = self._along(index, step, slider, other, k, distance(other, k), h_k - h_other)
         points[k] = point_off_axis(self.axes[slider], points[other], h_other, h_k, along)
         return True
+
+    def kernel_hooks(self, reference_pair: tuple[str, str], to_number: Callable, from_number: Callable,
+                     reference_of: Callable = lambda reference: reference[0],
+                     distance_of: Callable = lambda pair: pair[0]) -> tuple[Callable, Callable]:
+        """The ``slider_step`` and ``slider_frame`` hooks of
+        :func:`~.bilateration.place_joints`, for an arithmetic whose kernel points
+        (x, y, w) become numbers of this class's constructions by ``to_number`` and back
+        by ``from_number``; ``reference_of`` and ``distance_of`` turn the kernel's
+        (numerator, denominator) pairs into such numbers (floats: the numerator)."""
+        def slider_step(index, step, points, reference, distance):
+            at = {name: to_number(point) for name, point in points.items()}
+            if not self.step(index, step, at, reference_of(reference), lambda u, v: distance_of(distance(u, v))):
+                return None
+            if step.joint in self.geometry:
+                return from_number(self.axes[step.joint].direction)
+            points[step.joint] = from_number(at[step.joint])
+            return points[step.joint]
+
+        def slider_frame():
+            started = self.frame(*reference_pair)
+            if started is None:
+                return None
+            (joint, point), = started[0].items()
+            return {joint: from_number(point)}, (started[1], 1)
+
+        return slider_step, slider_frame
 
     def slider_points(self, points: Mapping[str, Any], reference) -> dict[str, Any]:
         """Each slider's point on each of its links (``P9'`` on the first, ``P9''`` on

@@ -30,15 +30,33 @@ def random_slider_set(truss: KinematicChain, rng: np.random.Generator, count: in
     return [joint.name for k, joint in enumerate(truss.joints) if subset >> k & 1]
 
 
+#: Directions of rational length (Pythagorean triples): with them every axis frame of an
+#: integer configuration is rational, as the exact method needs (scene/sliders.py).
+RATIONAL_DIRECTIONS = ((1, 0), (3, 4), (4, 3), (5, 12), (12, 5), (8, 15), (15, 8), (7, 24), (24, 7))
+
+
+def _direction(rng: np.random.Generator, box: int, rational: bool) -> tuple[int, int]:
+    if not rational:
+        return tuple(int(c) for c in rng.integers(-box, box + 1, size=2))
+    x, y = RATIONAL_DIRECTIONS[int(rng.integers(len(RATIONAL_DIRECTIONS)))]
+    quarter = int(rng.integers(4))  # turned by a multiple of 90°
+    for _ in range(quarter):
+        x, y = -y, x
+    return x, y
+
+
 def slider_instance_dict(truss: KinematicChain, sliders: list[str], rng: np.random.Generator,
-                         coordinates: dict | None = None, ground: int = 0, box: int = 5) -> dict:
+                         coordinates: dict | None = None, ground: int = 0, box: int = 5,
+                         rational: bool = False) -> dict:
     """The JSON form of a scene of ``truss`` with the joints ``sliders`` turned into
     sliders, and its generating configuration (joint names, ``P9'``/``P9''`` for a
     slider's two points) under ``"generating_configuration"``: each slider's axis has a
     random integer direction in [−box, box]², no two parallel, its second link's point is moved along it
     by a random multiple in [−2, 2] (0: the points coincide), and each link's angle is
     given as the exact direction [x, y] of the vector to one of its other joints.
-    ``coordinates``: the truss's configuration (a generic integer one by default)."""
+    ``coordinates``: the truss's configuration (a generic integer one by default);
+    ``rational``: directions of rational length only (:data:`RATIONAL_DIRECTIONS`), so
+    that the exact method takes the scene."""
     coordinates = coordinates or generic_integer_configuration(truss, rng)
     links = joints_of_links(truss)
     moved: dict[str, tuple[int, int]] = {}
@@ -47,7 +65,7 @@ def slider_instance_dict(truss: KinematicChain, sliders: list[str], rng: np.rand
         # no two axes parallel: two sliders of one link with parallel axes let it slide
         # (a generic instance has none; docs/sliders.md says what happens where one does)
         while True:
-            direction = tuple(int(c) for c in rng.integers(-box, box + 1, size=2))
+            direction = _direction(rng, box, rational)
             if direction != (0, 0) and all(direction[0] * d[1] != direction[1] * d[0] for d in directions.values()):
                 break
         directions[joint] = direction

@@ -233,11 +233,6 @@ def _axis_frame(slider: SliderJoint, link, exact: bool) -> dict[str, tuple[Numbe
     return frame
 
 
-def axis_offsets(slider: SliderJoint, link) -> dict[str, complex]:
-    """:func:`axis_frame` as complex floats, a_j + i h_j."""
-    return {joint: complex(float(a), float(h)) for joint, (a, h) in axis_frame(slider, link).items()}
-
-
 def axis_turn(first: SliderJoint, second: SliderJoint, link) -> tuple[Number, Number]:
     """The direction of ``second``'s axis in the frame of ``first``'s (:func:`axis_frame`),
     two sliders of one ``link``: the unit vector (cos γ, sin γ), γ the angle the link

@@ -58,7 +58,8 @@ register_backend("numeric", "baranov.solvers.numeric:solve_numeric",
                  "every sign branch sampled and bracketed in floating point (docs/numeric.md); slider joints too",
                  sliders=True)
 register_backend("exact", "baranov.solvers.exact:solve_exact",
-                 "characteristic polynomial over Q, certified real roots and modes (docs/exact.md)")
+                 "characteristic polynomial over Q, certified real roots and modes (docs/exact.md); slider joints "
+                 "with rational axis frames, coupling degree 1", sliders=True)
 register_backend("msolve", "baranov.solvers.msolve_backend:solve_msolve",
                  "msolve (exact Groebner-basis solver) on the Cartesian system; slider joints too", sliders=True)
 register_backend("cartesian", "baranov.baselines.cartesian:solve_cartesian",

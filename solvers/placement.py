@@ -5,6 +5,8 @@ read from joint positions. Shared by the numeric and exact backends."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -12,7 +14,7 @@ from baranov.closure import CompiledSystem, closure_system
 from baranov.closure.sliders import SearchedParameter, SliderGeometry
 from baranov.planner import Plan
 from baranov.scene import Scene
-from baranov.scene.sliders import axis_offsets, axis_turn
+from baranov.scene.sliders import axis_frame, axis_turn
 
 from .modes import AssemblyMode
 from .polish import POLISH_STEPS, polish_configurations
@@ -55,19 +57,23 @@ def searched_parameters(scene: Scene, plan: Plan) -> dict[tuple[str, str], Searc
     return searched
 
 
-def slider_geometry(scene: Scene) -> dict[str, SliderGeometry]:
+def slider_geometry(scene: Scene, number: Callable[[tuple], Any] = lambda pair: complex(*map(float, pair))
+                    ) -> dict[str, SliderGeometry]:
     """Each slider joint's links, the other (revolute) joints of each in the frame of its
     axis (:func:`~baranov.scene.sliders.axis_frame`) and the turns to the axes of the
-    sliders it shares a link with: what the slider constructions need."""
+    sliders it shares a link with: what the slider constructions need, each place or
+    turn (a pair (re, im), exact where the scene is) made a number of the caller's
+    arithmetic by ``number`` (complex floats by default)."""
     sliders = {slider.joint: slider for slider in scene.sliders}
     geometry = {}
     for slider in scene.sliders:
         links = tuple(axis.link for axis in slider.axes)
-        frames = {link: axis_offsets(slider, scene.link_of(link)) for link in links}
-        offsets = {link: {joint: z for joint, z in frame.items() if joint not in sliders} for link, frame in frames.items()}
-        slider_offsets = {link: {joint: z for joint, z in frame.items() if joint in sliders}
+        frames = {link: axis_frame(slider, scene.link_of(link)) for link in links}
+        offsets = {link: {joint: number(z) for joint, z in frame.items() if joint not in sliders}
+                   for link, frame in frames.items()}
+        slider_offsets = {link: {joint: number(z) for joint, z in frame.items() if joint in sliders}
                           for link, frame in frames.items()}
-        turns = {other: complex(*map(float, axis_turn(slider, sliders[other], scene.link_of(link))))
+        turns = {other: number(axis_turn(slider, sliders[other], scene.link_of(link)))
                  for link in links for other in scene.link_of(link).joints if other in sliders and other != slider.joint}
         geometry[slider.joint] = SliderGeometry(links, offsets, turns, slider_offsets)
     return geometry

@@ -91,6 +91,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     polynomial: CharacteristicPolynomial | None = None
     gaps: tuple[str, ...] = ()
     notes: list[str] = []  # the Monte Carlo steps taken
+    coincidences = coincidences and not scene.sliders  # the other plans are not slider plans yet
     if plan.number_of_parameters == 0:
         modes = assembly_modes(scene, compile_scene(scene, plan), [(np.zeros(0), branch) for branch in branches])
     elif plan.number_of_parameters == 1:
@@ -141,7 +142,8 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         modes, more, by_msolve = _modes_where_undefined(scene, plan, polynomial, undefined, modes, coincidences)
         gaps += more
         notes += [MSOLVE_NOTE] if by_msolve and MSOLVE_NOTE not in notes else []
-    return ExactSolution.of_plan("exact", plan, modes, characteristic_polynomial=polynomial,
+    return ExactSolution.of_plan("exact", plan, modes, [slider.joint for slider in scene.sliders],
+                                 characteristic_polynomial=polynomial,
                                  certificate=Certificate(not gaps, "; ".join(notes) or None, gaps))
 
 
@@ -216,9 +218,11 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
 
     Cost: O(real roots × 2^m × steps) ball operations (m free-sign triangles), plus a
     root isolation per precision used."""
-    names = tuple(parameter_name(pair) for pair in plan.parameters)
+    sliders = [slider.joint for slider in scene.sliders]
+    names = tuple(parameter_name(pair, sliders) for pair in plan.parameters)
     every_branch = [tuple(int(s) for s in b) for b in branches]
     zero = coincidence_possible(scene, frozenset(plan.parameters[0]))
+    signed = bool(set(plan.parameters[0]) & set(sliders))  # t: an oriented distance, of either sign
     modes: list[AssemblyMode] = []
     gaps: list[str] = []
     undefined: list[tuple[float, frozenset]] = []
@@ -237,7 +241,7 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
                     undecided = {index: every_branch for index in range(len(roots))}
                     found = {index: [] for index in undecided}
                 for index, signs_list in list(undecided.items()):
-                    points = _parameter_points(roots[index], fiber, zero)
+                    points = _parameter_points(roots[index], fiber, zero, signed)
                     still = _modes_at_root(scene, plan, points, signs_list, names,
                                            found[index], coincident.setdefault(index, set()))
                     if still:
@@ -284,14 +288,16 @@ def _pair_names(pairs) -> str:
     return ", ".join(sorted("=".join(sorted(pair)) for pair in pairs))
 
 
-def _parameter_points(root: flint.arb, fiber: Fiber | None, zero: bool) -> list[tuple[flint.acb, ...]] | None:
+def _parameter_points(root: flint.arb, fiber: Fiber | None, zero: bool,
+                      signed: bool = False) -> list[tuple[flint.acb, ...]] | None:
     """The parameter values to try at a real root: (root,) for coupling 1; the real common
     points (root, v), v > 0, of the two curves for coupling 2; None if they cannot be
     decided at this precision (a ball straddling 0, or roots not isolated); [] where
     root < 0 (a squared distance), or root = 0 unless ``zero`` (the parameter's joints can
-    coincide: issue 25's 9/N2 instance, a mode at s1,10 = 0 that was skipped)."""
+    coincide: issue 25's 9/N2 instance, a mode at s1,10 = 0 that was skipped); every root
+    where the first parameter is ``signed`` (a slider's t, thesis §4.2.4)."""
     at_zero = zero and root.is_exact() and root == 0
-    if not root > 0 and not at_zero:
+    if not root > 0 and not at_zero and not signed:
         return None if root.contains(0) and not root.is_exact() else []
     if fiber is None:
         return [(flint.acb(root),)]

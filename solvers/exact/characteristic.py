@@ -41,11 +41,14 @@ from itertools import combinations, product
 import flint
 
 from baranov.closure.bilateration import dehomogenised, place_joints, squared_distance, triangle_radicand
+from baranov.closure.homogeneous import Homogeneous
+from baranov.closure.sliders import SliderPlacement, height_above, takes_root
 from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene, rational_sqrt
 
 from ..coincidence import solvable_plan
 from ..modes import SolverError
+from ..placement import slider_geometry
 
 #: Precisions (bits) of the genuineness test of a factor, tried in turn.
 TEST_BITS = (256, 1024, 4096)
@@ -213,7 +216,8 @@ def radical_tower(scene: Scene, plan: Plan, prime: int | None = None) -> Radical
     """
     if not scene.exact:
         raise ExactMethodError("scene: the exact method needs integer or rational dimensions (a float was given)")
-    free = [step for step in plan.steps if step.free_sign]
+    slider_names = [slider.joint for slider in scene.sliders]
+    free = [step for step in plan.steps if takes_root(step, slider_names)]
     names = tuple(f"r{n}" for n in range(len(free), 0, -1)) + tuple(f"t{n + 1}" for n in range(plan.number_of_parameters))
     if prime is None:
         context = flint.fmpq_mpoly_ctx.get(names, "lex")
@@ -261,15 +265,65 @@ def radical_tower(scene: Scene, plan: Plan, prime: int | None = None) -> Radical
     def multiply(first, second):  # the kernel's small ints (±1 from the reference points) become constants
         return _multiply(polynomial(first), polynomial(second), radicals, radicands)
 
-    _, _, distance = place_joints(plan, known, signed_root, multiply=multiply, reduced_point=reduced_point,
-                                  reduced_distance=reduced_distance)
+    sliders, hooks = None, {}
+    if slider_names:
+        ring = {"multiply": multiply, "constant": lambda value: polynomial(value) if isinstance(value, int) else
+                constant(value), "reduce": lambda number: Homogeneous(*reduced_point((number.x, number.y, number.w)),
+                                                                      multiply, number.constant, number.reduce)}
+
+        def along_root(index, step, squared, radicand):  # σ√(n/d) = r/d with r² = n d
+            radicands.append(multiply(radicand.x, radicand.w))
+            return Homogeneous(radicals[len(radicands) - 1], constant(0), radicand.w, **ring)
+
+        sliders = _slider_placement(scene, plan, ring, parameter_of, along_root)
+        hooks = dict(zip(("slider_step", "slider_frame"), sliders.kernel_hooks(
+            plan.reference, lambda point: Homogeneous(*(polynomial(c) for c in point), **ring),
+            lambda number: (number.x, number.y, number.w),
+            reference_of=lambda pair: Homogeneous(polynomial(pair[0]), constant(0), polynomial(pair[1]), **ring),
+            distance_of=lambda pair: Homogeneous(polynomial(pair[0]), constant(0), polynomial(pair[1]), **ring)),
+            strict=True))
+    points, reference, distance = place_joints(plan, known, signed_root, multiply=multiply, reduced_point=reduced_point,
+                                               reduced_distance=reduced_distance, **hooks)
     conditions, denominators = [], []
     for u, v in plan.closure_pairs:
-        numerator, denominator = distance(u, v, computed=True)
-        target = Fraction(scene.known[frozenset((u, v))])
-        conditions.append(numerator * target.denominator - denominator * target.numerator)
+        if sliders is not None and {u, v} & set(slider_names):
+            value = _slider_closure(sliders, u, v, points, reference, ring)
+            numerator, denominator = value.x, value.w
+        else:
+            numerator, denominator = distance(u, v, computed=True)
+            target = Fraction(scene.known[frozenset((u, v))])
+            numerator, denominator = numerator * target.denominator - denominator * target.numerator, denominator
+        conditions.append(numerator)
         denominators.append(denominator)
     return RadicalTower(context, plan.parameters, tuple(radicands), tuple(conditions), tuple(denominators))
+
+
+def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, along_root) -> SliderPlacement:
+    """The slider constructions (:mod:`baranov.closure.sliders`) over ``ring`` (a
+    :class:`Homogeneous` arithmetic), with the scene's axis frames exact; raises
+    :class:`ExactMethodError` where a place or turn is irrational."""
+    def number(pair):
+        if not all(isinstance(c, Fraction) for c in pair):
+            raise ExactMethodError("slider axes: a joint's place in an axis frame, or the turn between two axes, is "
+                                   "irrational; the exact method needs them rational (docs/sliders.md)")
+        return Homogeneous.of(pair, **ring)
+
+    def parameter(u: str, v: str):
+        value = parameters.get(frozenset((u, v)))
+        return None if value is None else Homogeneous.of(value, **ring)
+
+    return SliderPlacement(slider_geometry(scene, number), parameter, along_root)
+
+
+def _slider_closure(sliders: SliderPlacement, u: str, v: str, points: dict, reference, ring: dict) -> Homogeneous:
+    """The closure s_{i,v} of a slider P_i as δ → ∞: P_v's oriented distance to the axis,
+    computed, minus the link's (a real :class:`Homogeneous`)."""
+    slider, joint = (u, v) if u in sliders.geometry else (v, u)
+    if joint in sliders.geometry:
+        raise ExactMethodError(f"a closure condition between the two sliders {u}, {v}")
+    point = Homogeneous(*points[joint], **ring)
+    scale = Homogeneous(reference[0], ring["constant"](0), reference[1], **ring)
+    return height_above(sliders.axes[slider], point, scale) - sliders.geometry[slider].offset(joint).imag
 
 
 def link_area_root(scene: Scene, triangle: tuple[str, str, str]) -> Fraction:
@@ -383,7 +437,8 @@ def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> Charact
         polynomial *= factor**multiplicity
     if polynomial.degree() > 0 and polynomial.coeffs()[-1] < 0:
         polynomial = -polynomial
-    return CharacteristicPolynomial(parameter_name(plan.parameters[0]), polynomial, tuple(kept), tuple(dropped),
+    return CharacteristicPolynomial(parameter_name(plan.parameters[0], [slider.joint for slider in scene.sliders]),
+                                    polynomial, tuple(kept), tuple(dropped),
                                     tuple(degenerate), vanishing=norm == 0)
 
 
@@ -455,10 +510,13 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
         return None if value is None else (value, 1)
 
     a, b = plan.reference
-    reference = distance(a, b)[0]
+    sliders, hooks = None, {}
+    if scene.sliders:  # the slider constructions in balls; the frame may sit on an axis
+        sliders, hooks = _ball_sliders(scene, plan, values, signs, real_only)
+    reference = distance(a, b)[0] if not set(plan.reference) & set(sliders.geometry if sliders else ()) else flint.acb(1)
     if reference.contains(0):
         return None, reference, frozenset((a, b))
-    free = iter(signs)
+    free_index = {index: n for n, index in enumerate(i for i, step in enumerate(plan.steps) if step.free_sign)}
 
     def signed_root(index, step, sides, radicand):
         s_ij = sides[0]
@@ -466,14 +524,47 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
             raise _Undefined(frozenset(step.base))
         if real_only and radicand.real < 0:
             raise _Undefined(None)
-        sign = next(free) if step.free_sign else scene.orientation(step.triangle)
+        sign = signs[free_index[index]] if step.free_sign else scene.orientation(step.triangle)
         return sign * _square_root(radicand)
 
     try:
-        placed, _, _ = place_joints(plan, distance, signed_root, reduced_point=dehomogenised)
+        placed, _, _ = place_joints(plan, distance, signed_root, reduced_point=dehomogenised, **hooks)
     except _Undefined as undefined:
         return None, reference, undefined.pair
-    return {joint: (flint.acb(x), flint.acb(y)) for joint, (x, y, _) in placed.items()}, reference, None
+    points = {joint: (flint.acb(x), flint.acb(y)) for joint, (x, y, _) in placed.items()}
+    if sliders is not None:
+        at = {joint: Homogeneous(x, y, flint.acb(1), **_BALLS) for joint, (x, y) in points.items()}
+        points.update({name: (point.x / point.w, point.y / point.w)
+                       for name, point in sliders.slider_points(at, reference).items()})
+        points[_SLIDERS] = sliders
+    return points, reference, None
+
+
+#: Ball arithmetic for :class:`Homogeneous` (divided through after every operation).
+_BALLS = {"constant": lambda value: flint.acb(flint.fmpq(Fraction(value).numerator, Fraction(value).denominator)),
+          "reduce": lambda number: Homogeneous(number.x / number.w, number.y / number.w, flint.acb(1), **_BALLS)}
+#: The key under which :func:`placed_points` leaves its slider placement for the closures.
+_SLIDERS = "<sliders>"
+
+
+def _ball_sliders(scene: Scene, plan: Plan, values: dict, signs, real_only: bool):
+    """The slider placement of :func:`placed_points` and its kernel hooks, in balls."""
+    free_index = {index: n for n, index in enumerate(i for i, step in enumerate(plan.steps) if step.free_sign)}
+
+    def along_root(index, step, squared, radicand):
+        value = radicand.x / radicand.w
+        if real_only and value.real < 0:
+            raise _Undefined(None)
+        return Homogeneous(signs[free_index[index]] * _square_root(value), flint.acb(0), flint.acb(1), **_BALLS)
+
+    sliders = _slider_placement(scene, plan, _BALLS, values, along_root)
+    hooks = dict(zip(("slider_step", "slider_frame"), sliders.kernel_hooks(
+        plan.reference, lambda point: Homogeneous(*(flint.acb(c) for c in point), **_BALLS),
+        lambda number: (number.x / number.w, number.y / number.w, 1),
+        reference_of=lambda pair: Homogeneous(flint.acb(pair[0]), flint.acb(0), flint.acb(pair[1]), **_BALLS),
+        distance_of=lambda pair: Homogeneous(flint.acb(pair[0]), flint.acb(0), flint.acb(pair[1]), **_BALLS)),
+        strict=True))
+    return sliders, hooks
 
 
 class _Undefined(Exception):
@@ -516,8 +607,14 @@ def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb],
     points, reference, pair = placed_points(scene, plan, parameters, signs, real_only)
     if points is None:
         return None, None, pair
+    sliders = points.pop(_SLIDERS, None)
     residuals = []
     for u, v in plan.closure_pairs:
+        if sliders is not None and {u, v} & sliders.geometry.keys():
+            at = {joint: (x, y, flint.acb(1)) for joint, (x, y) in points.items()}
+            value = _slider_closure(sliders, u, v, at, (reference, flint.acb(1)), _BALLS)
+            residuals.append((value.x / value.w, flint.arb(1)))  # a height over the link's: relative to 1
+            continue
         known = Fraction(scene.known[frozenset((u, v))])
         target = flint.arb(flint.fmpq(known.numerator, known.denominator))
         residuals.append((computed_distance(points, u, v, reference) - target, target))
