@@ -26,11 +26,12 @@ orientation of the triangle with a vertex at infinity, fixed by the link's shape
 P_j, P_k lie on one of the slider's links (then ``along`` is a link constant), a free
 sign otherwise (thesis: "this possible sign change has to be taken into account").
 
-Arithmetic: complex numbers (numpy arrays, Python complex). Points are in the plan's
+Arithmetic: anything with the operators of a complex number: numpy arrays and Python
+complex numbers (the numeric backend), :class:`~.homogeneous.Homogeneous` triples over the
+exact radical tower or over complex balls (the exact backend). Points are in the plan's
 frame (the reference pair at 0 and 1, so that one frame unit is √s_ref world units);
-heights, alongs and squared distances are in world units (docs/sliders.md). The exact
-backend does not run them yet: it needs them division-free, as :func:`~.bilateration.bilaterated`
-is, over the radical tower.
+squared distances are in world units, a slider's heights and alongs in its axis units
+(:attr:`Axis.unit`: world units but where the exact method needs √q; docs/sliders.md).
 """
 
 from __future__ import annotations
@@ -47,38 +48,48 @@ class Axis:
     """A slider's axis placed in the plan's frame.
 
     Attributes:
-        direction: ũ, the frame vector of one world unit along the sliding direction
-            (|ũ|² = 1/s_ref).
+        direction: ũ, the frame vector of one axis unit along the sliding direction
+            (|ũ|² = unit/s_ref).
         anchor: a point of the frame.
-        height: the anchor's oriented distance to the axis, in world units.
+        height: the anchor's oriented distance to the axis, in axis units.
+        unit: q, the squared world length of the axis unit: 1 (world units) but where
+            the exact method measures this slider's heights in units of √q, so that they
+            stay rational (:func:`~baranov.scene.sliders.axis_unit`; thesis §4.2.3's
+            second axis, 45° from the first: q = 2).
     """
 
     direction: Any
     anchor: Any
     height: Any
+    unit: Any = 1
+
+    def scale(self, reference) -> Any:
+        """s_ref / q: what turns Im(conj(ũ) v) of a frame vector v into axis units."""
+        return reference if self.unit == 1 else reference / self.unit
 
 
 def height_above(axis: Axis, point, reference) -> Any:
-    """The oriented distance of ``point`` (frame) to ``axis``, in world units:
-    h = h_anchor + s_ref Im(conj(ũ)(p − anchor)), since a frame vector has s_ref times
-    the squared length in world units and ũ is 1/√s_ref long. O(1).
+    """The oriented distance of ``point`` (frame) to ``axis``, in axis units:
+    h = h_anchor + (s_ref/q) Im(conj(ũ)(p − anchor)), since a frame vector has s_ref times
+    the squared length in world units and ũ is √(q/s_ref) long. O(1).
 
     >>> float(height_above(Axis(1j, 0j, 2.0), 1 + 0j, 1.0))  # the axis x = 2 upwards, P = (1, 0)
     1.0
     """
-    return axis.height + reference * (axis.direction.conjugate() * (point - axis.anchor)).imag
+    return axis.height + axis.scale(reference) * (axis.direction.conjugate() * (point - axis.anchor)).imag
 
 
-def axis_through(p_a, h_a, p_b, h_b, along) -> Axis:
+def axis_through(p_a, h_a, p_b, h_b, along, unit=1) -> Axis:
     """The axis from two points of known oriented distance to it: P_b − P_a =
     (along + i Δh) ũ with Δh = h_b − h_a, so ũ = (p_b − p_a)/(along + iΔh), where
-    along² + Δh² = s_{a,b}. The limit of locating P_i from P_a, P_b. O(1).
+    along² + Δh² = s_{a,b}/q (axis units, ``unit`` = q). The limit of locating P_i from
+    P_a, P_b. O(1).
 
     >>> axis = axis_through(0j, 1.0, 4 + 0j, 1.0, 4.0)  # both 1 above: the x-axis
     >>> complex(axis.direction), float(height_above(axis, 0j, 1.0))
     ((1+0j), 1.0)
     """
-    return Axis((p_b - p_a) / (along + 1j * (h_b - h_a)), p_a, h_a)
+    return Axis((p_b - p_a) / (along + 1j * (h_b - h_a)), p_a, h_a, unit)
 
 
 def point_off_axis(axis: Axis, p_j, h_j, h_k, along) -> Any:
@@ -92,27 +103,28 @@ def point_off_axis(axis: Axis, p_j, h_j, h_k, along) -> Any:
     return p_j + (along + 1j * (h_k - h_j)) * axis.direction
 
 
-def turned_axis(axis: Axis, turn, anchor, height) -> Axis:
+def turned_axis(axis: Axis, turn, anchor, height, unit=1) -> Axis:
     """The axis of a second slider of the link that holds ``axis``'s slider: the
-    direction turned by the unit complex ``turn`` = e^{iγ} the link fixes between the two
-    sliding directions (:func:`~baranov.scene.sliders.axis_turn`), through a point
-    ``anchor`` of known oriented distance ``height`` to it (thesis §4.2.3). O(1)."""
-    return Axis(axis.direction * turn, anchor, height)
+    direction turned by ``turn`` = e^{iγ} √(q₂/q₁), γ the angle the link fixes between
+    the two sliding directions (:func:`~baranov.scene.sliders.axis_turn`), through a
+    point ``anchor`` of known oriented distance ``height`` to it, in the new axis's
+    units q₂ = ``unit`` (thesis §4.2.3). O(1)."""
+    return Axis(axis.direction * turn, anchor, height, unit)
 
 
 def point_on_two_axes(first: Axis, h_first, second: Axis, h_second, reference) -> Any:
     """The point at oriented distances ``h_first``, ``h_second`` from two axes (two
     lines meet once; NaN or inf where they are parallel): from p = a₁ + ũ₁(λ + i c),
-    c = (h_first − h_a₁)/(s_ref |ũ₁|²), the second distance fixes λ. The limit of
+    c = (h_first − h_a₁)/((s_ref/q₁) |ũ₁|²), the second distance fixes λ. The limit of
     locating P_k from two sliders. O(1).
 
     >>> complex(point_on_two_axes(Axis(1 + 0j, 0j, 0.0), 2.0, Axis(1j, 0j, 0.0), -3.0, 1.0))
     (3+2j)
     """
     u1, u2 = first.direction, second.direction
-    across = (h_first - first.height) / (reference * (u1.conjugate() * u1).real)
+    across = (h_first - first.height) / (first.scale(reference) * (u1.conjugate() * u1).real)
     start = first.anchor + 1j * across * u1
-    offset = (h_second - height_above(second, start, reference)) / reference
+    offset = (h_second - height_above(second, start, reference)) / second.scale(reference)
     return start + offset / (u2.conjugate() * u1).imag * u1
 
 
@@ -167,12 +179,14 @@ class SliderGeometry:
         turns: for each slider sharing a link with this one, the direction of its axis
             in this one's axis frame (:func:`~baranov.scene.sliders.axis_turn`).
         slider_offsets: for each link, the points of its other sliders in that frame.
+        unit: q, the squared world length of the unit of its frames (:attr:`Axis.unit`).
     """
 
     links: tuple[str, str]
     offsets: Mapping[str, Mapping[str, complex]]
     turns: Mapping[str, complex]
     slider_offsets: Mapping[str, Mapping[str, complex]]
+    unit: Any = 1
 
     def offset(self, joint: str) -> complex | None:
         """``joint``'s a + i h, if it lies on one of the slider's links."""
@@ -224,22 +238,25 @@ class SliderPlacement:
         return height_above(self.axes[slider], points[joint], reference)
 
     def frame(self, a: str, b: str) -> tuple[dict[str, Any], Any] | None:
-        """For a reference pair (a, b) with one slider: the frame on its axis, in world
+        """For a reference pair (a, b) with one slider: the frame on its axis, in its axis
         units (the axis the real line, sliding towards +1, through 0): the other joint at
-        i h, and s_ref = 1 (thesis §4.2.4 puts the frame so). None without a slider."""
+        i h, and s_ref = q, 1 in world units (thesis §4.2.4 puts the frame so). None
+        without a slider."""
         if a not in self.geometry and b not in self.geometry:
             return None
         slider, other = (a, b) if a in self.geometry else (b, a)
-        height = self.height(slider, other, {}, 1)
-        self.axes[slider] = Axis(1 + 0 * height, 0 * height, 0 * height)  # 1, 0, 0 in the height's arithmetic
-        return {other: 1j * height}, 1
+        height, unit = self.height(slider, other, {}, 1), self.geometry[slider].unit
+        self.axes[slider] = Axis(1 + 0 * height, 0 * height, 0 * height, unit)  # 1, 0, 0 in the height's arithmetic
+        return {other: 1j * height}, unit
 
     def _along(self, index: int, step, slider: str, first: str, second: str, squared, rise) -> Any:
         """The along-axis step from ``first`` to ``second``: a constant of ``slider``'s
         link where the step is a link step, else σ√(s − Δh²)."""
+        geometry = self.geometry[slider]
         if not step.free_sign:
-            return (self.geometry[slider].offset(second) - self.geometry[slider].offset(first)).real
-        return self.along_root(index, step, squared, along_radicand(squared, rise))
+            return (geometry.offset(second) - geometry.offset(first)).real
+        return self.along_root(index, step, squared, along_radicand(squared if geometry.unit == 1 else
+                                                                    squared / geometry.unit, rise))
 
     def step(self, index: int, step, points: dict[str, Any], reference, distance: Callable[[str, str], Any]) -> bool:
         """Place ``step`` if it touches a slider (an axis into :attr:`axes`, or a joint
@@ -255,11 +272,11 @@ class SliderPlacement:
             if sliders:
                 other = j if sliders[0] == i else i
                 self.axes[k] = turned_axis(self.axes[sliders[0]], self.geometry[sliders[0]].turns[k], points[other],
-                                           self.height(k, other, points, reference))
+                                           self.height(k, other, points, reference), self.geometry[k].unit)
                 return True
             h_i, h_j = self.height(k, i, points, reference), self.height(k, j, points, reference)
             along = self._along(index, step, k, i, j, distance(i, j), h_j - h_i)
-            self.axes[k] = axis_through(points[i], h_i, points[j], h_j, along)
+            self.axes[k] = axis_through(points[i], h_i, points[j], h_j, along, self.geometry[k].unit)
             return True
         if len(sliders) == 2:
             points[k] = point_on_two_axes(self.axes[i], self.height(i, k, points, reference),
@@ -313,6 +330,9 @@ class SliderPlacement:
                     continue
                 other, offset = next(iter(geometry.slider_offsets[link].items()))
                 turn = geometry.turns[other]
+                # the height of this point over the other axis, in its units: the turn is
+                # e^{iγ} √(q_other/q), so divide by |turn|² = q_other/q
                 placed[name + mark] = point_on_two_axes(self.axes[name], 0.0, self.axes[other],
-                                                        -(turn.conjugate() * offset).imag, reference)
+                                                        -(turn.conjugate() * offset).imag / (turn.conjugate() * turn).real,
+                                                        reference)
         return placed

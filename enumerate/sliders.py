@@ -58,14 +58,41 @@ def count_slider_chains(chain: KinematicChain, group: AutomorphismGroup | None =
     group = group or automorphism_group(chain)
     admissible = admissible_slider_sets(chain)
     subsets = np.arange(admissible.size, dtype=np.int64)
-    position = {joint.name: k for k, joint in enumerate(chain.joints)}
-    fixed_total = 0
-    for element in group.elements():
-        image = np.zeros_like(subsets)
-        for k, target in enumerate(element.joints):
-            image |= ((subsets >> k) & 1) << position[target]
-        fixed_total += int(np.count_nonzero(admissible & (image == subsets)))
+    fixed_total = sum(int(np.count_nonzero(admissible & (image == subsets)))
+                      for image in _subset_images(chain, group, subsets))
     count, remainder = divmod(fixed_total, group.order)
     if remainder:
         raise ArithmeticError("Burnside sum not divisible by the group order")  # cannot happen
     return count
+
+
+def slider_chains(chain: KinematicChain, group: AutomorphismGroup | None = None) -> list[tuple[str, ...]]:
+    """One admissible slider set per isomorphism class of the slider chains of ``chain``
+    (:func:`count_slider_chains` of them, the all-revolute chain first): of each orbit
+    of the automorphism group, the set whose bit mask over the joints is smallest, sorted
+    by size and then by mask. O(|G| · 2^J).
+
+    >>> from baranov.topology import chain_from_link_graph
+    >>> slider_chains(chain_from_link_graph("Bw"))  # three links in a loop: no, one or two sliders
+    [(), ('P1',), ('P1', 'P2')]
+    """
+    group = group or automorphism_group(chain)
+    admissible = admissible_slider_sets(chain)
+    subsets = np.arange(admissible.size, dtype=np.int64)
+    canonical = subsets.copy()
+    for image in _subset_images(chain, group, subsets):
+        np.minimum(canonical, image, out=canonical)
+    chosen = np.flatnonzero(admissible & (canonical == subsets))
+    sizes = [bin(int(mask)).count("1") for mask in chosen]
+    return [tuple(joint.name for k, joint in enumerate(chain.joints) if int(mask) >> k & 1)
+            for _, mask in sorted(zip(sizes, chosen, strict=True))]
+
+
+def _subset_images(chain: KinematicChain, group: AutomorphismGroup, subsets: np.ndarray):
+    """For each element of ``group``, the bit mask of the image of every joint subset."""
+    position = {joint.name: k for k, joint in enumerate(chain.joints)}
+    for element in group.elements():
+        image = np.zeros_like(subsets)
+        for k, target in enumerate(element.joints):
+            image |= ((subsets >> k) & 1) << position[target]
+        yield image

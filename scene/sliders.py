@@ -179,15 +179,16 @@ def slider_loop(links_of_sliders: dict[str, tuple[str, str]]) -> list[str] | Non
         return None
 
 
-def axis_frame(slider: SliderJoint, link) -> dict[str, tuple[Number, Number]]:
+def axis_frame(slider: SliderJoint, link, unit: Number = 1) -> dict[str, tuple[Number, Number]]:
     """The joints of ``link`` (one of the slider's two links) in the frame of the
     slider's axis as fixed in that link: the slider's point on the link at 0, the sliding
     direction along +1, so that each other joint P_j sits at (a_j, h_j), h_j = √s_{i',j}
     sin α_j its oriented distance to the axis (thesis §4.1) and a_j = √s_{i',j} cos α_j
     its place along it. The reference joint sits at √s_{i',ref} (cos α, sin α), every
     other joint at that times the bilateration Z_{i',ref,j} (thesis eq. 2.7): exact
-    (Fractions) where the link's areas and √(s_{i',ref} / |direction|²) are rational,
-    floats otherwise. O(joints of the link).
+    (Fractions) where the link's areas and √(s_{i',ref} / (|direction|² unit)) are
+    rational, floats otherwise. Lengths are in units of √``unit`` (:func:`axis_unit`: a
+    frame √2 times rational is rational in units of √2). O(joints of the link).
 
     >>> from baranov.scene import load_scene
     >>> scene = load_scene("examples/7-B3-slider-P9.json")
@@ -195,11 +196,40 @@ def axis_frame(slider: SliderJoint, link) -> dict[str, tuple[Number, Number]]:
     >>> frame["P5"], frame["P6"]
     ((Fraction(-2, 1), Fraction(5, 1)), (Fraction(-3, 1), Fraction(2, 1)))
     """
-    exact = _axis_frame(slider, link, exact=True)
-    return exact if exact is not None else _axis_frame(slider, link, exact=False)
+    exact = _axis_frame(slider, link, unit, exact=True)
+    return exact if exact is not None else _axis_frame(slider, link, unit, exact=False)
 
 
-def _axis_frame(slider: SliderJoint, link, exact: bool) -> dict[str, tuple[Number, Number]] | None:
+def axis_unit(slider: SliderJoint, links) -> int | None:
+    """The square-free integer q such that the slider's frames on its two ``links`` are
+    rational in units of √q (thesis §4.2.3's second slider: q = 2), or None where the
+    scene is inexact or the two links need different q. A frame's scale is
+    √(s_{i',ref} / |direction|²), rational times the square root of the square-free part
+    of that fraction's numerator × denominator."""
+    classes = set()
+    for link in links:
+        axis = slider.axis_on(link.name)
+        base = link.squared_distances[frozenset((slider.joint, axis.reference))]
+        if not isinstance(base, Fraction) or not all(isinstance(c, Fraction) for c in axis.direction):
+            return None
+        ratio = base / (axis.direction[0] ** 2 + axis.direction[1] ** 2)
+        classes.add(_square_free(ratio.numerator * ratio.denominator))
+    return classes.pop() if len(classes) == 1 else None
+
+
+def _square_free(value: int) -> int:
+    """The square-free part of a positive integer (trial division: scene numbers are small)."""
+    part, factor = 1, 2
+    while factor * factor <= value:
+        while value % (factor * factor) == 0:
+            value //= factor * factor
+        if value % factor == 0:
+            part, value = part * factor, value // factor
+        factor += 1
+    return part * value
+
+
+def _axis_frame(slider: SliderJoint, link, unit: Number, exact: bool) -> dict[str, tuple[Number, Number]] | None:
     """:func:`axis_frame` in Fractions (None where a root is irrational) or in floats."""
     def number(value):
         return Fraction(value) if exact else float(value)
@@ -212,8 +242,8 @@ def _axis_frame(slider: SliderJoint, link, exact: bool) -> dict[str, tuple[Numbe
     squared = {pair: number(value) for pair, value in link.squared_distances.items()}
     x, y = (number(c) for c in axis.direction)
     base = squared[frozenset((joint, reference))]
-    scale = root(base / (x * x + y * y)) if exact and all(isinstance(c, Fraction) for c in axis.direction) else (
-        None if exact else root(base / (x * x + y * y)))
+    scale = root(base / (x * x + y * y) / number(unit)) if exact and all(
+        isinstance(c, Fraction) for c in axis.direction) else (None if exact else root(base / (x * x + y * y) / unit))
     if scale is None:
         return None
     start = complex(*link.local[joint])
@@ -233,12 +263,14 @@ def _axis_frame(slider: SliderJoint, link, exact: bool) -> dict[str, tuple[Numbe
     return frame
 
 
-def axis_turn(first: SliderJoint, second: SliderJoint, link) -> tuple[Number, Number]:
+def axis_turn(first: SliderJoint, second: SliderJoint, link, units: tuple[Number, Number] = (1, 1)
+              ) -> tuple[Number, Number]:
     """The direction of ``second``'s axis in the frame of ``first``'s (:func:`axis_frame`),
     two sliders of one ``link``: the unit vector (cos γ, sin γ), γ the angle the link
     fixes between the two sliding directions (thesis §4.2.3: the cosine theorem with that
     angle); exact where both frames are: the vector between the two sliders' points of the
-    link, in the first frame over the same vector in the second.
+    link, in the first frame over the same vector in the second. With the frames in
+    units of √q₁, √q₂ (``units``, :func:`axis_unit`) it is that turn times √(q₂/q₁).
 
     >>> from baranov.scene import load_scene
     >>> scene = load_scene("examples/7-B3-sliders-P8-P9.json")
@@ -246,6 +278,6 @@ def axis_turn(first: SliderJoint, second: SliderJoint, link) -> tuple[Number, Nu
     >>> [round(c, 12) for c in axis_turn(p9, p8, scene.link_of("t789"))]  # 45°: the angle of §4.2.3
     [0.707106781187, 0.707106781187]
     """
-    (dx, dy), (u, v) = axis_frame(first, link)[second.joint], axis_frame(second, link)[first.joint]
+    (dx, dy), (u, v) = axis_frame(first, link, units[0])[second.joint], axis_frame(second, link, units[1])[first.joint]
     norm = u * u + v * v  # the vector from the first's point to the second's: (dx + i dy) / (−u − i v)
     return -(dx * u + dy * v) / norm, -(dy * u - dx * v) / norm

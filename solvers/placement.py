@@ -14,7 +14,7 @@ from baranov.closure import CompiledSystem, closure_system
 from baranov.closure.sliders import SearchedParameter, SliderGeometry
 from baranov.planner import Plan
 from baranov.scene import Scene
-from baranov.scene.sliders import axis_frame, axis_turn
+from baranov.scene.sliders import axis_frame, axis_turn, axis_unit
 
 from .modes import AssemblyMode
 from .polish import POLISH_STEPS, polish_configurations
@@ -57,25 +57,30 @@ def searched_parameters(scene: Scene, plan: Plan) -> dict[tuple[str, str], Searc
     return searched
 
 
-def slider_geometry(scene: Scene, number: Callable[[tuple], Any] = lambda pair: complex(*map(float, pair))
-                    ) -> dict[str, SliderGeometry]:
+def slider_geometry(scene: Scene, number: Callable[[tuple], Any] = lambda pair: complex(*map(float, pair)),
+                    units: bool = False) -> dict[str, SliderGeometry]:
     """Each slider joint's links, the other (revolute) joints of each in the frame of its
     axis (:func:`~baranov.scene.sliders.axis_frame`) and the turns to the axes of the
     sliders it shares a link with: what the slider constructions need, each place or
     turn (a pair (re, im), exact where the scene is) made a number of the caller's
-    arithmetic by ``number`` (complex floats by default)."""
+    arithmetic by ``number`` (complex floats by default). ``units``: each slider's frames
+    in the units of √q that make them rational where they are rational times √q
+    (:func:`~baranov.scene.sliders.axis_unit`; the exact method), else world units."""
     sliders = {slider.joint: slider for slider in scene.sliders}
+    unit = {slider.joint: (axis_unit(slider, [scene.link_of(axis.link) for axis in slider.axes]) or 1) if units else 1
+            for slider in scene.sliders}
     geometry = {}
     for slider in scene.sliders:
         links = tuple(axis.link for axis in slider.axes)
-        frames = {link: axis_frame(slider, scene.link_of(link)) for link in links}
+        frames = {link: axis_frame(slider, scene.link_of(link), unit[slider.joint]) for link in links}
         offsets = {link: {joint: number(z) for joint, z in frame.items() if joint not in sliders}
                    for link, frame in frames.items()}
         slider_offsets = {link: {joint: number(z) for joint, z in frame.items() if joint in sliders}
                           for link, frame in frames.items()}
-        turns = {other: number(axis_turn(slider, sliders[other], scene.link_of(link)))
+        turns = {other: number(axis_turn(slider, sliders[other], scene.link_of(link),
+                                         (unit[slider.joint], unit[other])))
                  for link in links for other in scene.link_of(link).joints if other in sliders and other != slider.joint}
-        geometry[slider.joint] = SliderGeometry(links, offsets, turns, slider_offsets)
+        geometry[slider.joint] = SliderGeometry(links, offsets, turns, slider_offsets, unit[slider.joint])
     return geometry
 
 

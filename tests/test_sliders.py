@@ -238,6 +238,10 @@ def test_slider_parameters_are_named_t_and_reported_as_oriented_distances():
 @pytest.mark.parametrize("example, variable, leading, roots", [
     # thesis §4.2.2: s^16 − 1088.1889 s^15 + 5.5629·10^5 s^14 …, real roots 49.5561, 50.1965, 50.6270, 85.0000
     ("7-B3-slider-P9", "s1,6", [1, -1088.1889, 5.5629e5, -1.7759e8], [49.5561, 50.1965, 50.6270, 85.0000]),
+    # §4.2.3 (erratum alpha7 = pi - atan(4/5)): all 13 printed coefficients, real roots 48.1037, 85, 88.2, 88.5483
+    ("7-B3-sliders-P8-P9", "s1,6", [1, -801.1113, 2.8716e5, -6.0970e7, 8.5621e9, -8.4211e11, 6.0004e13, -3.1645e15,
+                                    1.2496e17, -3.6854e18, 7.8680e19, -1.1067e21, 7.7765e21],
+     [48.1037, 85.0000, 88.2000, 88.5483]),
     # §4.2.4: t^18 − 99.9226 t^17 + 4616.5154 t^16 − 1.3111·10^5 t^15 …, real roots 7.4867, 8.7825
     ("7-B3-slider-P1", "t1,6", [1, -99.9226, 4616.5154, -1.3111e5], [7.4867, 8.7825]),
 ])
@@ -249,19 +253,37 @@ def test_the_exact_backend_derives_the_published_characteristic_polynomials(exam
     solution = solve(scene, method="exact")
     polynomial = solution.characteristic_polynomial
     assert polynomial.variable == variable and polynomial.degree == len(polynomial.monic_coefficients()) - 1
-    assert polynomial.degree == {"s1,6": 16, "t1,6": 18}[variable]
+    assert polynomial.degree == {"7-B3-slider-P9": 16, "7-B3-sliders-P8-P9": 12, "7-B3-slider-P1": 18}[example]
     published = [float(f"{value:.5g}") for value in leading]
-    derived = [float(coefficient) for coefficient in polynomial.monic_coefficients()[:4]]
+    derived = [float(coefficient) for coefficient in polynomial.monic_coefficients()[:len(leading)]]
     assert all(math.isclose(d, p, rel_tol=5e-5) for d, p in zip(derived, published, strict=True))
     assert [round(mode.parameters[variable], 4) for mode in solution.assembly_modes] == roots
     assert solution.certificate.complete
 
 
+def test_axis_frames_rational_in_units_of_a_root_are_exact():
+    """§4.2.3's second slider sits at 45° to the first: its frames are √2 times rational,
+    so the exact method measures its heights in units of √2 (scene/sliders.py:
+    axis_unit), and the turn between the two axes, e^{iπ/4}√2 = 1 + i, is rational."""
+    from baranov.scene.sliders import axis_turn, axis_unit
+
+    scene = load_scene(EXAMPLES / "7-B3-sliders-P8-P9.json")
+    p9, p8 = (next(s for s in scene.sliders if s.joint == name) for name in ("P9", "P8"))
+    assert axis_unit(p9, [scene.link_of(a.link) for a in p9.axes]) == 1
+    assert axis_unit(p8, [scene.link_of(a.link) for a in p8.axes]) == 2
+    assert axis_turn(p9, p8, scene.link_of("t789"), (1, 2)) == (1, 1)
+
+
 def test_the_exact_backend_refuses_irrational_axis_frames_by_name():
-    """§4.2.3's second slider sits at 45° to the first: its axis frame is √2 times
-    rational, which the radical tower does not carry yet (docs/sliders.md)."""
+    """A slider whose two links put its frames in different units (√2 on one, √5 on the
+    other: no common unit makes both rational) is refused by name, not approximated."""
+    data = json.loads((EXAMPLES / "7-B3-slider-P9.json").read_text())
+    slider = data["sliders"][0]
+    link = next(iter(slider["angles"]))
+    joint = next(iter(slider["angles"][link]))
+    slider["angles"][link][joint] = "pi/4"
     with pytest.raises(SolverError, match="irrational; the exact method needs them rational"):
-        solve(load_scene(EXAMPLES / "7-B3-sliders-P8-P9.json"), method="exact")
+        solve(scene_from_dict(data), method="exact")
 
 
 @settings(max_examples=15, deadline=None)

@@ -312,7 +312,14 @@ def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, al
         value = parameters.get(frozenset((u, v)))
         return None if value is None else Homogeneous.of(value, **ring)
 
-    return SliderPlacement(slider_geometry(scene, number), parameter, along_root)
+    geometry = slider_geometry(scene, number, units=True)
+    for pair in plan.parameters:
+        for slider in set(pair) & geometry.keys():
+            if geometry[slider].unit != 1:  # t would be √q times a rational variable
+                raise ExactMethodError(f"slider {slider}: the parameter t is its axis's oriented distance, and its "
+                                       f"axis frames are rational only in units of √{geometry[slider].unit}; the "
+                                       "exact method needs a plan whose parameters avoid it (docs/sliders.md)")
+    return SliderPlacement(geometry, parameter, along_root)
 
 
 def _slider_closure(sliders: SliderPlacement, u: str, v: str, points: dict, reference, ring: dict) -> Homogeneous:
@@ -513,7 +520,9 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
     sliders, hooks = None, {}
     if scene.sliders:  # the slider constructions in balls; the frame may sit on an axis
         sliders, hooks = _ball_sliders(scene, plan, values, signs, real_only)
-    reference = distance(a, b)[0] if not set(plan.reference) & set(sliders.geometry if sliders else ()) else flint.acb(1)
+    on_axis = [joint for joint in plan.reference if sliders is not None and joint in sliders.geometry]
+    # a frame on a slider's axis is in its axis units: s_ref = q (closure/sliders.py)
+    reference = flint.acb(sliders.geometry[on_axis[0]].unit) if on_axis else distance(a, b)[0]
     if reference.contains(0):
         return None, reference, frozenset((a, b))
     free_index = {index: n for n, index in enumerate(i for i, step in enumerate(plan.steps) if step.free_sign)}
