@@ -21,6 +21,7 @@ from baranov.topology.automorphisms import link_graph_certificate
 
 from .entries import ASSEMBLY_MODES_MAX_LINKS, dump_entries, load_entries, truss_entry
 from .files import write_atomically
+from .slider_chains import SLIDER_MODES_MAX_LINKS, load_slider_chains, slider_chain_entries
 from .summary import render_summary
 
 Progress = Callable[[str], None]
@@ -79,10 +80,12 @@ def build_catalog(
     workers: int = 1,
     force: bool = False,
     crosscheck: bool = True,
+    slider_modes: int = SLIDER_MODES_MAX_LINKS,
     show_progress: bool = False,
     log: Progress = lambda message: None,
 ) -> str:
-    """Regenerate (or reuse) the catalog files for ``link_counts`` in ``out``; return the summary."""
+    """Regenerate (or reuse) the catalog files for ``link_counts`` in ``out``, with the
+    slider chains' assembly modes up to ``slider_modes`` links; return the summary."""
     crosscheck_path = out / "crosscheck.json"
     try:
         checks = {int(k): v for k, v in json.loads(crosscheck_path.read_text(encoding="utf-8")).items()}
@@ -102,6 +105,13 @@ def build_catalog(
             log(f"{links} links: brute-force cross-check")
             checks[links] = crosscheck_links(links, entries, workers)
             write_atomically(crosscheck_path, json.dumps({str(k): checks[k] for k in sorted(checks)}, indent=2) + "\n")
+        if links <= slider_modes:
+            path = out / f"slider-chains-{links}.json"
+            if force or load_slider_chains(path) is None:
+                log(f"{links} links: slider chains")
+                write_atomically(path, dump_entries(slider_chain_entries(entries, workers, show_progress)))
+            else:
+                log(f"{links} links: reusing {path}")
     summary = render_summary(out, checks)
     write_atomically(out / "summary.md", summary)
     return summary

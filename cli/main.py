@@ -15,6 +15,9 @@ from pathlib import Path
 
 # the library is imported inside each command, so that --help and --version start fast
 
+#: ``--slider-modes`` goes up to this many links (the slider sets are tabulated over 2^J
+#: joint subsets; 11 links would mean millions of chains).
+SLIDER_MODES_LIMIT = 9
 #: The catalog command accepts link counts up to this one (13 links: about 10 s).
 CATALOG_MAX_LINKS = 13
 
@@ -65,6 +68,9 @@ def _parser() -> argparse.ArgumentParser:
     catalog.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="worker processes (default: all cores)")
     catalog.add_argument("--force", action="store_true", help="recompute even where complete files exist")
     catalog.add_argument("--no-crosscheck", action="store_true", help="skip the brute-force enumeration with geng")
+    catalog.add_argument("--slider-modes", type=int, default=7, metavar="L",
+                         help="assembly modes of the slider chains up to L links (default 7; 9 is opt-in: 47 702 "
+                              "chains; 0: none)")
     catalog.add_argument("--quiet", action="store_true", help="print no progress")
     show = commands.add_parser("show", help="topology, plan and closure conditions of one chain")
     show.add_argument("chain", help="thesis name (9/B28), catalog id (11/N123), graph6 string, or a file")
@@ -72,6 +78,9 @@ def _parser() -> argparse.ArgumentParser:
     show.add_argument("--reference", help="fix the reference pair, e.g. P1,P6")
     show.add_argument("--parameter", action="append", help="allow this parameter pair (repeatable), e.g. P1,P6")
     show.add_argument("--plans", type=int, default=1, help="show the N best plans (default 1)")
+    show.add_argument("--sliders", metavar="JOINTS",
+                      help="turn these joints into sliders, e.g. P8,P9: the chain's closure condition with the "
+                           "sliders at infinity (thesis ch. 4)")
     show.add_argument("--catalog", type=Path,
                       help="catalog folder for names and ids (default: the installed catalog)")
     solve = commands.add_parser("solve", help="every assembly mode of a linkage given as a scene file")
@@ -157,6 +166,9 @@ def run_catalog(args: argparse.Namespace) -> int:
     link_counts = parse_link_counts(args.links)
     if args.workers < 1:
         raise UsageError(f"--workers {args.workers}: must be at least 1")
+    if not 0 <= args.slider_modes <= SLIDER_MODES_LIMIT:
+        raise UsageError(f"--slider-modes {args.slider_modes}: slider chains are counted up to {SLIDER_MODES_LIMIT} "
+                         "links (47 702 chains there)")
     try:
         check_writable_folder(args.out)
     except OSError as error:
@@ -173,6 +185,7 @@ def run_catalog(args: argparse.Namespace) -> int:
             workers=args.workers,
             force=args.force,
             crosscheck=not args.no_crosscheck,
+            slider_modes=args.slider_modes,
             show_progress=not args.quiet and sys.stderr.isatty(),
             log=log,
         )
@@ -193,7 +206,8 @@ def main(argv: list[str] | None = None) -> int:
                 raise UsageError(f"--plans {args.plans}: must be at least 1")
             from .show import show
 
-            print(show(args.chain, args.catalog, args.latex, args.reference, args.parameter, args.plans), end="")
+            print(show(args.chain, args.catalog, args.latex, args.reference, args.parameter, args.plans,
+                       args.sliders), end="")
             return 0
     except (UsageError, ValueError) as error:
         print(f"baranov: error: {error}", file=sys.stderr)

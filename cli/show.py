@@ -5,9 +5,14 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import networkx as nx
+
 from baranov.catalog.lookup import TRUSS_NAME, named_truss
 from baranov.closure import closure_system
+from baranov.closure.slider_notation import slider_closure_text
 from baranov.planner import bilateration_plans
+from baranov.planner.search import ALTERNATIVE_PLANS
+from baranov.planner.sliders import slider_plan_obstacle
 from baranov.topology import (
     JointKind,
     KinematicChain,
@@ -71,17 +76,51 @@ def _pair(text: str, option: str) -> tuple[str, str]:
     return parts[0], parts[1]
 
 
+def _sliders(chain: KinematicChain, text: str | None) -> list[str]:
+    """The slider joints: ``--sliders`` (checked: joints of the chain, no loop of links
+    closed by sliders only), else the chain's own (a scene file's)."""
+    if text is None:
+        return [joint.name for joint in chain.joints if joint.kind is JointKind.SLIDER]
+    names = [name.strip() for name in text.split(",") if name.strip()]
+    known = {joint.name: joint for joint in chain.joints}
+    for name in names:
+        if name not in known:
+            raise ShowError(f"--sliders {text}: {name} is no joint of this chain (joints "
+                            f"{', '.join(joint.name for joint in chain.joints)})")
+    graph = nx.MultiGraph([known[name].links for name in names])
+    try:
+        loop = nx.find_cycle(graph)
+    except nx.NetworkXNoCycle:
+        return names
+    links = ", ".join(chain.link_name(edge[0]) for edge in loop)
+    raise ShowError(f"--sliders {text}: they close the loop of links {links}; an Assur chain needs a revolute "
+                    "joint in every loop")
+
+
+def _plans(chain: KinematicChain, sliders: list[str], plans: int, reference: str | None,
+           parameters: list[str] | None) -> tuple[list, str | None]:
+    """The ``plans`` best plans (with the given constraints) that the slider
+    constructions run, and why none does where none does."""
+    constraints = {"reference": _pair(reference, "--reference") if reference else None,
+                   "parameters": [_pair(p, "--parameter") for p in parameters] if parameters else None}
+    if not sliders:
+        return bilateration_plans(chain, count=plans, **constraints), None
+    candidates = bilateration_plans(chain, count=max(plans, ALTERNATIVE_PLANS), **constraints)
+    suited = [plan for plan in candidates if slider_plan_obstacle(plan, sliders) is None][:plans]
+    if suited:
+        return suited, None
+    return candidates[:plans], (f"none of the {len(candidates)} best plans suits these sliders (the best: "
+                                f"{slider_plan_obstacle(candidates[0], sliders)}); `baranov solve` solves such "
+                                "a chain with msolve; the plans below are the truss's")
+
+
 def show(argument: str, catalog: Path | None = None, latex: bool = False, reference: str | None = None,
-         parameters: list[str] | None = None, plans: int = 1) -> str:
+         parameters: list[str] | None = None, plans: int = 1, sliders: str | None = None) -> str:
     """The text that ``baranov show`` prints."""
     title, chain = resolve_chain(argument, catalog)
     group = automorphism_group(chain)
-    ranked = bilateration_plans(
-        chain,
-        count=plans,
-        reference=_pair(reference, "--reference") if reference else None,
-        parameters=[_pair(p, "--parameter") for p in parameters] if parameters else None,
-    )
+    slider_names = _sliders(chain, sliders)
+    ranked, unsuited = _plans(chain, slider_names, plans, reference, parameters)
     degrees = ",".join(str(d) for d in chain.link_degrees)
     lines = [
         title,
@@ -96,17 +135,21 @@ def show(argument: str, catalog: Path | None = None, latex: bool = False, refere
         f"coupling degree {ranked[0].number_of_parameters}"
         + (" (with the given constraints)" if reference or parameters else ""),
     ]
-    sliders = [joint.name for joint in chain.joints if joint.kind is JointKind.SLIDER]
-    if sliders:  # a slider chain: its truss's plans and conditions, the sliders at infinity (thesis ch. 4)
-        lines.insert(2, f"slider joints: {', '.join(sliders)} (an Assur kinematic chain derived from this truss, "
-                        "thesis ch. 4: the plans below are the truss's; solve it with --method msolve)")
+    if slider_names:  # the truss's plans and conditions, then the sliders at infinity (thesis ch. 4)
+        lines.insert(2, f"slider joints: {', '.join(slider_names)} (an Assur kinematic chain derived from this "
+                        "truss, thesis ch. 4: the truss's closure conditions with the sliders at infinity)")
+        if unsuited:
+            lines.insert(3, unsuited)
     for number, plan in enumerate(ranked, 1):
         system = closure_system(plan)
         lines.append("")
         lines.append(f"plan {number}" + (f" of {len(ranked)}" if len(ranked) > 1 else "")
                      + f": {len(plan.free_sign_triangles)} free signs, radical depth {plan.radical_depth}")
-        lines += ["  " + line for line in plan.describe().splitlines()]
-        lines.append("closure conditions:")
+        lines += ["  " + line for line in plan.describe(slider_names).splitlines()]
+        lines.append("closure conditions" + (" of the truss:" if slider_names else ":"))
         body = system.latex().split("\\\\\n") if latex else system.text().splitlines()
         lines += ["  " + line for line in body]
+        if slider_names and not unsuited:
+            lines.append("with the sliders at infinity (thesis §4.1–4.2.4):")
+            lines += ["  " + line for line in slider_closure_text(chain, plan, slider_names)]
     return "\n".join(lines) + "\n"

@@ -15,6 +15,12 @@ LITERATURE = {
 #: Coupling-degree distribution, thesis Table 3.1 (after Yang & Yao 1994).
 LITERATURE_COUPLING = {3: {0: 1}, 5: {1: 1}, 7: {1: 3}, 9: {1: 24, 2: 4}, 11: {1: 197, 2: 42}}
 
+#: Assembly modes of the ten fully-parallel planar robot families I–X, whose locked
+#: structures are the ten slider chains of the pentad (thesis §5.2, Table 5.3; the AM
+#: column of Tables 5.4–5.6).
+ROBOT_FAMILY_ASSEMBLY_MODES = {"I": 6, "II": 6, "III": 6, "IV": 4, "V": 4, "VI": 2, "VII": 2, "VIII": 2, "IX": 1,
+                               "X": 1}
+
 #: Why the 11-link counts differ from the thesis's Table 3.1 (catalog/summary.md).
 DISCREPANCY_NOTE = [
     "The thesis's Table 3.1 gives, for 11 links, 239 trusses (Yang & Yao 1994, topologies never",

@@ -157,15 +157,16 @@ class Plan:
             "orientation_checks": [list(t) for t in self.orientation_checks],
         }
 
-    def describe(self) -> str:
-        """Multi-line text in the thesis's notation.
+    def describe(self, sliders: Collection[str] = ()) -> str:
+        """Multi-line text in the thesis's notation; a parameter with one of ``sliders``
+        is named t (:func:`parameter_name`).
 
         Example line: ``P2 = Z1,3,2 (link L0)``.
         """
         a, b = self.reference
         lines = [f"reference p{thesis_subscript(a)},{thesis_subscript(b)}"]
         if self.parameters:
-            lines.append("parameters " + ", ".join(map(parameter_name, self.parameters)))
+            lines.append("parameters " + ", ".join(parameter_name(pair, sliders) for pair in self.parameters))
         for step in self.steps:
             i, j, k = step.triangle
             how = {StepKind.LINK: f"link L{step.link}, fixed sign", StepKind.CROSS: "free sign",

@@ -28,7 +28,7 @@ from baranov.topology import KinematicChain
 from .exact.characteristic import characteristic_polynomial
 from .exact.coupling_two import characteristic_polynomial_two
 from .exact.modular import characteristic_degree_modulo, random_prime
-from .msolve import msolve_solution_count
+from .msolve import cartesian_jacobian_rank, msolve_solution_count
 
 #: Instances that must agree, and the most that are drawn.
 AGREEING_INSTANCES = 2
@@ -78,7 +78,7 @@ def characteristic_degree(chain: KinematicChain, seed: int | None = None,
 
 
 def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int | None = None
-                        ) -> tuple[int, list[int], str]:
+                        ) -> tuple[int | None, list[int], str]:
     """The generic number of assembly modes of the slider chain that turns the joints
     ``sliders`` of ``truss`` into slider joints (thesis ch. 4), the degrees seen on the
     instances drawn, and how it was counted:
@@ -94,7 +94,13 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
       Cartesian system counted by msolve over Q, over the 2^k linkages that reverse any
       of the k axes (:func:`~baranov.solvers.msolve.msolve_solution_count`).
 
-    ``seed`` defaults to a checksum of the chain and the sliders.
+    ``seed`` defaults to a checksum of the chain and the sliders. An admissible slider set
+    (no loop closed by sliders only) can still give a chain that moves: one whose sliders
+    lock the turn of a sub-chain that its revolute joints must then take up twice (7/N2
+    with sliders P1, P2, P3, P4, P7). That is tested first, by the rank of the Cartesian
+    system's Jacobian at the generating configuration of two random instances
+    (:func:`~baranov.solvers.msolve.cartesian_jacobian_rank`), and such a chain gives
+    (None, [], ``"moves"``): it is no Assur chain.
 
     >>> from baranov.literature.trusses import thesis_truss
     >>> truss = thesis_truss("7/B3").chain()
@@ -103,6 +109,9 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
     """
     if seed is None:
         seed = zlib.crc32(repr(([joint.links for joint in truss.joints], sorted(sliders))).encode())
+    rng = np.random.default_rng(seed)
+    if sliders and not any(slider_chain_is_rigid(truss, sliders, rng) for _ in range(AGREEING_INSTANCES)):
+        return None, [], "moves"
     try:
         plan = slider_plan(truss, sliders)
     except SliderPlanError:
@@ -112,7 +121,6 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
         return 2 ** steps, [], "coupling 0"
     if not sliders:
         return (*characteristic_degree(truss, seed), "modular")
-    rng = np.random.default_rng(seed)
     primes = random.Random(seed)
     degrees: list[int] = []
     while len(degrees) < MOST_INSTANCES:
@@ -125,3 +133,13 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
         if len(degrees) >= AGREEING_INSTANCES and degrees.count(max(degrees)) >= AGREEING_INSTANCES:
             break
     return max(degrees), degrees, "modular" if plan is not None else "msolve"
+
+
+def slider_chain_is_rigid(truss: KinematicChain, sliders: Sequence[str], rng: np.random.Generator) -> bool:
+    """Whether the Cartesian system of a random instance of the slider chain has a
+    Jacobian of full rank at its generating configuration (then the chain is rigid for
+    generic dimensions; a rank-deficient answer may also be an unlucky instance, so
+    callers ask twice)."""
+    data = slider_instance_dict(truss, list(sliders), rng, rational=True)
+    rank, unknowns = cartesian_jacobian_rank(scene_from_dict(data), data["generating_configuration"])
+    return rank == unknowns

@@ -225,6 +225,39 @@ def _same_sense(scene: Scene, configuration: dict[str, tuple[float, float]]) -> 
     return True
 
 
+def cartesian_jacobian_rank(scene: Scene, configuration: dict[str, tuple]) -> tuple[int, int]:
+    """(rank, unknowns) of the Jacobian of the Cartesian system of ``scene`` (module
+    docstring) at ``configuration`` (point name → exact coordinates, P9'/P9'' for a
+    slider's points; the scene's auxiliary roots m, if any, are taken at their values),
+    in exact rational arithmetic (flint). At a configuration of a generic instance, a rank
+    below the number of unknowns means that the chain moves (it is infinitesimally
+    flexible there, hence at every generic configuration): e.g. a slider chain whose
+    sliders lock the turn of a sub-chain that its revolute joints must then take up
+    twice. O(equations · unknowns²)."""
+    import flint
+
+    variables, polynomials, names, signs = cartesian_system(scene)
+    if signs:
+        raise ValueError("cartesian_jacobian_rank: the scene has irrational link areas (auxiliary roots)")
+    value = {}
+    for point, (x, y) in names.items():
+        value[x], value[y] = (Fraction(c) for c in configuration[point])
+    rows = []
+    for polynomial in polynomials:
+        row = []
+        for variable in variables:
+            derivative = Fraction(0)
+            for monomial, coefficient in polynomial.items():
+                power = monomial.count(variable)
+                if power:
+                    rest = list(monomial)
+                    rest.remove(variable)
+                    derivative += coefficient * power * math.prod((value[v] for v in rest), start=Fraction(1))
+            row.append(flint.fmpq(derivative.numerator, derivative.denominator))
+        rows.append(row)
+    return flint.fmpq_mat(rows).rank(), len(variables)
+
+
 _PARAMETRIZATION = re.compile(r"\[0,\s*\[0,\s*\d+,\s*(-?\d+),")
 
 
@@ -255,9 +288,13 @@ def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> int | None:
     with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "parametrization.ms"
         source.write_text(",".join(variables) + "\n0\n" + ",\n".join(_text(p) for p in polynomials) + "\n")
-        done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-P", "1", "-t", "1"],
-                              capture_output=True, text=True, timeout=timeout)
-        output = target.read_text() if target.exists() else ""
+        for bits in (PRECISION, 2 * PRECISION, 4 * PRECISION):  # msolve 0.10.1 can abort refining a root
+            target.unlink(missing_ok=True)
+            done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-P", "1", "-p", str(bits), "-t", "1"],
+                                  capture_output=True, text=True, timeout=timeout)
+            output = target.read_text() if target.exists() else ""
+            if done.returncode == 0 and output.strip():
+                break
     if done.returncode != 0 or not output.strip():
         raise RuntimeError(f"msolve exit code {done.returncode}: {(done.stderr or done.stdout).strip()[:200]}")
     if output.lstrip().startswith("[-1"):

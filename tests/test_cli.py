@@ -18,9 +18,11 @@ def run(*args: str) -> subprocess.CompletedProcess:
 
 
 def test_catalog_files_and_fields(tmp_path):
-    assert main(["catalog", "--links", "3,5,7", "--out", str(tmp_path), "--quiet", "--workers", "1"]) == 0
+    assert main(["catalog", "--links", "3,5,7", "--out", str(tmp_path), "--quiet", "--workers", "1",
+                 "--slider-modes", "5"]) == 0
     names = sorted(p.name for p in tmp_path.iterdir())
-    expected = ["summary.md", "trusses-3.json", "trusses-5.json", "trusses-7.json"]
+    expected = ["slider-chains-3.json", "slider-chains-5.json", "summary.md", "trusses-3.json", "trusses-5.json",
+                "trusses-7.json"]
     assert [n for n in names if n != "crosscheck.json"] == expected
     pentad = json.loads((tmp_path / "trusses-5.json").read_text())
     mapping = pentad[0].pop("thesis_joint_names")  # validity: tests/test_literature.py
@@ -49,7 +51,7 @@ def test_catalog_files_and_fields(tmp_path):
 
 def test_rerun_is_byte_identical_and_reuses_complete_files(tmp_path, capsys):
     # 3-7 links: with 9, the coupling-2 polynomials take about 13 minutes
-    args = ["catalog", "--links", "3-7", "--out", str(tmp_path), "--workers", "2"]
+    args = ["catalog", "--links", "3-7", "--out", str(tmp_path), "--workers", "2", "--slider-modes", "5"]
     assert main(args) == 0
     first = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
     capsys.readouterr()
@@ -57,13 +59,14 @@ def test_rerun_is_byte_identical_and_reuses_complete_files(tmp_path, capsys):
     assert "reusing" in capsys.readouterr().err
     assert {p.name: p.read_bytes() for p in tmp_path.iterdir()} == first
     # one worker gives the same bytes
-    assert main(["catalog", "--links", "3-7", "--out", str(tmp_path), "--force", "--workers", "1"]) == 0
-    for links in (3, 5, 7):
-        assert (tmp_path / f"trusses-{links}.json").read_bytes() == first[f"trusses-{links}.json"]
+    assert main(["catalog", "--links", "3-7", "--out", str(tmp_path), "--force", "--workers", "1",
+                 "--slider-modes", "5"]) == 0
+    for name in ("trusses-3.json", "trusses-5.json", "trusses-7.json", "slider-chains-3.json", "slider-chains-5.json"):
+        assert (tmp_path / name).read_bytes() == first[name]
 
 
 def test_truncated_file_is_recomputed(tmp_path):
-    args = ["catalog", "--links", "7", "--out", str(tmp_path), "--quiet"]
+    args = ["catalog", "--links", "7", "--out", str(tmp_path), "--quiet", "--slider-modes", "0"]
     assert main(args) == 0
     good = (tmp_path / "trusses-7.json").read_bytes()
     (tmp_path / "trusses-7.json").write_bytes(good[: len(good) // 2])
@@ -75,9 +78,17 @@ def test_truncated_file_is_recomputed(tmp_path):
 def test_committed_small_catalogs_regenerate_byte_identically(tmp_path):
     committed = REPO / "catalog"
     assert main(["catalog", "--links", "3-7", "--out", str(tmp_path), "--quiet", "--workers", "2",
-                 "--no-crosscheck"]) == 0
-    for name in ["trusses-3.json", "trusses-5.json", "trusses-7.json"]:
+                 "--no-crosscheck", "--slider-modes", "5"]) == 0
+    for name in ["trusses-3.json", "trusses-5.json", "trusses-7.json", "slider-chains-3.json", "slider-chains-5.json"]:
         assert (tmp_path / name).read_bytes() == (committed / name).read_bytes(), name
+    # the 386 slider chains of 7 links take minutes: a sample, recomputed one by one
+    from baranov.catalog.slider_chains import slider_chain_entry
+
+    sevens = {e["id"]: e["link_graph6"] for e in json.loads((committed / "trusses-7.json").read_text())}
+    chains = json.loads((committed / "slider-chains-7.json").read_text())
+    for chain in chains[::40]:
+        entry = slider_chain_entry((sevens[chain["truss"]], tuple(chain["sliders"]), "msolve_agrees" in chain))
+        assert {"truss": chain["truss"], "truss_name": chain["truss_name"], **entry} == chain
 
 
 @pytest.mark.slow
@@ -85,7 +96,8 @@ def test_committed_catalog_regenerates_byte_identically(tmp_path):
     """All of `make catalog` (about 10 minutes: the coupling-2 nine-link polynomials)."""
     committed = REPO / "catalog"
     assert main(["catalog", "--links", "3-11", "--out", str(tmp_path), "--quiet", "--workers", "2"]) == 0
-    for name in ["trusses-3.json", "trusses-5.json", "trusses-7.json", "trusses-9.json", "trusses-11.json"]:
+    for name in ["trusses-3.json", "trusses-5.json", "trusses-7.json", "trusses-9.json", "trusses-11.json",
+                 "slider-chains-3.json", "slider-chains-5.json", "slider-chains-7.json"]:
         assert (tmp_path / name).read_bytes() == (committed / name).read_bytes(), name
     if find_geng() is not None:  # the summary records the cross-check, which needs geng
         assert (tmp_path / "summary.md").read_bytes() == (committed / "summary.md").read_bytes()
@@ -170,6 +182,27 @@ def test_show_reads_a_scene_file_as_its_linkage():
     sliders = run("show", str(REPO / "examples" / "7-B3-sliders-P8-P9.json"))
     assert sliders.returncode == 0, sliders.stderr
     assert "slider joints: P8, P9 (an Assur kinematic chain derived from this truss" in sliders.stdout
+    assert "solve it with --method msolve" not in sliders.stdout  # every backend solves sliders now
+
+
+def test_show_sliders_prints_the_thesis_substitutions_and_case():
+    """``baranov show <truss> --sliders …`` (issue 17): the slider plan, the truss's closure
+    conditions, the substitutions d_{i,j} = δ + d_{i′,j} sin α of thesis §4.2.2 and the
+    case of each slider; on the §4.2.3 scene the cosine theorem with the angle between the
+    two axes, and the order of the limits."""
+    one = run("show", str(REPO / "examples" / "7-B3-slider-P9.json"))
+    assert one.returncode == 0, one.stderr
+    for line in ("P9 (δ1): P9′ on link t569, P9″ on link t789; §4.2.2", "d5,9 = δ1 + d5,9′ sin α1",
+                 "d7,9 = δ1 + d7,9″ sin α3", "closure: the leading coefficient of each condition as δ1 → ∞"):
+        assert line in one.stdout
+    two = run("show", str(REPO / "examples" / "7-B3-sliders-P8-P9.json")).stdout
+    assert "s8,9 = d7,8² + d7,9² − 2 d7,8 d7,9 cos ∠P8∞P7P9∞" in two and "δ1 → ∞ then δ2 → ∞" in two
+    end = run("show", str(REPO / "examples" / "7-B3-slider-P1.json")).stdout
+    assert "parameters t1,6" in end and "§4.2.4: it ends the variable segment, so the unknown is t1,6" in end
+    by_name = run("show", "7/B1", "--sliders", "P4")
+    assert by_name.returncode == 0 and "slider joints: P4" in by_name.stdout and "δ1 → ∞" in by_name.stdout
+    unsuited = run("show", "7/B2", "--sliders", "P1,P2,P3,P4").stdout
+    assert "none of the 50 best plans suits these sliders" in unsuited
 
 
 def test_show_finds_catalog_names_from_any_folder(tmp_path):
@@ -191,6 +224,8 @@ def test_show_finds_catalog_names_from_any_folder(tmp_path):
         (["5/B1", "--parameter", "P1,P2"], "no bilateration plan meets"),
         (["5/B1", "--plans", "0"], "--plans 0: must be at least 1"),
         (["Cl"], "mobility F = 3(L-1) - 2J = 1"),  # graph6 of a four-bar linkage
+        (["7/B1", "--sliders", "P1,P12"], "--sliders P1,P12: P12 is no joint of this chain"),
+        (["3/B1", "--sliders", "P1,P2,P3"], "--sliders P1,P2,P3: they close the loop of links"),
     ],
 )
 def test_show_bad_input(args, message):

