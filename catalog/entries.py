@@ -15,6 +15,8 @@ from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology import KinematicChain, automorphism_group, chain_from_link_graph, is_planar
 from baranov.topology.realizations import realization_count
 
+from .files import load_complete_objects
+
 #: Slider chains are counted over all 2^J joint subsets; done up to this many links.
 SLIDER_CHAINS_MAX_LINKS = 11
 
@@ -128,12 +130,4 @@ def dump_entries(entries: list[dict]) -> str:
 
 def load_entries(path: Path) -> list[dict] | None:
     """The entries of an existing catalog file, or None if absent, unreadable or incomplete."""
-    try:
-        entries = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    if not isinstance(entries, list) or not entries:
-        return None
-    if not all(isinstance(e, dict) and all(field in e for field in ENTRY_FIELDS) for e in entries):
-        return None
-    return entries
+    return load_complete_objects(path, ENTRY_FIELDS)

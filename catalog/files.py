@@ -1,7 +1,9 @@
-"""Atomic file output: a reader never sees a half-written file."""
+"""Atomic file output: a reader never sees a half-written file; and reading back a
+complete one."""
 
 from __future__ import annotations
 
+import json
 import os
 import tempfile
 from collections.abc import Iterator
@@ -76,3 +78,17 @@ def check_writable_folder(path: Path) -> None:
     handle, probe = tempfile.mkstemp(dir=path, prefix=".write-probe.", suffix=".tmp")
     os.close(handle)
     os.unlink(probe)
+
+
+def load_complete_objects(path: Path, fields: tuple[str, ...]) -> list[dict] | None:
+    """The objects of a catalog file (a JSON list), or None if it is absent, unreadable,
+    empty, or some object lacks one of ``fields`` (then the job recomputes it)."""
+    try:
+        objects = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(objects, list) or not objects:
+        return None
+    if not all(isinstance(o, dict) and all(field in o for field in fields) for o in objects):
+        return None
+    return objects

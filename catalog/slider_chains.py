@@ -19,7 +19,6 @@ checked, ``msolve_solutions`` and ``msolve_agrees``.
 
 from __future__ import annotations
 
-import json
 import sys
 import zlib
 from pathlib import Path
@@ -34,6 +33,8 @@ from baranov.scene.slider_instances import slider_instance_dict
 from baranov.solvers.mode_counts import slider_chain_degree
 from baranov.solvers.msolve import MsolveUnavailable, msolve_solution_count
 from baranov.topology import chain_from_link_graph
+
+from .files import load_complete_objects
 
 #: ``baranov catalog`` counts the slider chains' assembly modes up to this many links by
 #: default (3 + 10 + 386 chains); 9 links (47 702 chains) is opt-in: ``--slider-modes 9``.
@@ -98,10 +99,4 @@ SLIDER_CHAIN_FIELDS = ("truss", "truss_name", "sliders", "assembly_modes", "meth
 def load_slider_chains(path: Path) -> list[dict] | None:
     """The objects of a complete ``slider-chains-<L>.json``, or None if missing,
     unreadable or incomplete."""
-    try:
-        objects = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    if not isinstance(objects, list) or not objects:
-        return None
-    return objects if all(isinstance(o, dict) and all(f in o for f in SLIDER_CHAIN_FIELDS) for o in objects) else None
+    return load_complete_objects(path, SLIDER_CHAIN_FIELDS)
