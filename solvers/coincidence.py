@@ -76,6 +76,9 @@ def solvable_plan(scene: Scene) -> Plan:
 #: What a solution found without a plan says of its modes.
 NO_PLAN_NOTE = ("no bilateration plan is defined (joints {pairs} coincide in every plan's base): the modes are "
                 "msolve's, on the Cartesian system, each verified on the link dimensions")
+#: The same where no plan suits a slider chain's sliders.
+NO_SLIDER_PLAN_NOTE = ("no bilateration plan suits the slider joints ({reason}): the modes are msolve's, on the "
+                       "Cartesian system, each verified on the link dimensions and the sliders")
 
 
 def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[Plan, tuple[AssemblyMode, ...], str]:
@@ -96,6 +99,8 @@ def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[Plan, tuple[As
     except SolverError as failure:
         raise NoPlanError(f"{error}; {failure}") from None
     pairs = ", ".join(sorted("=".join(sorted(pair)) for pair, value in scene.known.items() if value == 0))
+    if not pairs:  # a slider chain that none of the plans tried suits (planner/sliders.py)
+        return plan, sorted_modes(modes), NO_SLIDER_PLAN_NOTE.format(reason=error)
     return plan, sorted_modes(modes), NO_PLAN_NOTE.format(pairs=pairs)
 
 

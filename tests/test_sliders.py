@@ -282,8 +282,26 @@ def test_the_exact_backend_refuses_irrational_axis_frames_by_name():
     link = next(iter(slider["angles"]))
     joint = next(iter(slider["angles"][link]))
     slider["angles"][link][joint] = "pi/4"
-    with pytest.raises(SolverError, match="irrational; the exact method needs them rational"):
+    with pytest.raises(SolverError, match=r"slider P9: its axis frames are √58 times rational on link t569, "
+                                          r"rational on link t789; the exact method needs them rational in one unit"):
         solve(scene_from_dict(data), method="exact")
+
+
+@needs_msolve
+@pytest.mark.parametrize("link, joint, angle", [("t569", "P5", "0"), ("t569", "P5", "pi"), ("t569", "P5", "pi/2"),
+                                                ("t789", "P7", "0"), ("t789", "P7", "pi")])
+def test_a_joint_on_the_axis_gives_msolves_modes(link, joint, angle):
+    """A joint of a slider's link on its axis (oriented distance 0: angle 0 or π) or at a
+    right angle to it: the numeric method finds exactly msolve's modes (4, 6, 2, 4, 6 of
+    them); the exact method refuses by name, since √29 (the frame on t569 along P5) and
+    the frame on t789 need different units."""
+    data = json.loads((EXAMPLES / "7-B3-slider-P9.json").read_text())
+    data["sliders"][0]["angles"][link] = {joint: angle}
+    scene = scene_from_dict(data)
+    expected = list(msolve_modes(scene).configurations)
+    assert len(expected) >= 2
+    found = [mode.joints for mode in solve(scene).assembly_modes]
+    assert compare_modes(found, expected)[:2] == (0, 0)
 
 
 @settings(max_examples=15, deadline=None)
@@ -302,7 +320,7 @@ def test_exact_and_numeric_modes_agree_on_random_slider_chains(links, seed):
     scene = scene_from_dict(data)
     try:
         if solvable_plan(scene).number_of_parameters > 1:
-            return  # the exact slider path is coupling degree 1 so far
+            return  # coupling degree 2 takes ~15 s exactly: one case below
     except NoPlanError:
         return  # no plan the slider constructions run: msolve's modes, tested above
     exact = solve(scene, method="exact")
@@ -310,3 +328,43 @@ def test_exact_and_numeric_modes_agree_on_random_slider_chains(links, seed):
     generating = {name: tuple(map(float, point)) for name, point in data["generating_configuration"].items()}
     assert compare_modes(found, [generating])[0] == 0
     assert compare_modes(found, [mode.joints for mode in solve(scene).assembly_modes])[:2] == (0, 0)
+
+
+@needs_msolve
+def test_the_exact_backend_solves_a_coupling_two_slider_chain():
+    """9/B28 (coupling degree 2) with a slider at P5: the exact method lifts the
+    characteristic polynomial from its images modulo primes, as for the trusses (degree 58,
+    the truss's generic count), and certifies exactly msolve's modes."""
+    from baranov.literature.trusses import thesis_truss
+    from baranov.scene.slider_instances import slider_instance_dict
+
+    data = slider_instance_dict(thesis_truss("9/B28").chain(), ["P5"], np.random.default_rng(2), rational=True)
+    scene = scene_from_dict(data)
+    solution = solve(scene, method="exact")
+    assert solution.coupling_degree == 2 and solution.characteristic_polynomial.degree == 58
+    assert solution.certificate.complete
+    found = [mode.joints for mode in solution.assembly_modes]
+    assert compare_modes(found, list(msolve_modes(scene).configurations))[:2] == (0, 0)
+    generating = {name: tuple(map(float, point)) for name, point in data["generating_configuration"].items()}
+    assert compare_modes(found, [generating])[0] == 0
+
+
+@needs_msolve
+@pytest.mark.parametrize("turn", [0.0, 1e-9, 1e-6, 1e-3])
+def test_nearly_parallel_axes_on_one_link_give_msolves_modes(turn):
+    """§4.2.3's chain with P8's axis turned on t789 until it is parallel to P9's there (to
+    the 15 decimals the scene gives), and 1e-9, 1e-6, 1e-3 rad from it: the link keeps
+    its revolute joint P7, so the chain stays rigid (msolve: 2 modes), and the numeric
+    method finds exactly those modes."""
+    from baranov.scene.sliders import axis_turn
+
+    data = json.loads((EXAMPLES / "7-B3-sliders-P8-P9.json").read_text())
+    angle = math.pi + math.atan(0.5) + math.pi / 4 + turn  # +π/4 undoes the 45° between the axes
+    data["sliders"][1]["angles"]["t789"] = {"P7": [repr(round(math.cos(angle), 15)), repr(round(math.sin(angle), 15))]}
+    scene = scene_from_dict(data)
+    p9, p8 = (next(s for s in scene.sliders if s.joint == name) for name in ("P9", "P8"))
+    assert abs(float(axis_turn(p9, p8, scene.link_of("t789"))[1]) + math.sin(turn)) < 1e-12
+    expected = list(msolve_modes(scene).configurations)
+    assert len(expected) == 2
+    found = [mode.joints for mode in solve(scene).assembly_modes]
+    assert compare_modes(found, expected)[:2] == (0, 0)

@@ -45,6 +45,7 @@ from baranov.closure.homogeneous import Homogeneous
 from baranov.closure.sliders import SliderPlacement, height_above, takes_root
 from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene, rational_sqrt
+from baranov.scene.sliders import axis_units
 
 from ..coincidence import solvable_plan
 from ..modes import SolverError
@@ -307,6 +308,14 @@ def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, al
             raise ExactMethodError("slider axes: a joint's place in an axis frame, or the turn between two axes, is "
                                    "irrational; the exact method needs them rational (docs/sliders.md)")
         return Homogeneous.of(pair, **ring)
+
+    for slider in scene.sliders:
+        units = axis_units(slider, [scene.link_of(axis.link) for axis in slider.axes])
+        if len(set(units.values())) > 1 and None not in units.values():
+            shown = ", ".join(f"{'rational' if q == 1 else f'√{q} times rational'} on link {link}"
+                              for link, q in units.items())
+            raise ExactMethodError(f"slider {slider.joint}: its axis frames are {shown}; the exact method needs "
+                                   "them rational in one unit √q (docs/sliders.md); the numeric method takes the scene")
 
     def parameter(u: str, v: str):
         value = parameters.get(frozenset((u, v)))
