@@ -3,8 +3,8 @@ admissible set of its joints into slider joints (thesis ch. 4), one per isomorph
 class (:func:`~baranov.enumerate.sliders.slider_chains`), with its generic number of
 assembly modes (:func:`~baranov.solvers.mode_counts.slider_chain_degree`) and msolve's
 count of the complex solutions of its Cartesian system on another random instance as an
-independent check (:func:`~baranov.solvers.msolve.msolve_solution_count`: 2^k times the
-modes for k sliders). The literature has no such table; thesis Tables 5.4–5.6 give the
+independent check (:func:`~baranov.solvers.msolve.msolve_solution_count`: the modes, times
+2 per auxiliary root of the system). The literature has no such table; thesis Tables 5.4–5.6 give the
 counts of the pentad's ten (the fully-parallel robot families I–X: 6, 6, 6, 4, 4, 2, 2,
 2, 1, 1 assembly modes).
 
@@ -58,11 +58,11 @@ def slider_chain_entry(job: tuple[str, tuple[str, ...], bool]) -> dict:
         seed = zlib.crc32(repr((graph6, sliders, "msolve check")).encode())
         scene = scene_from_dict(slider_instance_dict(truss, list(sliders), np.random.default_rng(seed), rational=True))
         try:
-            solutions = msolve_solution_count(scene)
+            solutions, auxiliaries = msolve_solution_count(scene)
         except MsolveUnavailable:
             return entry
         entry["msolve_solutions"] = solutions
-        entry["msolve_agrees"] = solutions == 2 ** len(sliders) * modes
+        entry["msolve_agrees"] = solutions == 2 ** auxiliaries * modes
     return entry
 
 

