@@ -46,14 +46,18 @@ def main() -> None:
     chosen = sorted(rng.choice(len(everything), size=min(arguments.sample, len(everything)), replace=False))
     by_method: dict[str, list[float]] = {}
     checks: list[float] = []
+    walls: list[float] = []
+    sizes: list[int] = []
     wall = time.perf_counter()
     for n, index in enumerate(chosen):
         graph6, sliders = everything[index]
         check = n % arguments.check_every == 0
-        start = cpu_seconds()
+        start, started = cpu_seconds(), time.perf_counter()
         entry = slider_chain_entry((graph6, sliders, check))
         spent = cpu_seconds() - start
+        walls.append(time.perf_counter() - started)
         (checks if check else by_method.setdefault(entry["method"], [])).append(spent)
+        sizes.append(len(sliders))
     wall = time.perf_counter() - wall
     counted = [t for times in by_method.values() for t in times]
     print(f"{arguments.links} links: {len(everything)} chains; sample of {len(chosen)} (seed {arguments.seed}), "
@@ -63,6 +67,8 @@ def main() -> None:
               f"mean {statistics.mean(times):7.2f} s, max {max(times):7.2f} s CPU")
     if checks:
         print(f"  with the msolve check: {len(checks)} chains, median {statistics.median(checks):.2f} s CPU")
+    print(f"  wall per chain: median {statistics.median(walls):.2f} s, mean {statistics.mean(walls):.2f} s; "
+          f"sliders per sampled chain: median {statistics.median(sizes)}")
     mean = statistics.mean(counted + checks)
     print(f"  every chain: about {mean * len(everything) / 3600:.1f} CPU hours "
           f"(mean {mean:.2f} s x {len(everything)} chains; with the check on every "

@@ -58,7 +58,7 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates,
         joints, points = placed_configurations(scene, compiled, values, branches)
         residual = joint_residuals(scene, joints, points)
         polish = np.flatnonzero((RESIDUAL_TOLERANCE <= residual) & (residual < POLISH_LIMIT))
-        if len(polish) and not scene.sliders:  # the polishing knows no slider constraint yet (docs/sliders.md)
+        if len(polish):
             points[polish], values[polish], branches[polish], residual[polish] = polished_configurations(
                 scene, compiled, joints, points[polish])
     if configurations is not None:

@@ -11,14 +11,14 @@ from typing import Any
 import numpy as np
 
 from baranov.closure import CompiledSystem, closure_system
-from baranov.closure.sliders import SearchedParameter, SliderGeometry
+from baranov.closure.sliders import SearchedParameter, SliderGeometry, takes_root
 from baranov.planner import Plan
 from baranov.scene import Scene
 from baranov.scene.sliders import axis_frame, axis_turn, axis_unit
 
 from .modes import AssemblyMode
-from .polish import POLISH_STEPS, polish_configurations
-from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residuals
+from .polish import POLISH_STEPS, polish_configurations, polish_on_constraints
+from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residuals, slider_axis
 
 #: Relative doubled area below which :func:`read_back` calls a triangle flat (sign 0).
 FLAT_AREA = 1e-10
@@ -140,14 +140,18 @@ def orientation(at: dict, i: str, j: str, k: str, flat: float):
 
 
 def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray],
-              flat: float = FLAT_AREA) -> tuple[np.ndarray, np.ndarray]:
+              flat: float = FLAT_AREA, scene: Scene | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The plan's parameter values and free-sign branch of configurations given as joint
     positions (complex arrays of one shape S): arrays of shape S + (parameters,) and
     S + (free-sign triangles,). A triangle whose doubled area is below FLAT_AREA of the
     product of its two sides from P_i gets sign 0 (flat): placed with ±1 at parameters
     read back to rounding, its radicand can come out a few ulps negative, and the mode
     would be lost (9/N28 of the collinear-joints sweep). ``flat`` replaces FLAT_AREA
-    (NEARLY_FLAT for configurations known only to √ε: a double root, numeric.py)."""
+    (NEARLY_FLAT for configurations known only to √ε: a double root, numeric.py).
+    A slider chain (``scene`` with sliders; ``at`` with the sliders' points P9', P9''):
+    :func:`_read_back_sliders`."""
+    if scene is not None and scene.sliders:
+        return _read_back_sliders(scene, compiled, at, flat)
     shape = np.shape(next(iter(at.values())))
 
     def stacked(columns: list) -> np.ndarray:
@@ -156,6 +160,50 @@ def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray],
     parameters = stacked([np.abs(at[u] - at[v]) ** 2 for u, v in compiled.parameters])
     branch = stacked([orientation(at, *triangle, flat) for triangle in compiled.free_triangles])
     return parameters, branch
+
+
+def _read_back_sliders(scene: Scene, compiled: CompiledSystem, at: dict[str, np.ndarray],
+                       flat: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`read_back` for a slider chain (closure/sliders.py): a parameter with a slider
+    is t, the other joint's oriented distance to the axis; a free step that touches a
+    slider has the sign σ of its along-axis step, Re(conj(u)(p_b − p_a)) for the axis
+    through P_a, P_b (the slider located) or from the base's revolute joint P_a to the
+    joint placed P_b (a point off the axis), 0 within ``flat`` of the step's length; a
+    step with no sign of its own (a turned axis, two axes meeting) reads +1."""
+    sliders = {slider.joint: slider for slider in scene.sliders}
+    shape = np.shape(next(iter(at.values())))
+
+    def axis(name: str):
+        return slider_axis(scene, sliders[name], sliders[name].axes[0].link, at)
+
+    def stacked(columns: list) -> np.ndarray:
+        return np.stack(columns, axis=-1) if columns else np.zeros((*shape, 0))
+
+    parameters = []
+    for u, v in compiled.parameters:
+        if u in sliders or v in sliders:
+            slider, other = (u, v) if u in sliders else (v, u)
+            foot, direction = axis(slider)
+            parameters.append((direction.conjugate() * (at[other] - foot)).imag)
+        else:
+            parameters.append(np.abs(at[u] - at[v]) ** 2)
+    free_steps = [step for step in compiled.plan.steps if step.free_sign]
+    branch = []
+    for step, triangle in zip(free_steps, compiled.free_triangles, strict=True):
+        touched = [name for name in triangle if name in sliders]
+        if not touched:
+            branch.append(orientation(at, *triangle, flat))
+            continue
+        if not takes_root(step, sliders):
+            branch.append(np.ones(shape, int))
+            continue
+        i, j = step.base
+        slider = step.joint if step.joint in sliders else next(name for name in step.base if name in sliders)
+        start, end = (i, j) if step.joint in sliders else ((j if slider == i else i), step.joint)
+        _, direction = axis(slider)
+        along = (direction.conjugate() * (at[end] - at[start])).real
+        branch.append(np.where(np.abs(along) <= flat * np.abs(at[end] - at[start]), 0, np.where(along > 0, 1, -1)))
+    return stacked(parameters), stacked(branch)
 
 
 def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -> AssemblyMode:
@@ -182,12 +230,16 @@ def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -
 def polished_configurations(scene: Scene, compiled: CompiledSystem, joints: list[str], points: np.ndarray,
                             steps: int = POLISH_STEPS, monotone: bool = True):
     """Configurations (complex (K, J)) polished on the link constraints
-    (:func:`polish_configurations`), with their parameters and free-sign branches read back
+    (:func:`polish_configurations`; with sliders, on every constraint:
+    :func:`polish_on_constraints`), with their parameters and free-sign branches read back
     and their residuals: ``(points, values, branches, residuals)``."""
-    real = np.stack([points.real, points.imag], axis=-1)
-    real, _ = polish_configurations(scene, joints, real, steps, monotone)
-    polished = real[..., 0] + 1j * real[..., 1]
-    values, branches = read_back(compiled, {j: polished[:, n] for n, j in enumerate(joints)})
+    if scene.sliders:
+        polished, _ = polish_on_constraints(scene, joints, points, steps, monotone)
+    else:
+        real = np.stack([points.real, points.imag], axis=-1)
+        real, _ = polish_configurations(scene, joints, real, steps, monotone)
+        polished = real[..., 0] + 1j * real[..., 1]
+    values, branches = read_back(compiled, {j: polished[:, n] for n, j in enumerate(joints)}, scene=scene)
     return polished, values, branches, joint_residuals(scene, joints, polished)
 
 

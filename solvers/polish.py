@@ -88,3 +88,67 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray, s
             trial[better], trial_difference[better], trial_residual[better], trial_size[better])
         active = moved[size[moved] > 1e-15] if monotone else moved
     return points, size
+
+
+def polish_on_constraints(scene: Scene, joints: list[str], points: np.ndarray, steps: int = POLISH_STEPS,
+                          monotone: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Newton on every constraint of the linkage, slider joints included
+    (:func:`~baranov.solvers.verification.constraint_residuals`: link dimensions, parallel
+    axes, a slider's point on the other link's axis), the ground link's points held at
+    their world coordinates, for K configurations at once; as
+    :func:`polish_configurations`, which it generalises for slider chains. The constraints
+    are quadratic in the coordinates but for the normalised axis directions, so the
+    Jacobian is taken by central differences (exact for the quadratic ones up to rounding).
+
+    Args:
+        scene: the linkage.
+        joints: point names (``P9'``, ``P9''`` for a slider's), in the order of the second
+            axis of ``points``.
+        points: complex, shape (K, J), approximate configurations.
+
+    Returns:
+        The polished configurations (complex (K, J)) and the largest constraint residual of
+        each. Cost O(K · J · m) per step for m constraints.
+    """
+    from .verification import constraint_residuals, distance_bound
+
+    points = np.array(points, dtype=complex)
+    fixed = {scene.point_name(scene.ground, joint): complex(float(x), float(y)) for joint, (x, y) in scene.world.items()}
+    for name, value in fixed.items():
+        if name in joints:
+            points[:, joints.index(name)] = value
+    free = [n for n, name in enumerate(joints) if name not in fixed]
+    delta = 1e-7 * distance_bound(scene)
+
+    def residuals(p: np.ndarray) -> np.ndarray:
+        return constraint_residuals(scene, {name: p[:, n] for n, name in enumerate(joints)})
+
+    residual = residuals(points)
+    size = np.abs(residual).max(axis=1, initial=0.0)
+    active = np.flatnonzero(np.isfinite(size))
+    for _ in range(steps):
+        if active.size == 0:
+            break
+        current = points[active]
+        columns = []
+        for n in free:
+            for unit in (1.0, 1j):
+                ahead, behind = current.copy(), current.copy()
+                ahead[:, n] += unit * delta
+                behind[:, n] -= unit * delta
+                columns.append((residuals(ahead) - residuals(behind)) / (2 * delta))
+        jacobian = np.stack(columns, axis=-1)  # (K, m, 2 · free)
+        transposed = jacobian.transpose(0, 2, 1)
+        normal = transposed @ jacobian
+        diagonal = np.diagonal(normal, axis1=1, axis2=2).max(axis=1)
+        normal = normal + 1e-14 * np.maximum(diagonal, np.finfo(float).tiny)[:, None, None] * np.eye(2 * len(free))
+        step = np.linalg.solve(normal, -(transposed @ residual[active][:, :, None]))[:, :, 0]
+        trial = current.copy()
+        trial[:, free] += step[:, 0::2] + 1j * step[:, 1::2]
+        trial_residual = residuals(trial)
+        trial_size = np.abs(trial_residual).max(axis=1, initial=0.0)
+        better = np.isfinite(trial_size) & ((trial_size < size[active]) | (not monotone))
+        moved = active[better]
+        points[moved], residual[moved], size[moved] = trial[better], trial_residual[better], trial_size[better]
+        active = moved[size[moved] > 1e-15] if monotone else moved
+    return points, size

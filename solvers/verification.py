@@ -41,32 +41,54 @@ def joint_residual(scene: Scene, points: dict[str, complex]) -> float:
 def joint_residuals(scene: Scene, joints: list[str], points: np.ndarray) -> np.ndarray:
     """For configurations ``points`` (complex (K, J), points named ``joints``: joint
     names, and ``P9'``, ``P9''`` for a slider's two points, :meth:`Scene.point_name`): the
-    largest relative error on every link dimension, slider and ground joint; 1.0 if a
-    rigid link is mirrored (its widest triangle reversed) or a slider's axis reversed on
-    one link; inf where a joint is not finite. For coincident joints (target 0) the
-    error is relative to the link's size."""
+    largest relative error on every link dimension, slider and ground joint
+    (:func:`constraint_residuals`); 1.0 if a rigid link is mirrored (its widest triangle
+    reversed) or a slider's axis reversed on one link; inf where a joint is not finite.
+    For coincident joints (target 0) the error is relative to the link's size."""
     at = {j: points[:, n] for n, j in enumerate(joints)}
-    residual = np.zeros(len(points))
+    residual = np.abs(constraint_residuals(scene, at)).max(axis=1, initial=0.0)
+    for link in scene.links:
+        triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
+        if triangle is not None:
+            i, j, k = (at[scene.point_name(link.name, n)] for n in triangle)
+            cross = ((j - i).conjugate() * (k - i)).imag
+            mirrored = np.where(cross > 0, 1, -1) != scene.orientation(triangle)
+            residual = np.where(mirrored, np.maximum(residual, 1.0), residual)
+    for slider in scene.sliders:
+        (_, direction), (_, other_direction) = (slider_axis(scene, slider, axis.link, at) for axis in slider.axes)
+        reversed_axis = ~((direction.conjugate() * other_direction).real > 0)
+        residual = np.where(reversed_axis, np.maximum(residual, 1.0), residual)
+    size = distance_bound(scene)
+    for joint, (x, y) in scene.world.items():
+        target = complex(float(x), float(y))
+        residual = np.maximum(residual, np.abs(at[scene.point_name(scene.ground, joint)] - target) / max(abs(target), size))
+    return np.where(np.isfinite(points).all(axis=1), residual, np.inf)
+
+
+def constraint_residuals(scene: Scene, at: dict[str, np.ndarray]) -> np.ndarray:
+    """The signed, smooth errors of configurations (point name → complex array of shape
+    (K,)) on every constraint of the linkage, shape (K, m): per link dimension
+    (|p_u − p_v|² − s_{u,v}) / s_{u,v} (relative to the link's size where s_{u,v} = 0);
+    per slider the sine of the angle between its two links' axes and the distance of its
+    second link's point from the first link's axis over the linkage's size. Zero exactly
+    at the configurations that satisfy them (senses and mirrors aside:
+    :func:`joint_residuals`); what Gauss–Newton polishes a slider chain on
+    (:func:`~baranov.solvers.polish.polish_on_constraints`)."""
+    columns = []
     for link in scene.links:
         point = {joint: at[scene.point_name(link.name, joint)] for joint in link.joints}
         size = max(float(target) for target in link.squared_distances.values())
         for pair, target in link.squared_distances.items():
             u, v = tuple(pair)
-            error = np.abs(np.abs(point[u] - point[v]) ** 2 - float(target)) / (float(target) or size)
-            residual = np.maximum(residual, error)
-        triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
-        if triangle is not None:
-            i, j, k = (point[n] for n in triangle)
-            cross = ((j - i).conjugate() * (k - i)).imag
-            mirrored = np.where(cross > 0, 1, -1) != scene.orientation(triangle)
-            residual = np.where(mirrored, np.maximum(residual, 1.0), residual)
+            columns.append((np.abs(point[u] - point[v]) ** 2 - float(target)) / (float(target) or size))
     size = distance_bound(scene)
     for slider in scene.sliders:
-        residual = np.maximum(residual, _slider_residuals(scene, slider, at, size))
-    for joint, (x, y) in scene.world.items():
-        target = complex(float(x), float(y))
-        residual = np.maximum(residual, np.abs(at[scene.point_name(scene.ground, joint)] - target) / max(abs(target), size))
-    return np.where(np.isfinite(points).all(axis=1), residual, np.inf)
+        (foot, direction), (other_foot, other_direction) = (slider_axis(scene, slider, axis.link, at)
+                                                            for axis in slider.axes)
+        columns.append((direction.conjugate() * other_direction).imag)
+        columns.append((direction.conjugate() * (other_foot - foot)).imag / size)
+    shape = np.shape(next(iter(at.values())))
+    return np.stack(columns, axis=-1) if columns else np.zeros((*shape, 0))
 
 
 def slider_axis(scene: Scene, slider, link: str, at: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
@@ -79,16 +101,6 @@ def slider_axis(scene: Scene, slider, link: str, at: dict[str, np.ndarray]) -> t
                                                                             -float(axis.direction[1]))
     with np.errstate(invalid="ignore", divide="ignore"):
         return foot, turned / np.abs(turned)
-
-
-def _slider_residuals(scene: Scene, slider, at: dict[str, np.ndarray], size: float) -> np.ndarray:
-    """A slider's errors: the sine of the angle between its two links' axes, the
-    distance of the second link's point from the first link's axis (relative to the
-    linkage's size), and 1.0 where the axes point opposite ways (another mechanism)."""
-    (foot, direction), (other_foot, other_direction) = (slider_axis(scene, slider, axis.link, at) for axis in slider.axes)
-    turn = direction.conjugate() * other_direction
-    off_axis = np.abs((direction.conjugate() * (other_foot - foot)).imag) / size
-    return np.where(turn.real > 0, np.maximum(np.abs(turn.imag), off_axis), 1.0)
 
 
 def same_mode(first: AssemblyMode, second: AssemblyMode, scene: Scene) -> bool:

@@ -401,16 +401,22 @@ def test_nearly_parallel_axes_on_one_link_give_msolves_modes(turn):
 
 
 @needs_msolve
-@pytest.mark.xfail(strict=True, reason="open (issue 17): a slider chain's mode at the edge of an along-axis step")
 def test_a_slider_mode_at_the_edge_of_an_along_axis_step_is_found():
-    """tests/regressions/open/9-slider-mode-at-axis-edge.json (found by
+    """tests/regressions/sliders/9-N28-mode-at-axis-edge.json (found by
     bench/bench_sliders.py): 9/N28 with sliders P3, P7, P8, coupling degree 2; msolve and
-    the exact backend find 10 modes, the numeric backend misses the generating
-    configuration, at the edge of the domain where P11's along-axis step from P1 vanishes
-    (the polish on the link constraints that rescues such modes of the trusses knows no
-    slider constraints). Strict: fails the suite once fixed, so that the instance moves
-    to the regression set."""
-    data = json.loads((Path(__file__).parent / "regressions" / "open" / "9-slider-mode-at-axis-edge.json").read_text())
+    the exact backend find 10 modes. The numeric backend found 9: the generating
+    configuration sits where P11's along-axis step from P1 vanishes, the closure
+    condition rises like a square root from that edge, and the polish on the link
+    constraints that rescues such modes of the trusses knew no slider constraint. Now
+    every constraint is polished (solvers/polish.py: polish_on_constraints) and the
+    branch read back with the sign of each along-axis step: the mode comes out on branch
+    (+1, +1, −1, −1), as the exact backend has it."""
+    data = json.loads((Path(__file__).parent / "regressions" / "sliders" / "9-N28-mode-at-axis-edge.json").read_text())
     scene = scene_from_dict(data)
-    found = [mode.joints for mode in solve(scene).assembly_modes]
+    modes = solve(scene).assembly_modes
+    found = [mode.joints for mode in modes]
     assert compare_modes(found, list(msolve_modes(scene).configurations))[:2] == (0, 0)
+    generating = {name: tuple(map(float, point)) for name, point in data["generating_configuration"].items()}
+    assert compare_modes(found, [generating])[0] == 0
+    edge = min(modes, key=lambda mode: mode.parameters["s1,11"])
+    assert edge.signs == (1, 1, -1, -1) and abs(edge.parameters["s1,11"] - 1970.2864033818687) < 1e-8

@@ -38,7 +38,7 @@ from ..coincidence import (
 from ..mode_clusters import merged_clusters
 from ..modes import AssemblyMode, MovableLinkageError, Solution, SolverError, signs_text
 from ..placement import NEARLY_FLAT, compile_scene, placed_from_ground, polished_mode, read_back
-from ..polish import polish_configurations
+from ..polish import polish_configurations, polish_on_constraints
 from ..verification import RESIDUAL_TOLERANCE, distance_bound
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
 from .two_parameter import ridge_roots, shared_curve, two_parameter_roots
@@ -208,7 +208,7 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
     approximate roots, polished on the link constraints (:func:`polish_configurations`),
     their parameters and branches read back; for :func:`assembly_modes`, which verifies
     them as they are."""
-    if len(values) == 0 or scene.sliders:  # no polishing on slider constraints yet
+    if len(values) == 0:
         return None
     placed = placed_from_ground(scene, compiled.paired_matrices(values, signs))
     joints = sorted(placed)
@@ -216,16 +216,19 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
         return None
     complex_points = np.stack([placed[j] for j in joints], axis=1)
     usable = np.isfinite(complex_points).all(axis=1)
-    points = np.stack([complex_points.real, complex_points.imag], axis=-1)[usable]
-    points, residual = polish_configurations(scene, joints, points)
+    if scene.sliders:  # every constraint, sliders included (solvers/polish.py)
+        points, residual = polish_on_constraints(scene, joints, complex_points[usable])
+    else:
+        points, residual = polish_configurations(scene, joints, np.stack([complex_points.real, complex_points.imag],
+                                                                          axis=-1)[usable])
+        points = points[..., 0] + 1j * points[..., 1]
     points = points[residual < RESIDUAL_TOLERANCE]
-    points = points[..., 0] + 1j * points[..., 1]
     at = {j: points[:, n] for n, j in enumerate(joints)}
-    parameters, branch = read_back(compiled, at)
+    parameters, branch = read_back(compiled, at, scene=scene)
     # at a double root on the domain's edge the polished joints are right to ~√ε only, a
     # flat triangle reads back ±1 and its radicand comes out negative: try it flat too
     # (tests/regressions/9-N28-double-root.json)
-    _, flattened = read_back(compiled, at, NEARLY_FLAT)
+    _, flattened = read_back(compiled, at, NEARLY_FLAT, scene=scene)
     changed = (flattened != branch).any(axis=1)
     return (joints, np.concatenate([points, points[changed]]), np.concatenate([parameters, parameters[changed]]),
             np.concatenate([branch, flattened[changed]]))
