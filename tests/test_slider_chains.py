@@ -99,8 +99,11 @@ def test_an_irrational_axis_scale_doubles_msolves_count():
 def test_the_committed_slider_catalog_is_consistent():
     """catalog/slider-chains-<L>.json: every chain of every truss, in order; every msolve
     check agrees; the moving chains are the only ones without a count."""
-    for links in (3, 5, 7):
-        chains = json.loads((REPO / "catalog" / f"slider-chains-{links}.json").read_text())
+    for links in (3, 5, 7, 9):
+        path = REPO / "catalog" / f"slider-chains-{links}.json"
+        if links == 9 and not path.exists():
+            continue  # opt-in: baranov catalog --slider-modes 9
+        chains = json.loads(path.read_text())
         trusses = json.loads((REPO / "catalog" / f"trusses-{links}.json").read_text())
         assert len(chains) == sum(t["slider_chains"] for t in trusses)
         assert all(c["msolve_agrees"] for c in chains if "msolve_agrees" in c)
