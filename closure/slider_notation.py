@@ -94,6 +94,7 @@ def slider_closure_text(chain: KinematicChain, plan: Plan, sliders: Sequence[str
                          f"{_d(pivot, second)}² − 2 {_d(pivot, first)} {_d(pivot, second)} cos ∠{first}∞{pivot}"
                          f"{second}∞ (§4.2.3; ∠ fixed by link {chain.link_name(link)}: the angle between the axes)")
     limits = " then ".join(f"{delta[joint.name]} → ∞" for joint in order)
+    adjacent = any(sum(name in sliders for name in names) > 1 for names in members.values())
     lines.append(f"closure: the leading coefficient of each condition as {limits}"
-                 + (" (in this order: the limits are not independent, §4.2.3)" if len(order) > 1 else ""))
+                 + (" (in this order: the limits are not independent, §4.2.3)" if adjacent else ""))
     return lines
