@@ -76,7 +76,6 @@ def characteristic_degree(chain: KinematicChain, seed: int | None = None,
     return max(degrees), degrees
 
 
-
 def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int | None = None
                         ) -> tuple[int | None, list[int], str]:
     """The generic number of assembly modes of the slider chain that turns the joints
@@ -103,10 +102,13 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
     (:func:`~baranov.solvers.msolve.cartesian_jacobian_rank`), and such a chain gives
     (None, [], ``"moves"``): it is no Assur chain.
 
-    >>> from baranov.literature.trusses import thesis_truss
-    >>> truss = thesis_truss("7/B3").chain()
-    >>> [slider_chain_degree(truss, s)[0] for s in ([], ["P9"], ["P8", "P9"], ["P1"])]  # chains of §4.2.2–4.2.4
-    [18, 18, 12, 18]
+    The chains of thesis §4.2.2–4.2.4, in the joint numbering of their scenes: the
+    published degrees 16, 12 and 18 are the generic counts.
+
+    >>> from baranov.scene import load_scene
+    >>> truss = load_scene("examples/7-B3-slider-P9.json").chain
+    >>> [slider_chain_degree(truss, s)[0] for s in ([], ["P9"], ["P8", "P9"], ["P1"])]
+    [18, 16, 12, 18]
     """
     if seed is None:
         seed = zlib.crc32(repr(([joint.links for joint in truss.joints], sorted(sliders))).encode())

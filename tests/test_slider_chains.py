@@ -89,8 +89,8 @@ def test_msolve_counts_the_modes(truss, sliders):
 def test_an_irrational_axis_scale_doubles_msolves_count():
     """§4.2.2's chain with P9's axis turned to 45° on t569: the ratio of the two axis
     scales is irrational, an auxiliary root enters, and msolve counts the modes of the
-    chain and of its reversed-axis twin: 32, twice the 16 of §4.2.2's dimensions (the
-    generic chain has 18: these dimensions are special)."""
+    chain and of its reversed-axis twin: 32, twice the chain's 16 (its generic count, the
+    degree thesis §4.2.2 prints)."""
     data = json.loads((REPO / "examples" / "7-B3-slider-P9.json").read_text())
     data["sliders"][0]["angles"]["t569"] = {"P5": "pi/4"}
     assert msolve_solution_count(scene_from_dict(data)) == (32, 1)
