@@ -236,22 +236,6 @@ def _direction_length(scene: Scene, slider, link: str) -> Fraction:
     return Fraction(squared) * (p * p + q * q)
 
 
-def _same_sense(scene: Scene, configuration: dict[str, tuple[float, float]]) -> bool:
-    """Whether every slider's two sliding directions point the same way (the Cartesian
-    system only asks them to be parallel)."""
-    for slider in scene.sliders:
-        directions = []
-        for axis in slider.axes:
-            foot = configuration[scene.point_name(axis.link, slider.joint)]
-            reference = configuration[scene.point_name(axis.link, axis.reference)]
-            vx, vy = reference[0] - foot[0], reference[1] - foot[1]
-            p, q = (float(c) for c in axis.direction)
-            directions.append((vx * p + vy * q, vy * p - vx * q))
-        if directions[0][0] * directions[1][0] + directions[0][1] * directions[1][1] <= 0:
-            return False
-    return True
-
-
 def cartesian_jacobian_rank(scene: Scene, configuration: dict[str, tuple]) -> tuple[int, int]:
     """(rank, unknowns) of the Jacobian of the Cartesian system of ``scene`` (module
     docstring) at ``configuration`` (point name → exact coordinates, P9'/P9'' for a
@@ -409,8 +393,6 @@ def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISIO
         point = {j: (float((box[index[x]][0] + box[index[x]][1]) / 2), float((box[index[y]][0] + box[index[y]][1]) / 2))
                  for j, (x, y) in names.items()}
         point.update({scene.point_name(scene.ground, j): (float(x), float(y)) for j, (x, y) in scene.world.items()})
-        if not _same_sense(scene, point):
-            continue  # one link's axis reversed: another mechanism
         configurations.append(point)
     return OracleResult("finite", tuple(configurations), width, seconds, **size)
 
