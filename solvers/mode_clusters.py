@@ -10,9 +10,16 @@ from baranov.closure import CompiledSystem
 from baranov.scene import Scene
 
 from .modes import AssemblyMode
-from .placement import flattened_mode, polished_mode
-from .polish import polish_configurations
-from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residuals, same_mode, sorted_modes
+from .placement import flattened_mode, mode_of, polished_mode, read_back
+from .polish import polish_configurations, polish_on_constraints
+from .verification import (
+    RESIDUAL_TOLERANCE,
+    distance_bound,
+    joint_residuals,
+    placement_residuals,
+    same_mode,
+    sorted_modes,
+)
 
 #: Verified modes closer than this (relative to the linkage's size) are polished again,
 #: CLUSTER_STEPS plain Gauss–Newton steps, before they count as distinct.
@@ -64,7 +71,9 @@ def merged_clusters(scene: Scene, compiled: CompiledSystem,
             continue
         if len(members) > 1:
             undecided.append(_valley_sentence(members))
-        modes_out.append(_valley_representative(members))
+            modes_out.append(_refined_in_valley(scene, compiled, members) or _valley_representative(members))
+        else:
+            modes_out.append(members[0])
     return sorted_modes(modes_out), tuple(undecided)
 
 
@@ -143,6 +152,38 @@ def _valley_groups(scene: Scene, modes: list[AssemblyMode]) -> list[list[int]]:
     for i in range(len(modes)):
         groups.setdefault(root(i), []).append(i)
     return list(groups.values())
+
+
+#: The valley members polished on the rigid-link model, the best by that model first.
+VALLEY_SEEDS = 8
+VALLEY_STEPS = 80
+
+
+def _refined_in_valley(scene: Scene, compiled: CompiledSystem, members: list[AssemblyMode]) -> AssemblyMode | None:
+    """The mode a valley stands for, refined on the rigid-link model
+    (:func:`~baranov.solvers.verification.placement_residuals`): its VALLEY_SEEDS members
+    best on that model, polished by Gauss–Newton on it, the best result if it verifies and
+    lies within the valley (CLUSTER of the linkage's size). Where the valley comes from a
+    link with joints in line, the distances cannot tell its members apart but the rigid
+    model can: on 9/N27 drawn at a double root (issue 25), 172 members verify to 1e-13
+    across 1.4e-2, the member the parameter box chose was 2.4e-4 from msolve's mode and 8e-9
+    on the rigid model, and the polished one agrees with msolve. At a double root the steps
+    halve the distance, so VALLEY_STEPS reach rounding from 1e-4. None where nothing verifies
+    (the caller falls back on :func:`_valley_representative`)."""
+    joints = sorted(members[0].joints)
+    points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in members])
+    before = np.abs(placement_residuals(scene, {j: points[:, n] for n, j in enumerate(joints)})).max(axis=1)
+    seeds = points[np.argsort(before, kind="stable")[:VALLEY_SEEDS]]
+    polished, after = polish_on_constraints(scene, joints, seeds, VALLEY_STEPS, model=placement_residuals)
+    best = int(np.argmin(after))
+    point = polished[best]
+    if not np.abs(points - point).max(axis=1).min() <= CLUSTER * distance_bound(scene):
+        return None
+    values, branches = read_back(compiled, {j: point[None, n] for n, j in enumerate(joints)}, scene=scene)
+    residual = joint_residuals(scene, joints, point[None])[0]
+    if not residual < RESIDUAL_TOLERANCE:
+        return None
+    return flattened_mode(scene, compiled, mode_of(compiled, joints, values[0], branches[0], point, residual))
 
 
 def _valley_representative(modes: list[AssemblyMode]) -> AssemblyMode:

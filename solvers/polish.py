@@ -11,6 +11,8 @@ polished configuration gives back the parameters and the branch.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from baranov.scene import Scene
@@ -91,7 +93,7 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray, s
 
 
 def polish_on_constraints(scene: Scene, joints: list[str], points: np.ndarray, steps: int = POLISH_STEPS,
-                          monotone: bool = True) -> tuple[np.ndarray, np.ndarray]:
+                          monotone: bool = True, model: Callable | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Gauss–Newton on every constraint of the linkage, slider joints included
     (:func:`~baranov.solvers.verification.constraint_residuals`: link dimensions, parallel
     axes, a slider's point on the other link's axis), the ground link's points held at
@@ -99,6 +101,8 @@ def polish_on_constraints(scene: Scene, joints: list[str], points: np.ndarray, s
     :func:`polish_configurations`, which it generalises for slider chains. The constraints
     are quadratic in the coordinates but for the normalised axis directions, so the
     Jacobian is taken by central differences (exact for the quadratic ones up to rounding).
+    ``model``: other constraints of the same signature, e.g.
+    :func:`~baranov.solvers.verification.placement_residuals`.
 
     Args:
         scene: the linkage.
@@ -121,7 +125,7 @@ def polish_on_constraints(scene: Scene, joints: list[str], points: np.ndarray, s
     delta = 1e-7 * distance_bound(scene)
 
     def residuals(p: np.ndarray) -> np.ndarray:
-        return constraint_residuals(scene, {name: p[:, n] for n, name in enumerate(joints)})
+        return (model or constraint_residuals)(scene, {name: p[:, n] for n, name in enumerate(joints)})
 
     residual = residuals(points)
     size = np.abs(residual).max(axis=1, initial=0.0)

@@ -81,12 +81,53 @@ def constraint_residuals(scene: Scene, at: dict[str, np.ndarray]) -> np.ndarray:
         for pair, target in link.squared_distances.items():
             u, v = tuple(pair)
             columns.append((np.abs(point[u] - point[v]) ** 2 - float(target)) / (float(target) or size))
+    return _stacked(columns + _slider_columns(scene, at), at)
+
+
+def placement_residuals(scene: Scene, at: dict[str, np.ndarray]) -> np.ndarray:
+    """The errors of configurations (point name → complex array of shape (K,)) on the
+    rigid-link model, shape (K, m): per link with joints P_a, P_b farthest apart,
+    (|p_b − p_a|² − s_{a,b}) / s_{a,b}, and for every other joint P_k of it the real and
+    imaginary parts of (p_k − p_a − c_k (p_b − p_a)) / √s_{a,b}, where
+    c_k = (l_k − l_a) / (l_b − l_a) from the link's own coordinates l; sliders as in
+    :func:`constraint_residuals`. Zero exactly at the assembly modes, mirrors excluded.
+
+    Unlike the link dimensions, these equations stay regular where a link has its joints
+    in line: there the middle joint may leave the line by δ at a cost of δ² in the
+    distances, so every mode sits in a valley, and one at a double root in a valley flat
+    to rounding 1e-2 wide (issue 25: 9/N27, tests/regressions/9-N27-double-root-25.json);
+    here that mode is a double root of residual ~δ². It is the model msolve is given
+    (:mod:`~baranov.solvers.msolve`)."""
+    columns = []
+    for link in scene.links:
+        if len(link.joints) < 2:
+            continue
+        point = {joint: at[scene.point_name(link.name, joint)] for joint in link.joints}
+        a, b = tuple(max(link.squared_distances, key=lambda pair: link.squared_distances[pair]))
+        squared = float(link.squared_distances[frozenset((a, b))])
+        columns.append((np.abs(point[b] - point[a]) ** 2 - squared) / squared)
+        start, frame = complex(*link.local[a]), complex(*link.local[b]) - complex(*link.local[a])
+        for k in link.joints:
+            if k not in (a, b):
+                offset = (point[k] - point[a] - (complex(*link.local[k]) - start) / frame * (point[b] - point[a]))
+                columns += [offset.real / math.sqrt(squared), offset.imag / math.sqrt(squared)]
+    return _stacked(columns + _slider_columns(scene, at), at)
+
+
+def _slider_columns(scene: Scene, at: dict[str, np.ndarray]) -> list[np.ndarray]:
+    """Per slider: the sine of the angle between its two links' axes, and the distance of
+    its second link's point from the first link's axis over the linkage's size."""
+    columns = []
     size = distance_bound(scene)
     for slider in scene.sliders:
         (foot, direction), (other_foot, other_direction) = (slider_axis(scene, slider, axis.link, at)
                                                             for axis in slider.axes)
         columns.append((direction.conjugate() * other_direction).imag)
         columns.append((direction.conjugate() * (other_foot - foot)).imag / size)
+    return columns
+
+
+def _stacked(columns: list[np.ndarray], at: dict[str, np.ndarray]) -> np.ndarray:
     shape = np.shape(next(iter(at.values())))
     return np.stack(columns, axis=-1) if columns else np.zeros((*shape, 0))
 
