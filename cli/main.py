@@ -11,6 +11,7 @@ import os
 import shutil
 import signal
 import sys
+import textwrap
 from pathlib import Path
 
 # the library is imported inside each command, so that --help and --version start fast
@@ -143,12 +144,12 @@ def run_solve(args: argparse.Namespace) -> int:
         if solution.characteristic_polynomial is not None:
             print("\n".join(characteristic_lines(solution)))
         print(f"assembly modes: {solution.certificate.summary()}")
-    for sentence in solution.undecided:
-        print(f"undecided: {sentence}")
+    width = shutil.get_terminal_size((100, 24)).columns if sys.stdout.isatty() else 100
+    for sentence in solution.undecided:  # long sentences: wrapped, continuation indented
+        print(textwrap.fill(f"undecided: {sentence}", width=width, subsequent_indent="  ", break_on_hyphens=False))
     if not modes:
         print("the linkage cannot be assembled with these dimensions")
         return 0
-    width = shutil.get_terminal_size((100, 24)).columns if sys.stdout.isatty() else 100
     print("\n".join(mode_table(solution, joints=args.joints, width=width)))
     if not args.joints:
         print("(joint coordinates: --joints, or --format csv / json)")

@@ -38,8 +38,9 @@ def parameter_name(pair: tuple[str, str], sliders: Collection[str] = ()) -> str:
     >>> parameter_name(("P1", "P6")), parameter_name(("P1", "P6"), sliders=["P1"])
     ('s1,6', 't1,6')
     """
-    name = distance_name(*pair)
-    return "t" + name[1:] if set(pair) & set(sliders) else name
+    if set(pair) & set(sliders):  # oriented, so in the order given
+        return f"t{thesis_subscript(pair[0])},{thesis_subscript(pair[1])}"
+    return distance_name(*pair)
 
 
 class StepKind(str, Enum):
@@ -164,7 +165,7 @@ class Plan:
         Example line: ``P2 = Z1,3,2 (link L0)``.
         """
         a, b = self.reference
-        lines = [f"reference p{thesis_subscript(a)},{thesis_subscript(b)}"]
+        lines = [f"reference pair {a}, {b}"]
         if self.parameters:
             lines.append("parameters " + ", ".join(parameter_name(pair, sliders) for pair in self.parameters))
         for step in self.steps:
@@ -173,7 +174,7 @@ class Plan:
                    StepKind.PARAMETER: "free sign, parameter"}[step.kind]
             lines.append(f"{k}: Z{thesis_subscript(i)},{thesis_subscript(j)},{thesis_subscript(k)} ({how})")
         for u, v in self.closure_pairs:
-            lines.append(f"closure s{thesis_subscript(u)},{thesis_subscript(v)}")
+            lines.append(f"closure {distance_name(u, v)}")
         for u, v, x in self.orientation_checks:
             lines.append(f"orientation check A{thesis_subscript(u)},{thesis_subscript(v)},{thesis_subscript(x)}")
         return "\n".join(lines)

@@ -441,7 +441,7 @@ def bilateration_plans(
     >>> pentad = thesis_truss("5/B1").chain()
     >>> plan = bilateration_plans(pentad, reference=("P1", "P6"))[0]
     >>> print(plan.describe())
-    reference p1,6
+    reference pair P1, P6
     parameters s1,6
     P3: Z1,6,3 (free sign)
     P2: Z1,3,2 (link L0, fixed sign)

@@ -139,7 +139,7 @@ def with_modes_of_coincident_joints(scene: Scene, plan: Plan, pairs: set[frozens
     """``modes`` and the modes of another plan's solve in which the joints of one of
     ``pairs`` coincide (within 1e-6 of the linkage's size): the modes ``plan`` cannot
     reach, wherever they are (found by the collinear-joints sweep, 9/N19: P3 = P11 at
-    s10,1 = 34.6 in four modes); settled as :func:`_with_alternative_modes` says."""
+    s1,10 = 34.6 in four modes); settled as :func:`_with_alternative_modes` says."""
     scale = distance_bound(scene)
 
     def coincident(measured: list[float], mode: AssemblyMode) -> list[float] | None:

@@ -191,8 +191,8 @@ def _valley_representative(modes: list[AssemblyMode]) -> AssemblyMode:
     mode itself, placed with its joints in line), else the one nearest the middle of the
     valley's parameter box. Along a valley the residual is ~c δ^k in each parameter's
     offset δ from the singular mode, so the box is symmetric about it; on issue 25's
-    11/N561 (648 configurations, s10,1 in [9.961, 10.039], the mode at s10,1 = 10,
-    s10,8 = 32) that member is 1.2e-6 from msolve's mode, the member nearest all others
+    11/N561 (648 configurations, s1,10 in [9.961, 10.039], the mode at s1,10 = 10,
+    s8,10 = 32) that member is 1.2e-6 from msolve's mode, the member nearest all others
     2.1e-4 and the configurations' mean 8.4e-4."""
     flat = [mode for mode in modes if 0 in mode.signs]
     if flat:
@@ -201,7 +201,7 @@ def _valley_representative(modes: list[AssemblyMode]) -> AssemblyMode:
     values = np.array([[mode.parameters[name] for name in names] for mode in modes])
     low, high = values.min(axis=0), values.max(axis=0)
     # absolute offsets: the parameters are squared distances of one linkage, and scaled
-    # by its extent a parameter the valley barely spans would decide (s10,8 on 11/N561)
+    # by its extent a parameter the valley barely spans would decide (s8,10 on 11/N561)
     return modes[int(np.argmin(np.abs(values - (low + high) / 2).max(axis=1)))]
 
 

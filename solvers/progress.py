@@ -27,11 +27,13 @@ def report_stage(text: str) -> None:
 
 
 @contextmanager
-def watching(stream: TextIO = sys.stderr, interval: float = 0.5, delay: float = 1.0) -> Iterator[None]:
+def watching(stream: TextIO | None = None, interval: float = 0.5, delay: float = 1.0) -> Iterator[None]:
     """While inside, refresh one status line on ``stream`` every ``interval`` seconds —
     the latest stage and the seconds elapsed — starting after ``delay`` seconds (a quick
     solve prints nothing); erase it on leaving. Nothing at all unless ``stream`` is a
-    terminal (piped output stays clean)."""
+    terminal (piped output stays clean). ``stream``: sys.stderr as it is on entry (a
+    default bound at import kept a closed capture stream in the tests)."""
+    stream = stream or sys.stderr
     if not stream.isatty():
         yield
         return

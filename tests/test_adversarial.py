@@ -96,7 +96,7 @@ def test_double_root_configurations_are_infinitesimally_flexible():
 @needs_msolve
 @pytest.mark.parametrize("name", ["7-N2-movable", "9-N20-movable", "9-N9-domain-flicker"])
 def test_a_movable_linkage_is_reported_as_such(name):
-    """7/N2 drawn with P1 = P6 = P8 rotates about that point, 9/N20 moves along s10,8,
+    """7/N2 drawn with P1 = P6 = P8 rotates about that point, 9/N20 moves along s8,10,
     9/N9 drawn at a double root moves with P10 = P4 and its domain flickers with rounding
     along a stretch (issue 25; 17 900 domain edges, searched together since): msolve
     finds a positive-dimensional solution set, the numeric backend
@@ -169,11 +169,11 @@ def test_regressions_match_msolve(path):
 def test_flat_valley_is_one_undecided_mode():
     """Where the closure condition is flat to rounding around a singular mode, the
     numeric backend reports one mode there and says which stretch it could not resolve
-    (9/N15: four noise roots around s10,8 = 32 before)."""
+    (9/N15: four noise roots around s8,10 = 32 before)."""
     solution = solve(load_scene(REGRESSIONS / "9-N15-flat-valley.json"))
-    values = sorted(mode.parameters["s10,8"] for mode in solution.assembly_modes if mode.signs == (-1, 1, -1, -1))
+    values = sorted(mode.parameters["s8,10"] for mode in solution.assembly_modes if mode.signs == (-1, 1, -1, -1))
     assert len(values) == 1 and abs(values[0] - 32) < 1e-3
-    assert len(solution.undecided) == 1 and "s10,8 in [31.97" in solution.undecided[0]
+    assert len(solution.undecided) == 1 and "s8,10 in [31.97" in solution.undecided[0]
 
 
 @needs_msolve

@@ -325,10 +325,11 @@ def test_time_limit_is_positive_and_numeric_only(args):
     assert result.stderr.count("\n") == 1 and result.stdout == ""
 
 
-@pytest.mark.parametrize("example", ["3-B1", "5-B1", "7-B1", "9-B28", "3-RPR-IV", "11-watt-baranov"])
+@pytest.mark.parametrize("example", ["3-B1", "5-B1", "7-B1", "9-B28", "3-RPR-I", "3-RPR-II", "3-RPR-IV", "11-watt-baranov"])
 def test_solve_output_fits_100_columns(example, capsys):
     """The default table (mode, parameters, signs, residual) and the --joints listing stay
-    within 100 columns (rows of 206 and 288 columns before); --format csv has a column per
+    within 100 columns (rows of 206 and 288 columns before; the undecided sentences of
+    3-RPR-I and II are wrapped); --format csv has a column per
     joint coordinate and a row per mode."""
     path = str(REPO / "examples" / f"{example}.json")
     for extra in ([], ["--joints"]):

@@ -115,7 +115,7 @@ def negated(expression):
 
 
 def test_thesis_reference_gives_exactly_the_thesis_formula_for_7b3():
-    """With the thesis's reference p1,4, the planner derives eq. (3.41) and (3.42) of
+    """With the thesis's reference pair P1, P4, the planner derives eq. (3.41) and (3.42) of
     thesis §3.3.3 as polynomials in the Z symbols (up to the direction of p7,9, p5,6)."""
     plan = bilateration_plans(thesis_truss("7/B3").chain(), reference=("P1", "P4"))[0]
     system = closure_system(plan)

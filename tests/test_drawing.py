@@ -1,5 +1,6 @@
-"""Pictures of assembly modes (solvers/drawing.py): no text runs into another text or
-into a panel it does not belong to, for every example (issue 26)."""
+"""Pictures of assembly modes (solvers/drawing.py): no text runs into another text (a
+title, the heading, another joint label) or into a panel it does not belong to, for every
+example (issue 26)."""
 
 from pathlib import Path
 
@@ -49,6 +50,8 @@ def test_titles_and_labels_do_not_collide(example):
     labels = crossing = 0
     for axis in panels:
         segments = _segments(axis)
+        boxes = [text.get_window_extent(renderer) for text in axis.texts]
+        assert not any(_overlap(a, b) for n, a in enumerate(boxes) for b in boxes[n + 1:]), "two joint labels overlap"
         for text in axis.texts:
             box = text.get_window_extent(renderer)
             assert not any(_overlap(box, title) for title in titles), f"label {text.get_text()} on a title"

@@ -259,12 +259,14 @@ def thesis_subscript(name: str) -> str:
 
 
 def distance_name(u: str, v: str) -> str:
-    """The squared distance between two joints in the thesis's notation, in the order given.
+    """The squared distance between two joints in the thesis's notation, the smaller
+    index first (s_{i,j} = s_{j,i}; one name for one distance in every output, issue 26).
 
-    >>> distance_name("P1", "P6")
-    's1,6'
+    >>> distance_name("P1", "P6"), distance_name("P10", "P6")
+    ('s1,6', 's6,10')
     """
-    return f"s{thesis_subscript(u)},{thesis_subscript(v)}"
+    first, second = sorted((u, v), key=natural_sort_key)
+    return f"s{thesis_subscript(first)},{thesis_subscript(second)}"
 
 
 def natural_sort_key(name: str) -> tuple:

@@ -123,7 +123,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
     if polynomial is not None and polynomial.vanishing:
         # issue 25's 9/N20 (msolve: positive-dimensional; numeric: the condition vanishes along
-        # s10,8 in (0, 68)): the norm is 0 and only the contents divided out (powers of the
+        # s8,10 in (0, 68)): the norm is 0 and only the contents divided out (powers of the
         # parameter) were left, which had been certified with 8 modes
         # issue 25's 7/N2 drawn with P2 on P7: the norm vanishes too, but no real configuration
         # moves (msolve: positive-dimensional over C; a complex curve through an isolated real mode)

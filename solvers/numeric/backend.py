@@ -116,7 +116,7 @@ def _without_near_misses(scene: Scene, compiled: CompiledSystem,
     cannot bring below NEAR_MISS. A real root, simple or multiple, polishes to rounding
     (1e-16 to 1e-15 measured); a minimum of |f| just above 0 — two complex roots with a
     small imaginary part, next to where the dimensions were drawn at a double root — stays
-    where it is (issue 25: 9/N8 drawn at a double root, a "mode" at s11,1 = 10.1709 with
+    where it is (issue 25: 9/N8 drawn at a double root, a "mode" at s1,11 = 10.1709 with
     residual 6.3e-9 after 200 steps, which msolve and the exact backend do not list).
     Floating point cannot tell such a pair from a real double root; the sentence says so,
     and the exact backend decides."""

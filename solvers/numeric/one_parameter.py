@@ -109,10 +109,10 @@ def _flat_along_branches(branches: np.ndarray, margins: np.ndarray) -> np.ndarra
     often vanishes identically on the branch). Rounding then makes the radicand flip
     between ±1e-16, and the feasible domain between defined and undefined, at every
     sample: issue 25's 7/N3 instance drawn with P8, P3, P4 in line, whose alternative
-    plan keeps s8,3 constant on a branch, ran for over 300 s in edge searches and Brent
+    plan keeps s3,8 constant on a branch, ran for over 300 s in edge searches and Brent
     brackets across that noise. Flat, the branch is one smooth curve. A triangle flat on
     a stretch only (an earlier step clamped at a fold: issue 25's 9/N12 small box, seed
-    29, P11 P4 P3 flat for s10,1 in [4.8, 19.4] and not below, where six modes lie) keeps
+    29, P11 P4 P3 flat for s1,10 in [4.8, 19.4] and not below, where six modes lie) keeps
     its ±1 branches beside the flat one."""
     flat_samples = (np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_NOISE).sum(axis=1)
     defined = np.isfinite(margins).sum(axis=1)
@@ -150,7 +150,7 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
     grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
     # below the first sample, samples even in √s down to joints 1e-7 of the largest
     # distance apart (closer, they coincide to same_mode's resolution: coincidence.py):
-    # a root at s11,5 = 5.8e-7 (issue 25's 9/N7, P11 and P5 7.6e-4 apart) lay below the
+    # a root at s5,11 = 5.8e-7 (issue 25's 9/N7, P11 and P5 7.6e-4 apart) lay below the
     # first sample, 1e-4
     below = grid[0] * 4.0 ** -np.arange(EDGE_LEVELS, 0, -1)
     grid = np.concatenate([below[below >= 1e-14 * upper], grid])
@@ -230,7 +230,7 @@ def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list
     replaced by the middle of that flat stretch, and the stretches. Next to a singular
     mode of high multiplicity f ≈ c (s − s0)^m is flat to rounding over a whole stretch,
     its sign flips with the noise and every flip brackets a "root": issue 25's 9/N15
-    (tests/regressions/9-N15-flat-valley.json) gave four modes between s10,8 = 31.9974
+    (tests/regressions/9-N15-flat-valley.json) gave four modes between s8,10 = 31.9974
     and 32.0043 around the true one at 32, |f| < 1e-14 on [31.99, 32.01]. |f| is
     symmetric about s0 to first order, so the middle of the stretch where it stays below
     FLAT_NOISE is the estimate (31.99994 there). Where the noise is larger than FLAT_NOISE
@@ -305,7 +305,7 @@ def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, g
                                  failures: np.ndarray, radicands: np.ndarray):
     """Candidates where a free-sign radicand touches 0 from below: the branch's feasible
     domain there is a single point, which no sample can hit (joints in line: on 9/N6 the
-    triangle P11 P1 P2 is flat only at s10,3 = 26 and its radicand ≈ −c(s − 26)² around,
+    triangle P11 P1 P2 is flat only at s3,10 = 26 and its radicand ≈ −c(s − 26)² around,
     docs/stability.md; thesis §5.1.3.1's T = 49 is the case with known sides, handled by
     :func:`critical_values`). At every local maximum of a failing free-sign radicand
     among the coarse samples (above −TOUCH_SEARCH, both neighbours failing at the same
@@ -340,7 +340,7 @@ def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, g
             flat = branch.copy()
             flat[k] = 0
             # another free-sign triangle may turn flat at the same point (a domain edge:
-            # issue 25's 9/N21, where P11 P3 P4 touches flat at s10,8 = 10 exactly as
+            # issue 25's 9/N21, where P11 P3 P4 touches flat at s8,10 = 10 exactly as
             # P9 P5 P6 folds); by a rounding error it fails there, so it is taken flat too
             margins = compiled.failure_profile(np.array([[best.x]]), flat[None, :])[2][0, 0]
             flat[np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN] = 0
@@ -357,7 +357,7 @@ def _roots_at_crossing_radicands(compiled: CompiledSystem, branch: np.ndarray, c
     free-sign radicand turns negative as another turns positive: left of it one step
     fails, right of it another, and window refinement narrows the cell forever without
     a sample landing on the point (issue 25's 9/N17 drawn at a double root, seed 28:
-    P11 P4 P3 and P12 P5 P6 both flat at s10,1 = 1 exactly, the generating mode, missed).
+    P11 P4 P3 and P12 P5 P6 both flat at s1,10 = 1 exactly, the generating mode, missed).
     Of the first MAX_NARROW cells left by :func:`_with_windows`, those across which one
     free-sign radicand turns negative and another positive (one vectorised evaluation of
     their ends: a window edge between two failing steps, two per branch on 7-B1, has no
@@ -605,7 +605,7 @@ def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float
 #: Next to each domain edge, samples at distances 4^-k (k = 1 … EDGE_LEVELS) of the gap to
 #: the nearest sample, down to EDGE_FLOOR of the edge: f is smooth in √δ at distance δ
 #: from an edge, so these are evenly spread in the variable that matters (issue 25's
-#: 9/N24: a root 8.7e-8 from the edge at s11,9 = 18, f ≈ −6e-7 between them, the nearest
+#: 9/N24: a root 8.7e-8 from the edge at s9,11 = 18, f ≈ −6e-7 between them, the nearest
 #: sample 7e-6 away).
 EDGE_LEVELS = 24
 EDGE_FLOOR = 1e-10
@@ -703,7 +703,7 @@ def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tup
     """The first MAX_MINIMA of ``minima`` (cells around a local minimum of |f| at their
     middle sample) whose dip below both neighbours exceeds the spread of f re-evaluated at
     offsets JITTER × ``resolution`` from the minimum: where f is rounding noise every
-    other sample is a "minimum" (issue 25's 9/N10: 972 bounded minimisations near s10,5 =
+    other sample is a "minimum" (issue 25's 9/N10: 972 bounded minimisations near s5,10 =
     1e-10, 8 of its 9.5 s). One vectorised evaluation of 8 points per minimum looked at."""
     if resolution <= 0 or not minima:
         return minima[:MAX_MINIMA]
@@ -721,7 +721,7 @@ def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tup
 #: A scan with more sign changes than this is noise wherever they crowd (NOISE_GAP), even
 #: where re-evaluation near a sample does not flip its sign: rounding steps coarser than
 #: the jitter (issue 25's 9/N8 drawn with a double root: 556 Brent brackets in a valley
-#: 5e-3 wide around s11,1 = 8, 21 verified configurations of one singular mode). The
+#: 5e-3 wide around s1,11 = 8, 21 verified configurations of one singular mode). The
 #: characteristic polynomials of 9-link trusses have degree ≤ 58 on all branches together.
 NOISE_CROWD = 24
 
@@ -736,7 +736,7 @@ def _noise_runs(sampled, grid: np.ndarray, values: np.ndarray, cells: np.ndarray
     cell takes both signs. Noisy cells at most NOISE_GAP cells apart form one stretch;
     a noisy cell alone (a root on a sample) is bracketed as usual. Where f is below its
     own rounding noise every few samples flip its sign, and each flip bracketed a
-    "root" (issue 25's 9/N10 drawn at a flexible configuration: f ≈ c s^0.2 near s10,5 =
+    "root" (issue 25's 9/N10 drawn at a flexible configuration: f ≈ c s^0.2 near s5,10 =
     0, where P10 and P5 coincide; re-sampled every 5e-14 near s = 3e-11, it flipped
     between ±2e-4: 4 222 Brent brackets, 39 of its 51 s). Returns (lone cells,
     [(first cell, last cell)] of the stretches). Cost: one vectorised evaluation of 8
