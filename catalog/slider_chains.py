@@ -21,13 +21,14 @@ counts of earlier check instances that came out special, where there were any).
 from __future__ import annotations
 
 import sys
+import tempfile
 import zlib
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from tqdm import tqdm
 
-from baranov.enumerate.parallel import worker_pool
 from baranov.enumerate.sliders import slider_chains
 from baranov.scene import scene_from_dict
 from baranov.scene.slider_instances import slider_instance_dict
@@ -36,6 +37,7 @@ from baranov.solvers.msolve import MsolveUnavailable, msolve_solution_count
 from baranov.topology import chain_from_link_graph
 
 from .files import load_complete_objects
+from .tasks import run_in_shards
 
 #: ``baranov catalog`` counts the slider chains' assembly modes up to this many links by
 #: default (3 + 10 + 386 chains); 9 links (47 702 chains) is opt-in: ``--slider-modes 9``.
@@ -79,8 +81,11 @@ def slider_chain_entry(job: tuple[str, tuple[str, ...], bool]) -> dict:
     return entry
 
 
-def slider_chain_entries(entries: list[dict], workers: int, show_progress: bool) -> list[dict]:
-    """The slider chains of the trusses ``entries`` (one link count): the file's objects."""
+def slider_chain_entries(entries: list[dict], show_progress: bool, client: Any = None,
+                         folder: Path | None = None) -> list[dict]:
+    """The slider chains of the trusses ``entries`` (one link count): the file's objects,
+    computed as Dask tasks on ``client`` (here if None), shards saved in ``folder``
+    (:func:`~baranov.catalog.tasks.run_in_shards`)."""
     links = entries[0]["links"]
     every = MSOLVE_CHECK_EVERY.get(links, 25)
     jobs, owners = [], []
@@ -90,16 +95,8 @@ def slider_chain_entries(entries: list[dict], workers: int, show_progress: bool)
             owners.append(index)
     bar = tqdm(total=len(jobs), desc=f"{links}-link slider chains", unit="chain", disable=not show_progress,
                file=sys.stderr)
-    results: list[dict] = []
-    if workers > 1 and len(jobs) > 16:
-        with worker_pool(workers, spawn=True) as pool:
-            for result in pool.imap(slider_chain_entry, jobs, chunksize=4):
-                results.append(result)
-                bar.update()
-    else:
-        for job in jobs:
-            results.append(slider_chain_entry(job))
-            bar.update()
+    with tempfile.TemporaryDirectory(prefix="baranov-shards-") as temporary:
+        results = run_in_shards(slider_chain_entry, jobs, folder or Path(temporary), client, advance=bar.update)
     bar.close()
     return [{"truss": entries[owner]["id"], "truss_name": entries[owner]["name"], **result}
             for owner, result in zip(owners, results, strict=True)]

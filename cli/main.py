@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import re
 import shutil
 import signal
 import sys
@@ -67,6 +68,9 @@ def _parser() -> argparse.ArgumentParser:
     catalog.add_argument("--links", default="3-11", help="odd link counts, e.g. 3,5,7 or 3-11 (default 3-11; 13 is opt-in)")
     catalog.add_argument("--out", default="catalog", type=Path, help="output folder (default: catalog/)")
     catalog.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="worker processes (default: all cores)")
+    catalog.add_argument("--scheduler", metavar="ADDRESS",
+                         help="run the tasks on this Dask scheduler (e.g. tcp://host:8786; its workers need baranov "
+                              "installed) instead of an embedded cluster of --workers processes")
     catalog.add_argument("--force", action="store_true", help="recompute even where complete files exist")
     catalog.add_argument("--no-crosscheck", action="store_true", help="skip the brute-force enumeration with geng")
     catalog.add_argument("--slider-modes", type=int, default=7, metavar="L",
@@ -167,6 +171,8 @@ def run_catalog(args: argparse.Namespace) -> int:
     link_counts = parse_link_counts(args.links)
     if args.workers < 1:
         raise UsageError(f"--workers {args.workers}: must be at least 1")
+    if args.scheduler is not None and not re.fullmatch(r"(tcp|tls|inproc|ucx)://\S+", args.scheduler):
+        raise UsageError(f"--scheduler {args.scheduler}: a Dask scheduler address such as tcp://host:8786")
     if not 0 <= args.slider_modes <= SLIDER_MODES_LIMIT:
         raise UsageError(f"--slider-modes {args.slider_modes}: slider chains are counted up to {SLIDER_MODES_LIMIT} "
                          "links (47 702 chains there)")
@@ -189,6 +195,7 @@ def run_catalog(args: argparse.Namespace) -> int:
             slider_modes=args.slider_modes,
             show_progress=not args.quiet and sys.stderr.isatty(),
             log=log,
+            scheduler=args.scheduler,
         )
     print(summary, end="")
     return 0

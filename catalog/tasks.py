@@ -1,0 +1,126 @@
+"""The catalog's work as Dask tasks (issue 20): jobs grouped in shards, each shard a task,
+submitted costliest first, each finished shard written to disk atomically, so that a rerun
+resumes from the shards there and a killed worker loses only its task (Dask retries it).
+
+By default the cluster is embedded (a ``distributed.LocalCluster`` of one single-threaded
+process per worker: flint and the solvers are not thread-safe to share, and processes
+are spawned, never forked — a forked worker deadlocked once flint had run in the parent);
+``scheduler`` names a running Dask scheduler instead (``tcp://host:8786``), whose workers
+must have this package installed. With one worker and no scheduler the shards run in this
+process, in the same order and to the same files: the output does not depend on where
+the work ran.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+from .files import write_atomically
+
+#: Jobs per shard: a shard is one Dask task and one file on disk.
+SHARD_SIZE = 8
+#: A task that fails (its worker killed, say) is retried this many times before the job fails.
+RETRIES = 3
+#: Seconds to wait for a scheduler named by address.
+CONNECT_TIMEOUT = 20
+
+
+class SchedulerUnreachable(ValueError):
+    """No Dask scheduler answers at the address given."""
+
+
+@contextmanager
+def dask_client(workers: int, scheduler: str | None = None) -> Iterator[Any]:
+    """A ``distributed.Client`` for the block: connected to ``scheduler`` if given, else
+    to an embedded LocalCluster of ``workers`` processes; None (work in this process) for
+    one worker and no scheduler. The cluster is closed when the block ends, also by an
+    exception (Ctrl-C)."""
+    if scheduler is None and workers <= 1:
+        yield None
+        return
+    from distributed import Client, LocalCluster  # only where a cluster is wanted: ~0.5 s to import
+
+    if scheduler is not None:
+        try:
+            client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT}s")
+        except OSError as error:  # the address answers nothing, or no scheduler there
+            raise SchedulerUnreachable(f"--scheduler {scheduler}: no Dask scheduler answers there ({error})") from None
+        with client:
+            yield client
+        return
+    with (LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                       silence_logs=logging.ERROR) as cluster, Client(cluster) as client):
+        yield client
+
+
+def run_in_shards(function: Callable[[Any], Any], jobs: Sequence, folder: Path, client: Any = None,
+                  costs: Sequence[float] | None = None, advance: Callable[[int], None] = lambda done: None,
+                  shard_size: int = SHARD_SIZE) -> list:
+    """``[function(job) for job in jobs]``, computed in shards of ``shard_size``
+    consecutive jobs. Shard k is saved as ``folder/shard-<k>.json`` (the jobs' reprs and
+    their results, JSON) once it is done; a shard file whose jobs are the same is reused
+    instead of computed. Shards run on ``client`` (Dask) if given, costliest first by the
+    sum of ``costs`` (Dask priorities), else here in that order; ``advance(n)`` is called
+    as n more jobs are done. Results must be JSON values (as catalog entries are).
+    Cost: one task per shard; the jobs' own cost otherwise."""
+    folder.mkdir(parents=True, exist_ok=True)
+    shards = [list(range(start, min(start + shard_size, len(jobs)))) for start in range(0, len(jobs), shard_size)]
+    results: list = [None] * len(jobs)
+    pending = []
+    for number, indices in enumerate(shards):
+        saved = _saved_shard(folder / f"shard-{number}.json", [jobs[i] for i in indices])
+        if saved is None:
+            pending.append(number)
+            continue
+        for index, result in zip(indices, saved, strict=True):
+            results[index] = result
+        advance(len(indices))
+    weight = [sum(costs[i] for i in shards[n]) if costs is not None else 0.0 for n in pending]
+    order = [pending[k] for k in sorted(range(len(pending)), key=lambda k: -weight[k])]
+    for number, shard_results in _computed(function, jobs, shards, order, client, weight, pending):
+        indices = shards[number]
+        write_atomically(folder / f"shard-{number}.json", json.dumps(
+            {"jobs": [repr(jobs[i]) for i in indices], "results": shard_results}) + "\n")
+        for index, result in zip(indices, shard_results, strict=True):
+            results[index] = result
+        advance(len(indices))
+    return results
+
+
+def _computed(function, jobs, shards, order, client, weight, pending) -> Iterator[tuple[int, list]]:
+    """(shard number, results) for the shards ``order``, as they finish."""
+    if client is None:
+        for number in order:
+            yield number, run_shard(function, [jobs[i] for i in shards[number]])
+        return
+    from distributed import as_completed
+
+    priority = dict(zip(pending, weight, strict=True))
+    futures = {client.submit(run_shard, function, [jobs[i] for i in shards[number]], pure=False,
+                             retries=RETRIES, priority=priority[number], key=f"catalog-shard-{number}-{id(jobs)}"):
+               number for number in order}
+    for future in as_completed(futures):
+        yield futures[future], future.result()
+
+
+def run_shard(function: Callable[[Any], Any], jobs: list) -> list:
+    """One task: ``function`` on each job of a shard, results as JSON values (a round
+    trip through JSON, so that a reused shard and a computed one are the same values)."""
+    return json.loads(json.dumps([function(job) for job in jobs]))
+
+
+def _saved_shard(path: Path, jobs: list) -> list | None:
+    """The results saved at ``path`` if it holds exactly these jobs, else None."""
+    try:
+        saved = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(saved, dict) or saved.get("jobs") != [repr(job) for job in jobs]:
+        return None
+    results = saved.get("results")
+    return results if isinstance(results, list) and len(results) == len(jobs) else None

@@ -1,0 +1,73 @@
+"""The catalog's tasks (catalog/tasks.py, issue 20): shards saved as they finish, a rerun
+resumes from them, a shard of other jobs is recomputed, and on a Dask cluster a worker
+killed in the middle of a task loses only that task."""
+
+import json
+import os
+import signal
+import threading
+import time
+
+import pytest
+
+from baranov.catalog.tasks import SchedulerUnreachable, dask_client, run_in_shards
+
+JOBS = [f"job {n}" for n in range(10)]
+
+
+class Interrupted(Exception):
+    pass
+
+
+def test_an_interrupted_run_resumes_from_its_shards(tmp_path):
+    computed = []
+
+    def failing_after_five(job):
+        if len(computed) == 5:
+            raise Interrupted
+        computed.append(job)
+        return job.upper()
+
+    with pytest.raises(Interrupted):
+        run_in_shards(failing_after_five, JOBS, tmp_path, shard_size=2)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["shard-0.json", "shard-1.json"]
+    computed.clear()
+    done = []
+    results = run_in_shards(lambda job: computed.append(job) or job.upper(), JOBS, tmp_path, shard_size=2,
+                            advance=done.append)
+    assert results == [job.upper() for job in JOBS]
+    assert computed == JOBS[4:]  # shards 0 and 1 were read back, not computed
+    assert sum(done) == len(JOBS)
+
+
+def test_a_shard_of_other_jobs_is_recomputed(tmp_path):
+    (tmp_path / "shard-0.json").write_text(json.dumps({"jobs": ["'other'", "'jobs'"], "results": ["X", "Y"]}))
+    (tmp_path / "shard-1.json").write_text('{"jobs": ["job 2"')  # cut short
+    assert run_in_shards(str.upper, JOBS[:4], tmp_path, shard_size=2) == [job.upper() for job in JOBS[:4]]
+
+
+def test_a_killed_worker_loses_only_its_task(tmp_path):
+    """Two single-threaded worker processes, eight shards of one second; one worker is
+    killed (SIGKILL) while it sleeps in a task: the nanny starts another, the scheduler
+    runs the task again, and every result arrives."""
+    with dask_client(2) as client:
+        pids = list(client.run(os.getpid).values())
+
+        def kill_one():
+            time.sleep(1.5)
+            os.kill(pids[0], signal.SIGKILL)
+
+        killer = threading.Thread(target=kill_one)
+        killer.start()
+        results = run_in_shards(time.sleep, [0.5] * 16, tmp_path, client, shard_size=2)
+        killer.join()
+        assert results == [None] * 16
+        assert pids[0] not in client.run(os.getpid).values()  # it did die, and was replaced
+    assert len(list(tmp_path.glob("shard-*.json"))) == 8
+
+
+def test_an_unreachable_scheduler_is_one_error(monkeypatch):
+    monkeypatch.setattr("baranov.catalog.tasks.CONNECT_TIMEOUT", 2)
+    with pytest.raises(SchedulerUnreachable, match="tcp://127.0.0.1:9: no Dask scheduler answers there"):
+        with dask_client(2, "tcp://127.0.0.1:9"):
+            pass
