@@ -53,7 +53,9 @@ def dask_client(workers: int, scheduler: str | None = None) -> Iterator[Any]:
         with client:
             yield client
         return
-    with (LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+    # ":0": any free port for its HTTP server, which starts even without a dashboard (on
+    # 8787 a second job beside the first printed a warning on stderr)
+    with (LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                        silence_logs=logging.ERROR) as cluster, Client(cluster) as client):
         yield client
 
