@@ -12,13 +12,15 @@ from baranov.solvers import solve
 from baranov.solvers.drawing import modes_figure, render_modes
 from baranov.solvers.msolve import find_msolve
 
-EXAMPLES = sorted(p.stem for p in (Path(__file__).resolve().parents[1] / "examples").glob("*.json")
-                  if not p.stem.startswith(("11-", "13-")))
+EXAMPLES = sorted(p.stem for p in (Path(__file__).resolve().parents[1] / "examples").glob("*.json"))
 #: At most this fraction of an example's joint labels may cross a link, bar or slider axis
 #: (measured with this layout: 38 of the 568 labels of the all-revolute examples, where 107
 #: crossed with labels pushed straight away from the centre; 44 of 671 with the slider
 #: chains; 26 of 168 on the crowded 9-B28).
 CROSSING = 0.2
+#: The 76 modes of 13-watt-baranov in panels a ninth as wide: 380 of its 1368 labels cross
+#: a link (measured; labels placed farther out ran into the titles instead).
+CROWDED = 0.3
 
 
 def _figure(example: str):
@@ -58,7 +60,8 @@ def test_titles_and_labels_do_not_collide(example):
             assert not _overlap(box, heading)
             labels += 1
             crossing += any(_crosses(start, end, box) for start, end in segments)
-    assert crossing <= CROSSING * labels, f"{crossing} of {labels} joint labels cross a link"
+    bound = CROWDED if example.startswith("13-") else CROSSING
+    assert crossing <= bound * labels, f"{crossing} of {labels} joint labels cross a link"
 
 
 def _segments(axis) -> list:
