@@ -61,9 +61,10 @@ def write_atomically(path: Path, content: str | bytes) -> None:
 
 def remove_stale_temporaries(folder: Path) -> list[Path]:
     """Delete the temporary files that a killed run of :func:`write_atomically` left in
-    ``folder`` (``.<name>.<random>.tmp``; SIGKILL gives no chance to clean up), and return
-    them. Call it under :func:`folder_lock`: a live run's temporaries look the same."""
-    stale = [path for path in folder.glob(".*.tmp") if path.is_file()]
+    ``folder`` and its shard folders (``.<name>.<random>.tmp``; SIGKILL gives no chance to
+    clean up), and return them. Call it under :func:`folder_lock`: a live run's
+    temporaries look the same."""
+    stale = [path for pattern in (".*.tmp", ".shards/*/.*.tmp") for path in folder.glob(pattern) if path.is_file()]
     for path in stale:
         path.unlink(missing_ok=True)
     return stale
