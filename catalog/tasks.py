@@ -104,7 +104,7 @@ def _computed(function, jobs, shards, order, client, weight, pending) -> Iterato
 
     priority = dict(zip(pending, weight, strict=True))
     futures = {client.submit(run_shard, function, [jobs[i] for i in shards[number]], pure=False,
-                             retries=RETRIES, priority=priority[number], key=f"catalog-shard-{number}-{id(jobs)}"):
+                             retries=RETRIES, priority=priority[number]):
                number for number in order}
     for future in as_completed(futures):
         yield futures[future], future.result()
