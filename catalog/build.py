@@ -5,11 +5,8 @@ atomically; a complete existing file is reused unless ``force``."""
 from __future__ import annotations
 
 import json
-import shutil
 import sys
-import tempfile
-from collections.abc import Callable, Iterable, Iterator
-from contextlib import contextmanager, suppress
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
@@ -26,7 +23,7 @@ from .entries import ASSEMBLY_MODES_MAX_LINKS, dump_entries, load_entries, truss
 from .files import write_atomically
 from .slider_chains import SLIDER_MODES_MAX_LINKS, load_slider_chains, slider_chain_entries
 from .summary import render_summary
-from .tasks import dask_client, run_in_shards
+from .tasks import dask_client, run_in_shards, shard_folder
 
 Progress = Callable[[str], None]
 
@@ -44,25 +41,10 @@ def catalog_links(links: int, workers: int, show_progress: bool, client: Any = N
         # no worker is left with a long tail
         costs = [10.0 ** best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6 in items]
     bar = tqdm(total=len(items), desc=f"{links} links", unit="truss", disable=not show_progress, file=sys.stderr)
-    with _shard_folder(folder) as where:
+    with shard_folder(folder) as where:
         entries = run_in_shards(truss_entry, items, where, client, costs, bar.update)
     bar.close()
     return entries
-
-
-@contextmanager
-def _shard_folder(folder: Path | None) -> Iterator[Path]:
-    """``folder``, removed when the block ends normally (the final file is written by
-    then); kept after an interruption, for the rerun to resume from. A temporary folder
-    if None."""
-    if folder is None:
-        with tempfile.TemporaryDirectory(prefix="baranov-shards-") as temporary:
-            yield Path(temporary)
-        return
-    yield folder
-    shutil.rmtree(folder, ignore_errors=True)
-    with suppress(OSError):  # out/.shards/ once its last shard folder is gone
-        folder.parent.rmdir()
 
 
 def crosscheck_links(links: int, entries: list[dict], workers: int) -> dict:
@@ -118,8 +100,7 @@ def build_catalog(
                 path = out / f"slider-chains-{links}.json"
                 if force or load_slider_chains(path) is None:
                     log(f"{links} links: slider chains")
-                    with _shard_folder(out / ".shards" / path.stem) as folder:
-                        chains = slider_chain_entries(entries, show_progress, client, folder)
+                    chains = slider_chain_entries(entries, show_progress, client, out / ".shards" / path.stem)
                     write_atomically(path, dump_entries(chains))
                 else:
                     log(f"{links} links: reusing {path}")

@@ -21,7 +21,6 @@ counts of earlier check instances that came out special, where there were any).
 from __future__ import annotations
 
 import sys
-import tempfile
 import zlib
 from pathlib import Path
 from typing import Any
@@ -37,7 +36,7 @@ from baranov.solvers.msolve import MsolveUnavailable, msolve_solution_count
 from baranov.topology import chain_from_link_graph
 
 from .files import load_complete_objects
-from .tasks import run_in_shards
+from .tasks import run_in_shards, shard_folder
 
 #: ``baranov catalog`` counts the slider chains' assembly modes up to this many links by
 #: default (3 + 10 + 386 chains); 9 links (47 702 chains) is opt-in: ``--slider-modes 9``.
@@ -85,7 +84,7 @@ def slider_chain_entries(entries: list[dict], show_progress: bool, client: Any =
                          folder: Path | None = None) -> list[dict]:
     """The slider chains of the trusses ``entries`` (one link count): the file's objects,
     computed as Dask tasks on ``client`` (here if None), shards saved in ``folder``
-    (:func:`~baranov.catalog.tasks.run_in_shards`)."""
+    until done (:func:`~baranov.catalog.tasks.run_in_shards`, :func:`~baranov.catalog.tasks.shard_folder`)."""
     links = entries[0]["links"]
     every = MSOLVE_CHECK_EVERY.get(links, 25)
     jobs, owners = [], []
@@ -95,8 +94,8 @@ def slider_chain_entries(entries: list[dict], show_progress: bool, client: Any =
             owners.append(index)
     bar = tqdm(total=len(jobs), desc=f"{links}-link slider chains", unit="chain", disable=not show_progress,
                file=sys.stderr)
-    with tempfile.TemporaryDirectory(prefix="baranov-shards-") as temporary:
-        results = run_in_shards(slider_chain_entry, jobs, folder or Path(temporary), client, advance=bar.update)
+    with shard_folder(folder) as where:
+        results = run_in_shards(slider_chain_entry, jobs, where, client, advance=bar.update)
     bar.close()
     return [{"truss": entries[owner]["id"], "truss_name": entries[owner]["name"], **result}
             for owner, result in zip(owners, results, strict=True)]

@@ -15,8 +15,10 @@ from __future__ import annotations
 
 import json
 import logging
+import shutil
+import tempfile
 from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import Any
 
@@ -126,3 +128,19 @@ def _saved_shard(path: Path, jobs: list) -> list | None:
         return None
     results = saved.get("results")
     return results if isinstance(results, list) and len(results) == len(jobs) else None
+
+
+@contextmanager
+def shard_folder(folder: Path | None) -> Iterator[Path]:
+    """``folder``, removed when the block ends normally (every result is in memory then;
+    the caller writes the final file next, so a kill in between costs a recomputation, not
+    a wrong file); kept after an interruption, for the rerun to resume from. A temporary
+    folder if None."""
+    if folder is None:
+        with tempfile.TemporaryDirectory(prefix="baranov-shards-") as temporary:
+            yield Path(temporary)
+        return
+    yield folder
+    shutil.rmtree(folder, ignore_errors=True)
+    with suppress(OSError):  # out/.shards/ once its last shard folder is gone
+        folder.parent.rmdir()
