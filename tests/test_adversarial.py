@@ -189,3 +189,15 @@ def test_a_singular_valley_reports_the_mode_itself():
     found = [mode.joints for mode in solution.assembly_modes]
     assert any("one valley" in sentence for sentence in solution.undecided)
     assert compare_modes(found, list(msolve_modes(scene).configurations))[:2] == (0, 0)
+
+
+@needs_msolve
+@pytest.mark.parametrize("name", ["9-N2-touching-inside", "9-N27-edge-double-root", "9-N28-modes-on-edge-line"])
+def test_singular_modes_inside_and_on_edge_lines_are_found_to_the_digit(name):
+    """Issue 25, seed 35 (coupling 2, the numeric backend; both backends: the slow
+    test_regressions_match_msolve): a double root where f_2 touches 0 inside the domain
+    (9/N2, missed); modes on an edge line along which f_1 vanishes (9/N27 missed one,
+    9/N28 missed one and located two 1e-5 away). All modes, none coarse."""
+    scene = load_scene(REGRESSIONS / f"{name}.json")
+    found = [mode.joints for mode in solve(scene).assembly_modes]
+    assert compare_modes(found, list(msolve_modes(scene).configurations)) == (0, 0, 0)

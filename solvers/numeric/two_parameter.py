@@ -132,8 +132,9 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     crosses, shrunk to it (:func:`_strip_cells`); and the Newton starts ``(points, branch
     indices)``: the centre and the best sample of each interior sub-cell where both
     conditions change sign; at the last level (``last``: the origin of the cells' lattice)
-    also the best sample of every interior suspect that is a local minimum of
-    max(|f_1|, |f_2|) among its neighbours (:func:`_local_minima`)."""
+    also the best sample of every interior suspect that is a local minimum of its
+    distance from a common zero (:func:`_classify`) among its neighbours
+    (:func:`_local_minima`)."""
     count, side = len(cells), split + 1
     fractions = np.linspace(0.0, 1.0, side)
     axis = [cells.low[:, a, None] + (cells.high - cells.low)[:, a, None] * fractions for a in range(2)]
@@ -154,7 +155,7 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     seen = np.stack([values[:, :-1, :-1], values[:, 1:, :-1], values[:, :-1, 1:], values[:, 1:, 1:],
                      along_first[1][:, :, :-1], along_first[1][:, :, 1:],
                      along_second[1][:, :-1, :], along_second[1][:, 1:, :]], axis=3)
-    changes, suspect = _classify(seen)
+    changes, suspect, distance = _classify(seen)
     inside = np.isfinite(seen[:, :, :, :4]).all(axis=(3, 4))
     size = np.where(np.isfinite(seen).all(axis=-1), np.abs(seen).max(axis=-1), np.inf)
     best = np.take_along_axis(points, np.argmin(size, axis=3)[:, :, :, None, None], axis=3)[:, :, :, 0]
@@ -175,7 +176,7 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     centre = (started.low + started.high) / 2
     starts = (np.concatenate([centre, started_best]) ** 2, np.concatenate([started.branch] * 2))
     if last is not None:
-        lowest = size.min(axis=3)
+        lowest = distance
         low_corner = grid[:, :-1, :-1].reshape(-1, 2)
         minima = _local_minima(np.repeat(cells.branch, split * split), low_corner,
                                grid[:, 1:, 1:].reshape(-1, 2) - low_corner, lowest.reshape(-1), last)
@@ -196,8 +197,8 @@ def _local_minima(branch: np.ndarray, low: np.ndarray, width: np.ndarray, value:
     arc, every cell along it stays suspect at every level, and a Newton start from each
     of them cost most of the solve (issue 25: 9/N28 drawn in a small box, 125 749
     suspect cells at the last level, 57 of 89 s in Newton). A common zero of f_1 and f_2
-    is a minimum of max(|f_1|, |f_2|), so the cell holding it or a neighbour of it is a
-    local minimum, and Newton starts there."""
+    is a minimum of the cells' distance from one (:func:`_classify`), so the cell holding
+    it or a neighbour of it is a local minimum, and Newton starts there."""
     common = np.median(width, axis=0)  # the level's cell size; other sizes came from strips
     position = (low - origin) / common
     index = np.round(position).astype(np.int64)
@@ -285,11 +286,20 @@ def _bisection(compiled, signs, good, bad, is_good):
     return good
 
 
-def _classify(seen: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _classify(seen: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """For the values seen by each cell, shape (C, n, n, k, 2) with NaN where undefined:
-    cells where both conditions change sign, and cells where both zero sets may pass
-    (a sign change, or the smallest |f_k| within the spread of f_k over the 3 × 3
-    neighbouring cells)."""
+    cells where both conditions change sign; cells where both zero sets may pass (a sign
+    change, or the smallest |f_k| within the spread of f_k over the 3 × 3 neighbouring
+    cells); and each cell's distance from a common zero, measured by the conditions that
+    keep their sign on it: the largest, over those, of the smallest |f_k| seen (0 where
+    both change sign).
+
+    Only the conditions that keep their sign measure it: along the zero curve of f_1, the
+    |f_1| seen at a cell's corners depends only on how near the corners fall to the curve,
+    and where f_2 touches 0 without changing sign (a double root inside the domain) that
+    noise hid the cell of the root: max(|f_1|, |f_2|) was not a local minimum there
+    (issue 25, seed 35: 9/N2 (s1,10, s1,12) = (25, 10), f_2 ≥ 0 with an isolated zero,
+    no Newton start on its branch)."""
     defined = np.isfinite(seen)
     low = np.where(defined, seen, np.inf).min(axis=3)
     high = np.where(defined, seen, -np.inf).max(axis=3)
@@ -299,7 +309,8 @@ def _classify(seen: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     spread = maximum_filter(high, size=size, mode="nearest") - minimum_filter(low, size=size, mode="nearest")
     spread = np.where(np.isfinite(spread), spread, 0.0)
     near = changes | (smallest <= spread)
-    return changes.all(axis=-1), near.all(axis=-1)
+    distance = np.where(changes, 0.0, smallest).max(axis=-1)
+    return changes.all(axis=-1), near.all(axis=-1), distance
 
 
 def _newton(compiled: CompiledSystem, branches: np.ndarray, start: np.ndarray, branch: np.ndarray):
@@ -432,24 +443,36 @@ def _continued(compiled: CompiledSystem, signs: np.ndarray, x0: np.ndarray) -> n
     return np.concatenate([x0[None, :], x])
 
 
-#: Samples along one parameter when looking for a ridge of the feasible domain.
+#: Samples along one parameter when looking for lines of the domain's boundary.
 RIDGE_SAMPLES = 2000
+#: On an edge line, a root of one condition is a candidate where the other is within
+#: this (relative to the larger of the two conditions' sizes along the line) of 0.
+EDGE_COMMON = 1e-6
 
 
 def ridge_roots(compiled: CompiledSystem, branches: np.ndarray, upper: tuple[float, float]) -> list:
-    """Candidates on a zero-width strip of the feasible domain: a free-sign triangle
-    whose radicand depends on one parameter only and touches 0 from below at p = p*, so
-    that the branch is defined only on the line p = p* (issue 25's seventh run: 9/N2
-    drawn at a double root, seed 28, its one mode at (s1,10, s1,12) = (13, 1) where
-    P10 P3 P4 is flat; no cell of the plane has a defined corner there and the mode was
-    missed). For each parameter, the free-sign radicands that the other parameter does
-    not change (two vectorised evaluations along the parameter, at two values of the
-    other) are searched for such a touch (bounded Brent on the radicand's local maxima
-    within TOUCH_SEARCH of 0, as for one parameter); on each line found, with that
-    triangle flat, both conditions are sampled along the other parameter and every sign
-    change of either gives a candidate (Brent), verified by the caller like every other.
-    Cost: 4 · RIDGE_SAMPLES evaluations per branch, plus the lines found."""
-    found = []
+    """Candidates on the lines p = p* where a free-sign triangle whose radicand depends on
+    one parameter p only is flat: ridges, where the radicand touches 0 from below, so
+    that the branch is defined only on that line; and edges, where the radicand crosses
+    0, so that the line bounds the feasible domain.
+
+    Ridges: issue 25's seventh run, 9/N2 drawn at a double root (seed 28), its one mode at
+    (s1,10, s1,12) = (13, 1) where P10 P3 P4 is flat; no cell of the plane has a defined
+    corner there, and the mode was missed. Edges: a mode on such a line is found by the
+    plane search only as a boundary sample polished on the links, which at a singular
+    mode stops 1e-5 away (issue 25, seed 35: 9/N28 drawn at a double root, where
+    P9 P1 P2 is flat on s1,9 = 5 and one condition vanishes along the whole line: three
+    modes there 1e-5 from msolve's); on the line itself they are roots of one variable.
+
+    For each parameter, the free-sign radicands that the other parameter does not change
+    (two vectorised evaluations along the parameter, at two values of the other) are
+    searched for a touch (bounded Brent on the radicand's local maxima within
+    TOUCH_SEARCH of 0, as for one parameter) and for crossings (Brent); on each line
+    found, with that triangle flat, both conditions are sampled along the other
+    parameter (:func:`_roots_on_line`). Every candidate is verified by the caller.
+    Cost: 4 · RIDGE_SAMPLES evaluations per branch, plus RIDGE_SAMPLES per line found."""
+    lines: dict[tuple, tuple[float, bool]] = {}  # (along, flat branch, rounded value): (value, edge)
+    zeros: dict[tuple, list[tuple[float, bool]]] = {}
     for along in (0, 1):
         other = 1 - along
         line = np.linspace(math.sqrt(upper[along]) * 1e-6, math.sqrt(upper[along]), RIDGE_SAMPLES) ** 2
@@ -463,56 +486,116 @@ def ridge_roots(compiled: CompiledSystem, branches: np.ndarray, upper: tuple[flo
         size = np.where(np.isfinite(first), np.abs(first), 0.0).max(axis=1)
         unchanged = (difference <= 1e-9 * size) & (size > 0)  # (B, free); a step never defined has size 0
         for b, k in zip(*np.nonzero(unchanged), strict=True):
-            margin = first[b, :, k]
-            inner = margin[1:-1]
-            peaks = np.flatnonzero((inner >= margin[:-2]) & (inner >= margin[2:]) & (inner < 0)
-                                   & (inner > -TOUCH_SEARCH)) + 1
-            for i in peaks[:4]:
-                touch = _touching_value(compiled, branches[b], along, other, k, line[i - 1], line[i + 1],
-                                        0.3 * upper[other], TOUCH_TOLERANCE)
-                if touch is not None:
-                    flat = branches[b].copy()
-                    flat[k] = 0
-                    found += _roots_on_line(compiled, flat, along, touch, upper[other])
+            margin_at = _radicand_along(compiled, branches[b], k, along, 0.3 * upper[other])
+            flat = branches[b].copy()
+            flat[k] = 0
+            profile = first[b, :, k]
+            key = (along, k, profile.tobytes())  # branches differing in later signs share it
+            if key not in zeros:
+                zeros[key] = _flat_values(profile, line, margin_at)
+            for value, edge in zeros[key]:
+                lines.setdefault((along, tuple(flat), round(value, 12)), (value, edge))
+    return _roots_on_lines(compiled, lines, upper)
+
+
+def _radicand_along(compiled: CompiledSystem, branch: np.ndarray, k: int, along: int, at_other: float):
+    """Free-sign radicand ``k`` on ``branch`` as a function of parameter ``along``, the
+    other parameter held at ``at_other``."""
+    def margin(value: float) -> float:
+        point = np.empty((1, 2))
+        point[0, along], point[0, 1 - along] = value, at_other
+        return float(compiled.failure_profile(point, branch[None, :])[2][0, 0, k])
+    return margin
+
+
+def _flat_values(margin: np.ndarray, line: np.ndarray, margin_at) -> list[tuple[float, bool]]:
+    """Where a radicand sampled as ``margin`` along ``line`` (and evaluated by
+    ``margin_at``) is 0: ``(value, False)`` where its local maximum touches 0 from below
+    (within TOUCH_TOLERANCE, searched where within TOUCH_SEARCH), ``(value, True)`` where
+    it crosses 0 between two samples (Brent)."""
+    values = []
+    inner = margin[1:-1]
+    peaks = np.flatnonzero((inner >= margin[:-2]) & (inner >= margin[2:]) & (inner < 0)
+                           & (inner > -TOUCH_SEARCH)) + 1
+    for i in peaks[:4]:
+        best = minimize_scalar(lambda value: -margin_at(value) if math.isfinite(margin_at(value)) else 10.0,
+                               bounds=(line[i - 1], line[i + 1]), method="bounded",
+                               options={"xatol": 1e-14 * line[i + 1]})
+        if best.success and best.fun <= TOUCH_TOLERANCE:
+            values.append((float(best.x), False))
+    finite = np.isfinite(margin[:-1]) & np.isfinite(margin[1:])
+    for i in np.flatnonzero(finite & (margin[:-1] * margin[1:] < 0))[:4]:
+        try:
+            values.append((brentq(margin_at, line[i], line[i + 1], xtol=1e-15 * line[i + 1], rtol=1e-15), True))
+        except ValueError:  # not finite inside the bracket
+            continue
+    return values
+
+
+def _roots_on_lines(compiled: CompiledSystem, lines: dict[tuple, tuple[float, bool]],
+                    upper: tuple[float, float]) -> list:
+    """Candidates on each line ``(along, branch, _): (value, edge)`` (parameter ``along``
+    = ``value``, branch ``branch``, the flat triangle's sign 0): the sign changes of
+    either condition along the other parameter (RIDGE_SAMPLES samples, every line in one
+    evaluation), refined by Brent. On an edge line only sign changes beside one of the
+    other condition, or anywhere if the other vanishes all along the line (within
+    EDGE_COMMON of the larger size), kept where the other is within that of 0 at the
+    root too; a condition that vanishes all along the line (sign changes of rounding
+    noise) has no roots of its own searched."""
+    if not lines:
+        return []
+    keys = list(lines)
+    points = np.empty((len(keys), RIDGE_SAMPLES, 2))
+    for n, (along, _, _) in enumerate(keys):
+        points[n, :, along] = lines[keys[n]][0]
+        points[n, :, 1 - along] = np.linspace(math.sqrt(upper[1 - along]) * 1e-6, math.sqrt(upper[1 - along]),
+                                              RIDGE_SAMPLES) ** 2
+    signs = np.repeat(np.array([branch for _, branch, _ in keys]), RIDGE_SAMPLES, axis=0)
+    tables = compiled.paired_residuals(points.reshape(-1, 2), signs).reshape(len(keys), RIDGE_SAMPLES, -1)
+    found = []
+    for n, (along, branch, _) in enumerate(keys):
+        found += _roots_on_line(compiled, np.array(branch), along, points[n], tables[n], common=lines[keys[n]][1])
     return found
 
 
-def _touching_value(compiled, branch, along, other, k, low, high, at_other, tolerance) -> float | None:
-    """Where free-sign radicand ``k`` (independent of the other parameter) reaches its
-    maximum on [low, high], if that maximum is within ``tolerance`` of 0."""
-    def negative_margin(value: float) -> float:
-        point = np.empty((1, 2))
-        point[0, along], point[0, other] = value, at_other
-        margin = compiled.failure_profile(point, branch[None, :])[2][0, 0, k]
-        return -margin if np.isfinite(margin) else 10.0
-
-    best = minimize_scalar(negative_margin, bounds=(low, high), method="bounded", options={"xatol": 1e-14 * high})
-    return float(best.x) if best.success and best.fun <= tolerance else None
-
-
-def _roots_on_line(compiled, branch, along, value, bound) -> list:
-    """Candidates on the line (parameter ``along`` = ``value``), branch ``branch``: the
-    sign changes of either condition along the other parameter, refined by Brent."""
+def _roots_on_line(compiled: CompiledSystem, branch: np.ndarray, along: int, points: np.ndarray,
+                   table: np.ndarray, common: bool) -> list:
+    """:func:`_roots_on_lines` on one line, sampled at ``points`` with values ``table``."""
     other = 1 - along
-    grid = np.linspace(math.sqrt(bound) * 1e-6, math.sqrt(bound), RIDGE_SAMPLES) ** 2
+    grid = points[:, other]
 
-    def conditions(values: np.ndarray) -> np.ndarray:
-        points = np.empty((len(values), 2))
-        points[:, along], points[:, other] = value, values
-        return compiled.residuals(points, branch[None, :])[0]  # (N, 2)
+    def conditions(q: float) -> np.ndarray:
+        point = points[:1].copy()
+        point[0, other] = q
+        return compiled.paired_residuals(point, branch[None, :])[0]
 
-    table = conditions(grid)
+    sizes = np.where(np.isfinite(table), np.abs(table), 0.0).max(axis=0)
+    scale = EDGE_COMMON * sizes.max()
     found = []
     for c in range(table.shape[1]):
-        column = table[:, c]
-        changes = np.flatnonzero(np.isfinite(column[:-1]) & np.isfinite(column[1:]) & (column[:-1] * column[1:] <= 0))
+        if common and sizes[c] <= scale:
+            continue
+        changes = _sign_changes(table[:, c])
+        if common and sizes[1 - c] > scale:  # the other condition must change sign beside
+            beside = _sign_changes(table[:, 1 - c])
+            near = np.zeros(len(grid) + 1, bool)
+            for shift in (0, 1, 2):
+                near[beside + shift] = True
+            changes = changes[near[changes + 1]]
         for i in changes[:CROWDED_ROOTS]:
             try:
-                root = brentq(lambda q, c=c: float(conditions(np.array([q]))[0, c]), grid[i], grid[i + 1],
+                root = brentq(lambda q, c=c: float(conditions(q)[c]), grid[i], grid[i + 1],
                               xtol=1e-14 * grid[i + 1], rtol=1e-15)
             except ValueError:
                 continue
-            point = np.empty(2)
-            point[along], point[other] = value, root
+            if common and not abs(conditions(root)[1 - c]) <= scale:
+                continue
+            point = points[0].copy()
+            point[other] = root
             found.append((point, branch))
     return found
+
+
+def _sign_changes(column: np.ndarray) -> np.ndarray:
+    """Indices i where the sampled ``column`` changes sign (or is 0) from i to i + 1."""
+    return np.flatnonzero(np.isfinite(column[:-1]) & np.isfinite(column[1:]) & (column[:-1] * column[1:] <= 0))
