@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import json
 import math
 import multiprocessing
 import signal
@@ -36,6 +35,7 @@ from baranov.baselines import (
     solve_float_polynomial,
     solve_loop_equations,
 )
+from baranov.catalog import iter_objects
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
 from baranov.scene import Scene, load_scene
@@ -225,9 +225,9 @@ def _catalog_names() -> dict[tuple[int, int], str]:
     """Catalog names (``9/B25``, ``9/N3``) by (links, position in catalog order)."""
     names = {}
     for links in (3, 5, 7, 9, 11):
-        path = ROOT / "catalog" / f"trusses-{links}.json"
+        path = ROOT / "catalog" / f"trusses-{links}.jsonl"
         if path.exists():
-            for i, entry in enumerate(json.loads(path.read_text(encoding="utf-8"))):
+            for i, entry in enumerate(iter_objects(path)):
                 names[(links, i)] = entry["name"]
     return names
 

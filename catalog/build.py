@@ -20,7 +20,7 @@ from baranov.topology import adjacency_masks, chain_from_link_graph
 from baranov.topology.automorphisms import link_graph_certificate
 
 from .entries import ASSEMBLY_MODES_MAX_LINKS, dump_entries, load_entries, truss_entry
-from .files import write_atomically
+from .files import dump_objects, legacy_path, write_atomically
 from .slider_chains import SLIDER_MODES_MAX_LINKS, load_slider_chains, slider_chain_entries
 from .summary import render_summary
 from .tasks import dask_client, run_in_shards, shard_folder
@@ -60,6 +60,17 @@ def crosscheck_links(links: int, entries: list[dict], workers: int) -> dict:
     }
 
 
+def _reused(path: Path, load: Callable[[Path], list[dict] | None]) -> list[dict] | None:
+    """The complete objects of ``path`` (``load``), or None; read from its legacy JSON
+    list (:func:`~baranov.catalog.files.legacy_path`), they are written as JSON lines and
+    the legacy file removed, so that an old catalog folder is converted, not recomputed."""
+    objects = load(path)
+    if objects is not None and not path.exists():
+        write_atomically(path, dump_objects(objects))
+        legacy_path(path).unlink()
+    return objects
+
+
 def build_catalog(
     link_counts: Iterable[int],
     out: Path,
@@ -75,7 +86,9 @@ def build_catalog(
     slider chains' assembly modes up to ``slider_modes`` links; return the summary. The
     entries are computed as Dask tasks (:mod:`.tasks`): on an embedded cluster of
     ``workers`` processes, or on the cluster of ``scheduler``; finished shards wait in
-    ``out/.shards/`` until their file is written, so an interrupted job resumes."""
+    ``out/.shards/`` until their file is written, so an interrupted job resumes. Files:
+    ``trusses-<L>.jsonl`` and ``slider-chains-<L>.jsonl``, JSON lines (one object per
+    line, :func:`~baranov.catalog.files.iter_objects` streams them)."""
     crosscheck_path = out / "crosscheck.json"
     try:
         checks = {int(k): v for k, v in json.loads(crosscheck_path.read_text(encoding="utf-8")).items()}
@@ -84,8 +97,8 @@ def build_catalog(
     geng = find_geng() if crosscheck else None
     with dask_client(workers, scheduler) as client:
         for links in sorted(set(link_counts)):
-            path = out / f"trusses-{links}.json"
-            entries = None if force else load_entries(path)
+            path = out / f"trusses-{links}.jsonl"
+            entries = None if force else _reused(path, load_entries)
             if entries is None:
                 log(f"{links} links: enumerating")
                 entries = catalog_links(links, workers, show_progress, client, out / ".shards" / path.stem)
@@ -97,8 +110,8 @@ def build_catalog(
                 checks[links] = crosscheck_links(links, entries, workers)
                 write_atomically(crosscheck_path, json.dumps({str(k): checks[k] for k in sorted(checks)}, indent=2) + "\n")
             if links <= slider_modes:
-                path = out / f"slider-chains-{links}.json"
-                if force or load_slider_chains(path) is None:
+                path = out / f"slider-chains-{links}.jsonl"
+                if force or _reused(path, load_slider_chains) is None:
                     log(f"{links} links: slider chains")
                     chains = slider_chain_entries(entries, show_progress, client, out / ".shards" / path.stem)
                     write_atomically(path, dump_entries(chains))

@@ -3,7 +3,6 @@ assembly-mode count and thesis name with the evidence for it (thesis ch. 2–3).
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from baranov.closure import closure_system
@@ -15,7 +14,7 @@ from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology import KinematicChain, automorphism_group, chain_from_link_graph, is_planar
 from baranov.topology.realizations import realization_count
 
-from .files import load_complete_objects
+from .files import dump_objects, load_complete_objects
 
 #: Slider chains are counted over all 2^J joint subsets; done up to this many links.
 SLIDER_CHAINS_MAX_LINKS = 11
@@ -123,9 +122,8 @@ def truss_entry(item: tuple[str, str]) -> dict:
 
 
 def dump_entries(entries: list[dict]) -> str:
-    """JSON list with one truss per line (compact, diff-friendly, deterministic)."""
-    lines = [json.dumps(entry, separators=(",", ":"), ensure_ascii=False) for entry in entries]
-    return "[\n" + ",\n".join(lines) + "\n]\n"
+    """JSON lines, one truss per line (:func:`~baranov.catalog.files.dump_objects`)."""
+    return dump_objects(entries)
 
 
 def load_entries(path: Path) -> list[dict] | None:

@@ -3,6 +3,7 @@ complete one."""
 
 from __future__ import annotations
 
+import gzip
 import json
 import os
 import tempfile
@@ -81,12 +82,52 @@ def check_writable_folder(path: Path) -> None:
     os.unlink(probe)
 
 
+def dump_objects(objects: list[dict]) -> str:
+    """JSON lines: one compact object per line (deterministic, diff-friendly, readable in
+    a stream by :func:`iter_objects`).
+
+    >>> print(dump_objects([{"id": "3/N1"}, {"id": "5/N1"}]), end="")
+    {"id":"3/N1"}
+    {"id":"5/N1"}
+    """
+    return "".join(json.dumps(o, separators=(",", ":"), ensure_ascii=False) + "\n" for o in objects)
+
+
+def iter_objects(path: Path) -> Iterator[dict]:
+    """The objects of a JSON-lines file one at a time (gzip-compressed if its name ends
+    in ``.gz``), without reading the whole file. Raises ``OSError`` or ``ValueError``
+    (with the line number) on a missing file or a line that is not a JSON object."""
+    opener = gzip.open if path.name.endswith(".gz") else open
+    with opener(path, "rt", encoding="utf-8") as stream:
+        for number, line in enumerate(stream, 1):
+            try:
+                value = json.loads(line)
+            except ValueError as error:
+                raise ValueError(f"{path}, line {number}: not JSON ({error})") from None
+            if not isinstance(value, dict):
+                raise ValueError(f"{path}, line {number}: not a JSON object")
+            yield value
+
+
+def legacy_path(path: Path) -> Path:
+    """The name a catalog file had before the catalog moved to JSON lines: ``.json``
+    for ``.jsonl`` (a JSON list, one object per line)."""
+    return path.with_suffix(".json")
+
+
 def load_complete_objects(path: Path, fields: tuple[str, ...]) -> list[dict] | None:
-    """The objects of a catalog file (a JSON list), or None if it is absent, unreadable,
-    empty, or some object lacks one of ``fields`` (then the job recomputes it)."""
+    """The objects of a catalog file (JSON lines), or None if it is absent, unreadable,
+    empty, or some object lacks one of ``fields`` (then the job recomputes it). Where
+    ``path`` is absent, its :func:`legacy_path` (a JSON list) is read instead, so that a
+    catalog folder written before the change is reused, not recomputed. A file written
+    by :func:`write_atomically` is complete or absent; a file cut short elsewhere ends
+    in a broken line, almost always, and is recomputed."""
     try:
-        objects = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        if path.exists() or not legacy_path(path).exists():
+            objects = list(iter_objects(path))
+        else:
+            objects = json.loads(legacy_path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError, EOFError):
         return None
     if not isinstance(objects, list) or not objects:
         return None

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-import json
 import re
 from pathlib import Path
 
 from baranov.enumerate import baranov_trusses
 from baranov.literature.trusses import THESIS_TRUSSES, thesis_truss
 from baranov.topology import KinematicChain, chain_from_link_graph, natural_sort_key
+
+from .files import iter_objects
 
 #: ``<links>/B<k>`` (a thesis name) or ``<links>/N<k>`` (a catalog id).
 TRUSS_NAME = re.compile(r"^(\d+)/([BN])(\d+)$")
@@ -22,7 +23,7 @@ def truss(name: str, catalog: Path | None = None) -> KinematicChain:
     """The Baranov truss called ``name``: a thesis name (3/B1, 5/B1, 7/B1–B3, 9/B1–B28,
     identified in the catalog with evidence) or a catalog id ``<links>/N<k>`` (the k-th
     truss of that many links in catalog order, :func:`baranov.enumerate.truss_sort_key`).
-    ``catalog``: the folder of ``trusses-<L>.json`` (default: the installed catalog);
+    ``catalog``: the folder of ``trusses-<L>.jsonl`` (default: the installed catalog);
     ids of link counts it lacks (up to 13) are enumerated. Raises
     :class:`TrussNameError`, listing the names the catalog knows, for any other name.
 
@@ -65,9 +66,9 @@ def named_truss(name: str, catalog: Path | None = None) -> tuple[str, KinematicC
 
 
 def catalog_entries(links: int, catalog: Path) -> list[dict]:
-    """The entries of ``trusses-<links>.json`` in ``catalog`` ([] if there is none)."""
+    """The entries of ``trusses-<links>.jsonl`` in ``catalog`` ([] if there is none)."""
     try:
-        return json.loads((catalog / f"trusses-{links}.json").read_text(encoding="utf-8"))
+        return list(iter_objects(catalog / f"trusses-{links}.jsonl"))
     except (OSError, ValueError):
         return []
 
@@ -75,7 +76,7 @@ def catalog_entries(links: int, catalog: Path) -> list[dict]:
 def _known_names(entries: list[dict], links: int, catalog: Path) -> str:
     """What the catalog does know at ``links`` links, for an error message."""
     if not entries:
-        present = sorted(int(p.stem.split("-")[1]) for p in catalog.glob("trusses-*.json")
+        present = sorted(int(p.stem.split("-")[1]) for p in catalog.glob("trusses-*.jsonl")
                          if p.stem.split("-")[1].isdigit())
         counts = ", ".join(map(str, present)) or "none"
         return f"it has no {links}-link trusses: Baranov trusses have an odd number of links, 3 or more; " \

@@ -8,7 +8,7 @@ independent check (:func:`~baranov.solvers.msolve.msolve_solution_count`: the mo
 counts of the pentad's ten (the fully-parallel robot families I–X: 6, 6, 6, 4, 4, 2, 2,
 2, 1, 1 assembly modes).
 
-Files: ``slider-chains-<L>.json``, a JSON list with one object per slider chain, one per
+Files: ``slider-chains-<L>.jsonl``, JSON lines with one object per slider chain, one per
 line, in the order of the catalog's trusses and then of
 :func:`~baranov.enumerate.sliders.slider_chains` (the all-revolute chain first): ``truss``
 (its id) and ``truss_name``, ``sliders`` (the truss's joint names), ``assembly_modes``
@@ -106,6 +106,6 @@ SLIDER_CHAIN_FIELDS = ("truss", "truss_name", "sliders", "assembly_modes", "meth
 
 
 def load_slider_chains(path: Path) -> list[dict] | None:
-    """The objects of a complete ``slider-chains-<L>.json``, or None if missing,
+    """The objects of a complete ``slider-chains-<L>.jsonl``, or None if missing,
     unreadable or incomplete."""
     return load_complete_objects(path, SLIDER_CHAIN_FIELDS)

@@ -23,9 +23,9 @@ def _cell(value) -> str:
 
 
 def render_summary(out: Path, checks: dict[int, dict]) -> str:
-    """Markdown tables from every ``trusses-<L>.json`` in ``out`` and the cross-checks."""
+    """Markdown tables from every ``trusses-<L>.jsonl`` in ``out`` and the cross-checks."""
     catalogs = {}
-    for path in sorted(out.glob("trusses-*.json")):
+    for path in sorted(out.glob("trusses-*.jsonl")):
         entries = load_entries(path)
         if entries:
             catalogs[entries[0]["links"]] = entries
@@ -140,10 +140,10 @@ def _histogram(values) -> str:
 
 
 def _slider_chains(out: Path) -> list[str]:
-    """The slider chains' assembly modes (``slider-chains-<L>.json``): per link count and
+    """The slider chains' assembly modes (``slider-chains-<L>.jsonl``): per link count and
     per truss."""
     files = {}
-    for path in sorted(out.glob("slider-chains-*.json")):
+    for path in sorted(out.glob("slider-chains-*.jsonl")):
         chains = load_slider_chains(path)
         if chains:
             files[int(path.stem.rsplit("-", 1)[1])] = chains
@@ -151,7 +151,7 @@ def _slider_chains(out: Path) -> list[str]:
         return []
     lines = ["", "## Slider chains", "",
              "Every chain derived from a truss by turning an admissible set of its joints (no loop closed by sliders",
-             "only) into slider joints, one per isomorphism class (thesis ch. 4; `slider-chains-<L>.json`). Assembly",
+             "only) into slider joints, one per isomorphism class (thesis ch. 4; `slider-chains-<L>.jsonl`). Assembly",
              "modes: the generic degree of the characteristic polynomial modulo random primes in the plan the slider",
              "constructions run (`modular`), one configuration per sign where no parameter is needed (`coupling 0`),",
              "or msolve's count of complex solutions where no plan suits the sliders (`msolve`). A chain whose",

@@ -33,7 +33,7 @@ def test_every_thesis_name_resolves_to_its_catalog_truss(name):
     """Thesis names come from the literature module (3/B1 … 7/B3, 9/B28) or from the
     catalog's evidence (9/B1 … 9/B27); either way the truss is the catalog's."""
     links = int(name.split("/")[0])
-    entries = {e["name"]: e for e in load_entries(CATALOG_FOLDER / f"trusses-{links}.json")}
+    entries = {e["name"]: e for e in load_entries(CATALOG_FOLDER / f"trusses-{links}.jsonl")}
     chain = baranov.truss(name)
     identifier = entries[name]["id"]
     assert are_isomorphic(chain, baranov_trusses(links)[int(identifier.split("N")[1]) - 1])

@@ -49,7 +49,7 @@ def _started_nine_links(out: Path) -> subprocess.Popen:
     nine links with its worker processes."""
     process = subprocess.Popen([*COMMAND, "--links", "3-9", "--out", str(out)], stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 120
-    while not ((out / "trusses-7.json").exists() and len(_descendants(process.pid)) >= 2):
+    while not ((out / "trusses-7.jsonl").exists() and len(_descendants(process.pid)) >= 2):
         assert process.poll() is None and time.monotonic() < deadline, "the job did not reach nine links"
         time.sleep(0.05)
     time.sleep(1.0)
@@ -82,14 +82,14 @@ def test_a_signal_stops_the_whole_job(tmp_path, number):
     time.sleep(0.5)
     assert not [pid for pid in workers if _alive(pid)], "workers outlived the job"
     names = sorted(p.name for p in tmp_path.iterdir() if p.name != ".shards")
-    assert names == ["trusses-3.json", "trusses-5.json", "trusses-7.json"]
+    assert names == ["trusses-3.jsonl", "trusses-5.jsonl", "trusses-7.jsonl"]
     _complete_files_only(tmp_path)
 
 
 def test_a_killed_run_leaves_complete_files_and_a_rerun_completes_them(tmp_path):
     process = _started_nine_links(tmp_path)
     workers = _descendants(process.pid)
-    (tmp_path / ".trusses-9.json.abc123.tmp").write_text("[{\"id\": \"9/N1\"")  # as if killed while writing
+    (tmp_path / ".trusses-9.jsonl.abc123.tmp").write_text("{\"id\": \"9/N1\"")  # as if killed while writing
     process.kill()
     process.wait(timeout=30)
     for pid in workers:  # SIGKILL leaves no handler to stop them: what a scheduler's kill leaves
@@ -98,7 +98,7 @@ def test_a_killed_run_leaves_complete_files_and_a_rerun_completes_them(tmp_path)
     rerun = subprocess.run([*COMMAND, "--links", "3-7", "--out", str(tmp_path)], capture_output=True, text=True)
     assert rerun.returncode == 0, rerun.stderr
     names = sorted(p.name for p in tmp_path.iterdir() if p.name != ".shards")
-    assert names == ["summary.md", "trusses-3.json", "trusses-5.json", "trusses-7.json"], names
+    assert names == ["summary.md", "trusses-3.jsonl", "trusses-5.jsonl", "trusses-7.jsonl"], names
     _complete_files_only(tmp_path, rewritten=("summary.md",))  # a summary of 3-7 links only
     for name in names[1:]:
         assert (tmp_path / name).read_bytes() == (REPO / "catalog" / name).read_bytes(), name

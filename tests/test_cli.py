@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+from baranov.catalog import iter_objects
 from baranov.cli.main import main
 from baranov.enumerate.crosscheck import find_geng
 
@@ -21,10 +22,10 @@ def test_catalog_files_and_fields(tmp_path):
     assert main(["catalog", "--links", "3,5,7", "--out", str(tmp_path), "--quiet", "--workers", "1",
                  "--slider-modes", "5"]) == 0
     names = sorted(p.name for p in tmp_path.iterdir())
-    expected = ["slider-chains-3.json", "slider-chains-5.json", "summary.md", "trusses-3.json", "trusses-5.json",
-                "trusses-7.json"]
+    expected = ["slider-chains-3.jsonl", "slider-chains-5.jsonl", "summary.md", "trusses-3.jsonl", "trusses-5.jsonl",
+                "trusses-7.jsonl"]
     assert [n for n in names if n != "crosscheck.json"] == expected
-    pentad = json.loads((tmp_path / "trusses-5.json").read_text())
+    pentad = list(iter_objects(tmp_path / "trusses-5.jsonl"))
     mapping = pentad[0].pop("thesis_joint_names")  # validity: tests/test_literature.py
     assert pentad[0].pop("coupling_degree") == 1
     plan, conditions = pentad[0].pop("plan"), pentad[0].pop("closure_conditions")
@@ -43,7 +44,7 @@ def test_catalog_files_and_fields(tmp_path):
         "link_orbits": [[0, 1, 2], [3, 4]], "joint_orbits": [["P1", "P2", "P3", "P4", "P5", "P6"]],
         "planar": True, "assur_groups": 2, "slider_chains": 10, "assembly_modes": 6, "realization_count": 6,
     }]
-    sevens = json.loads((tmp_path / "trusses-7.json").read_text())
+    sevens = list(iter_objects(tmp_path / "trusses-7.jsonl"))
     assert [e["id"] for e in sevens] == ["7/N1", "7/N2", "7/N3"]
     assert [e["name"] for e in sevens] == ["7/B3", "7/B1", "7/B2"]
     assert sum(e["assur_groups"] for e in sevens) == 10
@@ -61,17 +62,17 @@ def test_rerun_is_byte_identical_and_reuses_complete_files(tmp_path, capsys):
     # one worker gives the same bytes
     assert main(["catalog", "--links", "3-7", "--out", str(tmp_path), "--force", "--workers", "1",
                  "--slider-modes", "5"]) == 0
-    for name in ("trusses-3.json", "trusses-5.json", "trusses-7.json", "slider-chains-3.json", "slider-chains-5.json"):
+    for name in ("trusses-3.jsonl", "trusses-5.jsonl", "trusses-7.jsonl", "slider-chains-3.jsonl", "slider-chains-5.jsonl"):
         assert (tmp_path / name).read_bytes() == first[name]
 
 
 def test_truncated_file_is_recomputed(tmp_path):
     args = ["catalog", "--links", "7", "--out", str(tmp_path), "--quiet", "--slider-modes", "0"]
     assert main(args) == 0
-    good = (tmp_path / "trusses-7.json").read_bytes()
-    (tmp_path / "trusses-7.json").write_bytes(good[: len(good) // 2])
+    good = (tmp_path / "trusses-7.jsonl").read_bytes()
+    (tmp_path / "trusses-7.jsonl").write_bytes(good[: len(good) // 2])
     assert main(args) == 0
-    assert (tmp_path / "trusses-7.json").read_bytes() == good
+    assert (tmp_path / "trusses-7.jsonl").read_bytes() == good
     assert not list(tmp_path.glob(".*.tmp"))
 
 
@@ -82,7 +83,7 @@ def test_committed_small_catalogs_regenerate_byte_identically(tmp_path, workers)
     committed = REPO / "catalog"
     assert main(["catalog", "--links", "3-7", "--out", str(tmp_path), "--quiet", "--workers", workers,
                  "--no-crosscheck", "--slider-modes", "5"]) == 0
-    for name in ["trusses-3.json", "trusses-5.json", "trusses-7.json", "slider-chains-3.json", "slider-chains-5.json"]:
+    for name in ["trusses-3.jsonl", "trusses-5.jsonl", "trusses-7.jsonl", "slider-chains-3.jsonl", "slider-chains-5.jsonl"]:
         assert (tmp_path / name).read_bytes() == (committed / name).read_bytes(), name
     assert not (tmp_path / ".shards").exists()
     if workers == "2":
@@ -90,8 +91,8 @@ def test_committed_small_catalogs_regenerate_byte_identically(tmp_path, workers)
     # the 386 slider chains of 7 links take minutes: a sample, recomputed one by one
     from baranov.catalog.slider_chains import slider_chain_entry
 
-    sevens = {e["id"]: e["link_graph6"] for e in json.loads((committed / "trusses-7.json").read_text())}
-    chains = json.loads((committed / "slider-chains-7.json").read_text())
+    sevens = {e["id"]: e["link_graph6"] for e in list(iter_objects(committed / "trusses-7.jsonl"))}
+    chains = list(iter_objects(committed / "slider-chains-7.jsonl"))
     for chain in chains[::40]:
         entry = slider_chain_entry((sevens[chain["truss"]], tuple(chain["sliders"]), "msolve_agrees" in chain))
         assert {"truss": chain["truss"], "truss_name": chain["truss_name"], **entry} == chain
@@ -103,12 +104,12 @@ def test_committed_catalog_regenerates_byte_identically(tmp_path):
     nine-link slider chains are opt-in (`--slider-modes 9`): their committed file is
     carried over, as `make catalog` leaves it, and enters the summary."""
     committed = REPO / "catalog"
-    opt_in = committed / "slider-chains-9.json"
+    opt_in = committed / "slider-chains-9.jsonl"
     if opt_in.exists():
         (tmp_path / opt_in.name).write_bytes(opt_in.read_bytes())
     assert main(["catalog", "--links", "3-11", "--out", str(tmp_path), "--quiet", "--workers", "2"]) == 0
-    for name in ["trusses-3.json", "trusses-5.json", "trusses-7.json", "trusses-9.json", "trusses-11.json",
-                 "slider-chains-3.json", "slider-chains-5.json", "slider-chains-7.json"]:
+    for name in ["trusses-3.jsonl", "trusses-5.jsonl", "trusses-7.jsonl", "trusses-9.jsonl", "trusses-11.jsonl",
+                 "slider-chains-3.jsonl", "slider-chains-5.jsonl", "slider-chains-7.jsonl"]:
         assert (tmp_path / name).read_bytes() == (committed / name).read_bytes(), name
     if find_geng() is not None:  # the summary records the cross-check, which needs geng
         assert (tmp_path / "summary.md").read_bytes() == (committed / "summary.md").read_bytes()
@@ -217,7 +218,7 @@ def test_show_sliders_prints_the_thesis_substitutions_and_case():
 
 
 def test_show_finds_catalog_names_from_any_folder(tmp_path):
-    """The catalog is package data: a name identified only in catalog/trusses-9.json (9/B5)
+    """The catalog is package data: a name identified only in catalog/trusses-9.jsonl (9/B5)
     resolves wherever the command runs."""
     result = subprocess.run([sys.executable, "-m", "baranov.cli", "show", "9/B5"], capture_output=True, text=True,
                             cwd=tmp_path)
@@ -346,3 +347,34 @@ def test_solve_output_fits_100_columns(example, capsys):
     rows = list(__import__("csv").reader(capsys.readouterr().out.splitlines()))
     header, body = rows[0], rows[1:]
     assert header[0] == "mode" and header[-1].endswith("_y") and all(len(row) == len(header) for row in body)
+
+
+def test_a_catalog_folder_of_an_earlier_version_is_converted_not_recomputed(tmp_path, capsys):
+    """Before JSON lines (issue 20) a catalog file was a JSON list, ``trusses-<L>.json``:
+    such a folder is reused, its files rewritten as JSON lines, byte-identical to a fresh
+    run's, and the old files removed."""
+    committed = REPO / "catalog"
+    for name in ("trusses-7", "slider-chains-5"):
+        objects = list(iter_objects(committed / f"{name}.jsonl"))
+        (tmp_path / f"{name}.json").write_text(json.dumps(objects, indent=1))
+    assert main(["catalog", "--links", "7", "--out", str(tmp_path), "--no-crosscheck", "--slider-modes", "0"]) == 0
+    assert "7 links: reusing" in capsys.readouterr().err
+    assert (tmp_path / "trusses-7.jsonl").read_bytes() == (committed / "trusses-7.jsonl").read_bytes()
+    assert not (tmp_path / "trusses-7.json").exists()
+    assert (tmp_path / "slider-chains-5.json").exists()  # not asked for (5 links): left as it was
+
+
+def test_catalog_files_are_read_line_by_line(tmp_path):
+    """Each line of a catalog file is one complete JSON object (a reader can stream it);
+    a line cut short is reported with its number."""
+    path = REPO / "catalog" / "trusses-9.jsonl"
+    lines = path.read_text().splitlines()
+    assert [json.loads(line)["id"] for line in lines] == [f"9/N{i}" for i in range(1, 29)]
+    from baranov.catalog.files import load_complete_objects
+
+    assert load_complete_objects(path, ("id",)) == [json.loads(line) for line in lines]
+    broken = tmp_path / "trusses-9.jsonl"
+    broken.write_text("\n".join(lines[:3] + [lines[3][:40]]))
+    with pytest.raises(ValueError, match="line 4: not JSON"):
+        list(iter_objects(broken))
+    assert load_complete_objects(broken, ("id",)) is None

@@ -71,7 +71,7 @@ def test_numeric_modes_are_the_certified_ones():
     assert not disagreements, "\n".join(message for message, _ in disagreements)
 
 
-#: Catalog indices of the 9-link trusses of coupling degree 2 (catalog/trusses-9.json).
+#: Catalog indices of the 9-link trusses of coupling degree 2 (catalog/trusses-9.jsonl).
 COUPLING_TWO = {1: "9/B25", 17: "9/B26", 26: "9/B27", 27: "9/B28"}
 
 

@@ -12,6 +12,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from shared import PUBLISHED_EXAMPLES, SOLVABLE, same_modes
 
+from baranov.catalog import iter_objects
 from baranov.enumerate import baranov_trusses
 from baranov.literature.trusses import APPENDIX_A_ASSEMBLY_MODES
 from baranov.planner import bilateration_plans, coupling_degree
@@ -144,10 +145,10 @@ def test_catalog_assembly_modes_agree_with_realization_counts():
     9-link degree (coupling 2 included) is the Appendix A value of its thesis name."""
     catalog = Path(__file__).resolve().parents[1] / "catalog"
     for links in (3, 5, 7, 9, 11):
-        for entry in json.loads((catalog / f"trusses-{links}.json").read_text()):
+        for entry in list(iter_objects(catalog / f"trusses-{links}.jsonl")):
             if entry["assembly_modes"] is not None:
                 assert entry["assembly_modes"] == entry["realization_count"], entry["id"]
-    nine = {e["name"]: e["assembly_modes"] for e in json.loads((catalog / "trusses-9.json").read_text())}
+    nine = {e["name"]: e["assembly_modes"] for e in list(iter_objects(catalog / "trusses-9.jsonl"))}
     assert nine == APPENDIX_A_ASSEMBLY_MODES
 
 

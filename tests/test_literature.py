@@ -1,11 +1,11 @@
 """Trusses read from the thesis: consistent, Baranov, and found in the catalog."""
 
-import json
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from baranov.catalog import iter_objects
 from baranov.enumerate import baranov_trusses
 from baranov.literature.trusses import (
     THESIS_TRUSSES,
@@ -87,7 +87,7 @@ def test_nine_link_names_by_invariants():
 
     from baranov.literature.trusses import APPENDIX_A_ASSEMBLY_MODES, nine_link_signature
 
-    entries = json.loads((Path(__file__).resolve().parents[1] / "catalog" / "trusses-9.json").read_text())
+    entries = list(iter_objects(Path(__file__).resolve().parents[1] / "catalog" / "trusses-9.jsonl"))
     ours = Counter((e["realization_count"], e["coupling_degree"], e["planar"]) for e in entries)
     assert ours == Counter(nine_link_signature(name) for name in APPENDIX_A_ASSEMBLY_MODES)
     named = {e["name"]: (e["realization_count"], e["coupling_degree"], e["planar"]) for e in entries}
@@ -126,7 +126,7 @@ def test_appendix_a_labelling_is_consistent_with_the_catalog():
     Appendix A conditions fit (known pairs on links, unknown ones not)."""
     from baranov.literature.appendix_a import link_pairs_required
 
-    entries = json.loads((Path(__file__).resolve().parents[1] / "catalog" / "trusses-9.json").read_text())
+    entries = list(iter_objects(Path(__file__).resolve().parents[1] / "catalog" / "trusses-9.jsonl"))
     trusses = baranov_trusses(9)
     checked = 0
     for entry, truss in zip(entries, trusses, strict=True):

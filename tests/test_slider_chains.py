@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import baranov
+from baranov.catalog import iter_objects
 from baranov.enumerate import baranov_trusses
 from baranov.enumerate.sliders import count_slider_chains, slider_chains
 from baranov.literature.counts import ROBOT_FAMILY_ASSEMBLY_MODES
@@ -97,14 +98,14 @@ def test_an_irrational_axis_scale_doubles_msolves_count():
 
 
 def test_the_committed_slider_catalog_is_consistent():
-    """catalog/slider-chains-<L>.json: every chain of every truss, in order; every msolve
+    """catalog/slider-chains-<L>.jsonl: every chain of every truss, in order; every msolve
     check agrees; the moving chains are the only ones without a count."""
     for links in (3, 5, 7, 9):
-        path = REPO / "catalog" / f"slider-chains-{links}.json"
+        path = REPO / "catalog" / f"slider-chains-{links}.jsonl"
         if links == 9 and not path.exists():
             continue  # opt-in: baranov catalog --slider-modes 9
-        chains = json.loads(path.read_text())
-        trusses = json.loads((REPO / "catalog" / f"trusses-{links}.json").read_text())
+        chains = list(iter_objects(path))
+        trusses = list(iter_objects(REPO / "catalog" / f"trusses-{links}.jsonl"))
         assert len(chains) == sum(t["slider_chains"] for t in trusses)
         assert all(c["msolve_agrees"] for c in chains if "msolve_agrees" in c)
         assert all((c["assembly_modes"] is None) == (c["method"] == "moves") for c in chains)
