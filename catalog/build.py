@@ -29,17 +29,19 @@ Progress = Callable[[str], None]
 
 
 def catalog_links(links: int, workers: int, show_progress: bool, client: Any = None,
-                  folder: Path | None = None) -> list[dict]:
-    """Enumerate the trusses with ``links`` links and compute every catalog entry: on
-    ``client`` (Dask, :mod:`.tasks`) if given, else here; finished shards saved in
-    ``folder`` (a temporary one if None) and reused by a rerun."""
+                  folder: Path | None = None, assembly_modes: int = ASSEMBLY_MODES_MAX_LINKS) -> list[dict]:
+    """Enumerate the trusses with ``links`` links and compute every catalog entry, with
+    assembly-mode counts if ``links`` ≤ ``assembly_modes``: on ``client`` (Dask,
+    :mod:`.tasks`) if given, else here; finished shards saved in ``folder`` (a temporary
+    one if None) and reused by a rerun."""
     trusses = canonical_trusses(baranov_link_graphs(links, workers))
-    items = [(f"{links}/N{i + 1}", graph6) for i, (graph6, _) in enumerate(trusses)]
+    count_modes = links <= assembly_modes
+    items = [(f"{links}/N{i + 1}", graph6, count_modes) for i, (graph6, _) in enumerate(trusses)]
     costs = None
-    if links <= ASSEMBLY_MODES_MAX_LINKS and client is not None:
+    if count_modes and client is not None:
         # coupling-2 counts cost ~10x coupling-1 ones: the costliest shards first, so that
         # no worker is left with a long tail
-        costs = [10.0 ** best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6 in items]
+        costs = [10.0 ** best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6, _ in items]
     bar = tqdm(total=len(items), desc=f"{links} links", unit="truss", disable=not show_progress, file=sys.stderr)
     with shard_folder(folder) as where:
         entries = run_in_shards(truss_entry, items, where, client, costs, bar.update)
@@ -78,12 +80,14 @@ def build_catalog(
     force: bool = False,
     crosscheck: bool = True,
     slider_modes: int = SLIDER_MODES_MAX_LINKS,
+    assembly_modes: int = ASSEMBLY_MODES_MAX_LINKS,
     show_progress: bool = False,
     log: Progress = lambda message: None,
     scheduler: str | None = None,
 ) -> str:
     """Regenerate (or reuse) the catalog files for ``link_counts`` in ``out``, with the
-    slider chains' assembly modes up to ``slider_modes`` links; return the summary. The
+    slider chains' assembly modes up to ``slider_modes`` links and the trusses' up to
+    ``assembly_modes``; return the summary. The
     entries are computed as Dask tasks (:mod:`.tasks`): on an embedded cluster of
     ``workers`` processes, or on the cluster of ``scheduler``; finished shards wait in
     ``out/.shards/`` until their file is written, so an interrupted job resumes. Files:
@@ -99,9 +103,13 @@ def build_catalog(
         for links in sorted(set(link_counts)):
             path = out / f"trusses-{links}.jsonl"
             entries = None if force else _reused(path, load_entries)
+            if entries and links <= assembly_modes and any(
+                    e["assembly_modes"] is None and e["coupling_degree"] <= 2 for e in entries):
+                entries = None  # written without the counts now asked for
             if entries is None:
                 log(f"{links} links: enumerating")
-                entries = catalog_links(links, workers, show_progress, client, out / ".shards" / path.stem)
+                entries = catalog_links(links, workers, show_progress, client, out / ".shards" / path.stem,
+                                        assembly_modes)
                 write_atomically(path, dump_entries(entries))
             else:
                 log(f"{links} links: reusing {path}")

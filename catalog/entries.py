@@ -29,8 +29,8 @@ ENTRY_FIELDS = (
 #: Assembly modes are counted up to this many links (coupling degrees 1 and 2), as the
 #: degree of the characteristic polynomial modulo a prime (:mod:`baranov.solvers.exact.modular`).
 #: Per 11-link truss (two instances; bench/sweep_assembly_modes.py): coupling 1 median
-#: 0.21 s, max 0.76 s; coupling 2 median 5.0 s, max 70 s. 13 links (thousands of trusses)
-#: are left to a separate run.
+#: 0.21 s, max 0.76 s; coupling 2 median 5.0 s, max 70 s. 13 links are opt-in
+#: (``baranov catalog --assembly-modes 13``; costs in docs/catalog-13.md).
 ASSEMBLY_MODES_MAX_LINKS = 11
 
 def nine_link_name(chain: KinematicChain, identifier: str,
@@ -63,21 +63,23 @@ def nine_link_name(chain: KinematicChain, identifier: str,
     return identifier, None, None
 
 
-def truss_entry(item: tuple[str, str]) -> dict:
-    """The catalog object of one truss, from its project id and canonical graph6.
+def truss_entry(item: tuple[str, str] | tuple[str, str, bool]) -> dict:
+    """The catalog object of one truss, from its project id, canonical graph6 and whether
+    to count its assembly modes (default: up to ASSEMBLY_MODES_MAX_LINKS links).
 
     ``name`` is the thesis name where the truss is isomorphic to one recorded in
     :mod:`baranov.literature.trusses`, or for nine links where the Appendix A closure
     conditions or invariants single it out (:func:`nine_link_name`); ``name_evidence``
     says how. Otherwise the project id.
     """
-    identifier, graph6 = item
+    identifier, graph6, *asked = item
     chain = chain_from_link_graph(graph6)
+    count_modes = asked[0] if asked else chain.number_of_links <= ASSEMBLY_MODES_MAX_LINKS
     group = automorphism_group(chain)
     sliders = count_slider_chains(chain, group) if chain.number_of_links <= SLIDER_CHAINS_MAX_LINKS else None
     published = thesis_name(chain)
     plan = best_plan(chain)
-    if plan.number_of_parameters in (1, 2) and chain.number_of_links <= ASSEMBLY_MODES_MAX_LINKS:
+    if plan.number_of_parameters in (1, 2) and count_modes:
         modes, degrees = characteristic_degree(chain)
         evidence = (f"degree of the characteristic polynomial in {parameter_name(plan.parameters[0])} modulo a random "
                     f"62-bit prime, on random integer-coordinate instances: {', '.join(map(str, degrees))}")
@@ -87,9 +89,13 @@ def truss_entry(item: tuple[str, str]) -> dict:
     elif plan.number_of_parameters == 0:
         modes = 2 ** len(plan.free_sign_triangles)
         evidence = "coupling degree 0: one configuration per sign branch of the free triangles"
+    elif count_modes:
+        modes = None
+        evidence = (f"not derived: coupling degree {plan.number_of_parameters} (counts are derived for coupling "
+                    "degrees 0 to 2)")
     else:
         modes = None
-        evidence = f"not derived: more than {ASSEMBLY_MODES_MAX_LINKS} links"
+        evidence = f"not derived: {chain.number_of_links} links (baranov catalog --assembly-modes L counts them)"
     count, planar = realization_count(chain), is_planar(chain)
     name, name_evidence = identifier, None
     joint_names = thesis_joint_names(chain, published) if published else None

@@ -76,6 +76,9 @@ def _parser() -> argparse.ArgumentParser:
     catalog.add_argument("--slider-modes", type=int, default=7, metavar="L",
                          help="assembly modes of the slider chains up to L links (default 7; 9 is opt-in: 47 702 "
                               "chains; 0: none)")
+    catalog.add_argument("--assembly-modes", type=int, default=11, metavar="L",
+                         help="count the trusses' assembly modes up to L links (default 11; 13 is opt-in: hours per "
+                              "hundred coupling-2 trusses, docs/catalog-13.md)")
     catalog.add_argument("--quiet", action="store_true", help="print no progress")
     show = commands.add_parser("show", help="topology, plan and closure conditions of one chain")
     show.add_argument("chain", help="thesis name (9/B28), catalog id (11/N123), graph6 string, or a file")
@@ -176,6 +179,8 @@ def run_catalog(args: argparse.Namespace) -> int:
     if not 0 <= args.slider_modes <= SLIDER_MODES_LIMIT:
         raise UsageError(f"--slider-modes {args.slider_modes}: slider chains are counted up to {SLIDER_MODES_LIMIT} "
                          "links (47 702 chains there)")
+    if args.assembly_modes < 0:
+        raise UsageError(f"--assembly-modes {args.assembly_modes}: a number of links, 0 or more")
     try:
         check_writable_folder(args.out)
     except OSError as error:
@@ -193,6 +198,7 @@ def run_catalog(args: argparse.Namespace) -> int:
             force=args.force,
             crosscheck=not args.no_crosscheck,
             slider_modes=args.slider_modes,
+            assembly_modes=args.assembly_modes,
             show_progress=not args.quiet and sys.stderr.isatty(),
             log=log,
             scheduler=args.scheduler,

@@ -378,3 +378,17 @@ def test_catalog_files_are_read_line_by_line(tmp_path):
     with pytest.raises(ValueError, match="line 4: not JSON"):
         list(iter_objects(broken))
     assert load_complete_objects(broken, ("id",)) is None
+
+
+def test_assembly_modes_are_counted_up_to_the_links_asked(tmp_path, capsys):
+    """``--assembly-modes L`` (issue 20: 13 links are opt-in): below L no counts, and a
+    file written without them is recomputed, not reused, once they are asked for."""
+    args = ["catalog", "--links", "7", "--out", str(tmp_path), "--no-crosscheck", "--slider-modes", "0", "--quiet"]
+    assert main([*args, "--assembly-modes", "5"]) == 0
+    entries = list(iter_objects(tmp_path / "trusses-7.jsonl"))
+    assert [e["assembly_modes"] for e in entries] == [None] * 3
+    assert entries[0]["assembly_modes_evidence"].startswith("not derived: 7 links (baranov catalog --assembly-modes")
+    assert main(args) == 0
+    assert (tmp_path / "trusses-7.jsonl").read_bytes() == (REPO / "catalog" / "trusses-7.jsonl").read_bytes()
+    assert main([*args, "--assembly-modes", "-1"]) == 2
+    assert "--assembly-modes -1: a number of links" in capsys.readouterr().err

@@ -1,0 +1,121 @@
+"""Per-task costs of the catalog job by coupling degree (issue 20): on a random sample of
+the trusses of one link count, the seconds of each part of a catalog entry — the best
+plan, the assembly-mode count (:func:`~baranov.solvers.mode_counts.characteristic_degree`,
+modulo primes) and the realization count (pyrigi) — one truss at a time in this process;
+medians, quartiles, maxima and a histogram per coupling degree, so that the full run's
+time on N workers can be computed (docs/catalog-13.md).
+
+    python bench/bench_catalog_costs.py --links 13 --sample 40 --seed 1
+    python bench/bench_catalog_costs.py --links 11 --sample 20 --out bench/results/costs-11.jsonl
+
+Rows (one JSON object per truss) are appended to ``--out`` and a rerun skips the trusses
+already there, so a long sample can be stopped and resumed. Timings beside another job
+are inflated: say so where they are quoted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import faulthandler
+import json
+import math
+import random
+import signal
+import statistics
+import time
+from pathlib import Path
+
+from baranov.enumerate import baranov_trusses
+from baranov.planner import best_plan
+from baranov.solvers.mode_counts import characteristic_degree
+from baranov.topology.realizations import realization_count
+
+#: Histogram bin edges, seconds.
+EDGES = (0.1, 0.3, 1, 3, 10, 30, 100, 300, 1000, 3000)
+
+
+def measure(links: int, index: int, truss, modes: bool) -> dict:
+    """The costs of one truss's entry (seconds), with the counts."""
+    start = time.perf_counter()
+    plan = best_plan(truss)
+    row = {"links": links, "id": f"{links}/N{index + 1}", "coupling_degree": plan.number_of_parameters,
+           "plan_seconds": time.perf_counter() - start}
+    start = time.perf_counter()
+    row["realization_count"] = realization_count(truss)
+    row["realization_seconds"] = time.perf_counter() - start
+    if modes and plan.number_of_parameters in (1, 2):
+        start = time.perf_counter()
+        row["assembly_modes"], row["degrees"] = characteristic_degree(truss)
+        row["assembly_modes_seconds"] = time.perf_counter() - start
+    return row
+
+
+def histogram(values: list[float]) -> str:
+    """Counts per bin of EDGES, as ``≤0.1 s: 3, ≤0.3 s: 5, …`` (empty bins left out)."""
+    bins = [0] * (len(EDGES) + 1)
+    for value in values:
+        bins[next((n for n, edge in enumerate(EDGES) if value <= edge), len(EDGES))] += 1
+    labels = [f"≤{edge:g} s" for edge in EDGES] + [f">{EDGES[-1]:g} s"]
+    return ", ".join(f"{label}: {count}" for label, count in zip(labels, bins, strict=True) if count)
+
+
+def report(rows: list[dict]) -> None:
+    """Print, per coupling degree and cost, the sample size, median, quartiles, max and histogram."""
+    for degree in sorted({row["coupling_degree"] for row in rows}):
+        mine = [row for row in rows if row["coupling_degree"] == degree]
+        for cost in ("plan_seconds", "realization_seconds", "assembly_modes_seconds"):
+            values = sorted(row[cost] for row in mine if cost in row)
+            if not values:
+                continue
+            quartiles = statistics.quantiles(values, n=4) if len(values) > 1 else values * 3
+            print(f"coupling {degree}, {cost}: n={len(values)} median {statistics.median(values):.3g} "
+                  f"quartiles {quartiles[0]:.3g}-{quartiles[2]:.3g} max {values[-1]:.3g} sum {math.fsum(values):.4g}")
+            print(f"    {histogram(values)}")
+        agree = [row for row in mine if "assembly_modes" in row]
+        if agree:
+            same = sum(row["assembly_modes"] == row["realization_count"] for row in agree)
+            print(f"coupling {degree}: assembly modes = realization count on {same} of {len(agree)}")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--links", type=int, default=13)
+    parser.add_argument("--sample", type=int, default=40, help="trusses drawn at random (all if larger)")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--coupling", type=int, help="only trusses of this coupling degree")
+    parser.add_argument("--no-modes", action="store_true", help="skip the assembly-mode counts")
+    parser.add_argument("--out", type=Path, default=Path("bench/results/catalog-costs.jsonl"))
+    args = parser.parse_args()
+    faulthandler.register(signal.SIGUSR1)  # kill -USR1 <pid>: where a long task is
+    start = time.perf_counter()
+    trusses = baranov_trusses(args.links)
+    print(f"{len(trusses)} trusses of {args.links} links enumerated in {time.perf_counter() - start:.1f} s",
+          flush=True)
+    order = list(range(len(trusses)))
+    random.Random(args.seed).shuffle(order)
+    done = {}
+    if args.out.exists():
+        done = {row["id"]: row for line in args.out.read_text().splitlines() for row in [json.loads(line)]}
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    rows, taken = [], 0
+    with args.out.open("a", encoding="utf-8") as out:
+        for index in order:
+            if taken >= args.sample:
+                break
+            identifier = f"{args.links}/N{index + 1}"
+            row = done.get(identifier)
+            if row is None:
+                if args.coupling is not None and best_plan(trusses[index]).number_of_parameters != args.coupling:
+                    continue
+                row = measure(args.links, index, trusses[index], not args.no_modes)
+                out.write(json.dumps(row) + "\n")
+                out.flush()
+                print(json.dumps(row), flush=True)
+            if args.coupling is None or row["coupling_degree"] == args.coupling:
+                rows.append(row)
+                taken += 1
+    report(rows)
+
+
+if __name__ == "__main__":
+    main()
