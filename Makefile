@@ -26,7 +26,7 @@ setup: $(STAMP)  ## only create .venv/ with baranov and its dependencies (the fi
 catalog: $(STAMP)  ## main job: regenerate catalog/ for 3-11 links and print its summary
 	$(BIN)/baranov catalog --links 3-11 --out catalog --force
 
-catalog-13: $(STAMP)  ## the 13-link class too, with plans (22 min measured on 2 busy cores; not committed)
+catalog-13: $(STAMP)  ## the 13-link class too, with plans, no assembly modes (22 min measured on 2 busy cores; not committed; docs/catalog-13.md)
 	$(BIN)/baranov catalog --links 3-13 --out catalog-13
 
 test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default test suite (about 7 min on 2 cores)

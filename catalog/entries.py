@@ -96,7 +96,9 @@ def truss_entry(item: tuple[str, str] | tuple[str, str, bool]) -> dict:
     else:
         modes = None
         evidence = f"not derived: {chain.number_of_links} links (baranov catalog --assembly-modes L counts them)"
-    count, planar = realization_count(chain), is_planar(chain)
+    # the realization count grows as fast as the modes' (13 to 24 s per 13-link truss,
+    # docs/catalog-13.md): counted where the modes are, to cross-check them
+    count, planar = realization_count(chain) if count_modes else None, is_planar(chain)
     name, name_evidence = identifier, None
     joint_names = thesis_joint_names(chain, published) if published else None
     if published:

@@ -113,11 +113,11 @@ def _assembly_modes(catalogs: dict[int, list[dict]]) -> list[str]:
              "| of them equal |", "|---|---|---|---|---|"]
     for links, entries in sorted(catalogs.items()):
         derived = Counter(e["assembly_modes"] for e in entries if e["assembly_modes"] is not None)
-        counted = Counter(e["realization_count"] for e in entries)
+        counted = Counter(e["realization_count"] for e in entries if e["realization_count"] is not None)
         both = [e for e in entries if e["assembly_modes"] is not None]
         lines.append(
             f"| {links} | " + (", ".join(f"{k}: {v}" for k, v in sorted(derived.items())) or "—") + " | "
-            + ", ".join(f"{k}: {v}" for k, v in sorted(counted.items())) + f" | {len(both)} | "
+            + (", ".join(f"{k}: {v}" for k, v in sorted(counted.items())) or "—") + f" | {len(both)} | "
             + f"{sum(e['assembly_modes'] == e['realization_count'] for e in both)} |"
         )
     if 9 in catalogs:
