@@ -102,7 +102,33 @@ def _parser() -> argparse.ArgumentParser:
     solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
     solve.add_argument("--time-limit", type=float, metavar="SECONDS",
                        help="numeric method: stop searching after this long and name what was left undecided")
+    robots = commands.add_parser("robots", help="the fully-parallel planar robots: their ten families (thesis §5.2)")
+    robots.add_argument("--json", action="store_true", help="a list of families as JSON")
     return parser
+
+
+def run_robots(args: argparse.Namespace) -> int:
+    """``baranov robots``: the family table, every count computed (thesis Table 5.3)."""
+    import json
+    from dataclasses import asdict
+
+    from baranov.literature.robots import THESIS_ROBOT_FAMILIES
+    from baranov.robots import all_robots, robot_families
+
+    families = robot_families()
+    if args.json:
+        print(json.dumps([asdict(family) for family in families], indent=1))
+        return 0
+    robots = all_robots()
+    print(f"{len(robots)} fully-parallel planar robots ({sum(all(leg.passive != 'PP' for leg in legs) for legs in robots)}"
+          " without a PP leg); locked, each is a slider chain of the pentad 5/B1 (thesis §5.2, Table 5.3)\n")
+    print("| family | sliders of the locked pentad | leg architectures | robots | assembly modes | thesis |")
+    print("|---|---|---|---|---|---|")
+    for family in families:
+        _, robots_published, modes_published = THESIS_ROBOT_FAMILIES.get(family.name, ((), None, None))
+        print(f"| {family.name} | {', '.join(family.sliders) or 'none'} | {', '.join(family.architectures)} | "
+              f"{family.robots} | {family.assembly_modes} | {robots_published} robots, {modes_published} modes |")
+    return 0
 
 
 def _version() -> str:
@@ -215,6 +241,8 @@ def main(argv: list[str] | None = None) -> int:
             return run_catalog(args)
         if args.command == "solve":
             return run_solve(args)
+        if args.command == "robots":
+            return run_robots(args)
         if args.command == "show":
             if args.plans < 1:
                 raise UsageError(f"--plans {args.plans}: must be at least 1")

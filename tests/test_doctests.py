@@ -13,6 +13,7 @@ import baranov.closure
 import baranov.enumerate
 import baranov.literature
 import baranov.planner
+import baranov.robots
 import baranov.scene
 import baranov.solvers
 import baranov.topology
@@ -20,7 +21,7 @@ import baranov.topology
 MODULES = sorted(
     info.name
     for package in (baranov.topology, baranov.enumerate, baranov.literature, baranov.planner, baranov.closure,
-                    baranov.scene, baranov.solvers, baranov.baselines, baranov.catalog, baranov.cli)
+                    baranov.scene, baranov.solvers, baranov.baselines, baranov.catalog, baranov.cli, baranov.robots)
     for info in pkgutil.walk_packages(package.__path__, package.__name__ + ".")
     if not info.name.endswith("__main__")
 ) + ["baranov", "baranov.topology", "baranov.enumerate"]
