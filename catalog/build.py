@@ -20,7 +20,7 @@ from baranov.topology import adjacency_masks, chain_from_link_graph
 from baranov.topology.automorphisms import link_graph_certificate
 
 from .entries import ASSEMBLY_MODES_MAX_LINKS, dump_entries, load_entries, truss_entry
-from .files import dump_objects, legacy_path, write_atomically
+from .files import legacy_path, write_atomically
 from .slider_chains import SLIDER_MODES_MAX_LINKS, load_slider_chains, slider_chain_entries
 from .summary import render_summary
 from .tasks import dask_client, run_in_shards, shard_folder
@@ -68,7 +68,7 @@ def _reused(path: Path, load: Callable[[Path], list[dict] | None]) -> list[dict]
     the legacy file removed, so that an old catalog folder is converted, not recomputed."""
     objects = load(path)
     if objects is not None and not path.exists():
-        write_atomically(path, dump_objects(objects))
+        write_atomically(path, dump_entries(objects))
         legacy_path(path).unlink()
     return objects
 

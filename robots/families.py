@@ -105,14 +105,12 @@ def robot_families(assembly_modes: bool = True) -> tuple[RobotFamily, ...]:
     names = {tuple(sorted("-".join(sorted(a.split("-"))) for a in printed)): name
              for name, (printed, _, _) in THESIS_ROBOT_FAMILIES.items()}
     order = list(THESIS_ROBOT_FAMILIES)
+    if assembly_modes:
+        from baranov.solvers.mode_counts import slider_chain_degree  # the exact machinery: only when counting
     families = []
     for sliders, robots in groups.items():
         kinds = tuple(sorted({architectures(legs) for legs in robots}))
-        modes = None
-        if assembly_modes:
-            from baranov.solvers.mode_counts import slider_chain_degree  # the exact machinery: only when counting
-
-            modes = slider_chain_degree(pentad()[0], sliders)[0]
+        modes = slider_chain_degree(pentad()[0], sliders)[0] if assembly_modes else None
         families.append(RobotFamily(names.get(kinds, "?"), sliders, kinds, len(robots), modes))
     return tuple(sorted(families, key=lambda f: order.index(f.name) if f.name in order else len(order)))
 
