@@ -1,8 +1,10 @@
 """Fully-parallel planar robots (thesis ch. 5): legs, the 1653 robots and their ten
-families (:mod:`.families`); forward kinematics is to come (issue 18)."""
+families (:mod:`.families`), and forward kinematics of the robots whose legs lock to
+RR links, family I (:mod:`.kinematics`); the slider families are to come (issue 18)."""
 
 from .families import RobotFamily, all_robots, robot_families, robot_family
+from .kinematics import LegGeometry, Pose, Robot, forward_kinematics, locked_scene
 from .legs import LEGS, Leg, RobotInputError, parse_robot
 
-__all__ = ["LEGS", "Leg", "RobotFamily", "RobotInputError", "all_robots", "parse_robot", "robot_families",
-           "robot_family"]
+__all__ = ["LEGS", "Leg", "LegGeometry", "Pose", "Robot", "RobotFamily", "RobotInputError", "all_robots",
+           "forward_kinematics", "locked_scene", "parse_robot", "robot_families", "robot_family"]

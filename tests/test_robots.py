@@ -10,6 +10,8 @@ from baranov.literature.robots import THESIS_ROBOT_FAMILIES, THESIS_ROBOTS
 from baranov.robots import LEGS, Leg, RobotInputError, all_robots, parse_robot, robot_families, robot_family
 from baranov.robots.families import locked_sliders
 
+REPO = __import__("pathlib").Path(__file__).resolve().parents[1]
+
 
 def test_the_21_legs_by_architecture():
     """Table 5.2: 6 legs of each of the RR, RP and PR architectures, 3 PP."""
@@ -61,3 +63,92 @@ def test_robots_command(capsys):
     out = capsys.readouterr().out
     assert out.startswith("1653 fully-parallel planar robots (1140 without a PP leg)")
     assert "| VIII | P1, P3, P5 | PR-PR-PR, RP-RP-RP | 112 | 2 | 112 robots, 2 modes |" in out
+
+
+# --- forward kinematics (family I: every leg locks to an RR link) ---------------------
+
+import math  # noqa: E402
+
+import numpy as np  # noqa: E402
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from baranov.robots.kinematics import LegGeometry, Robot, forward_kinematics, locked_scene  # noqa: E402
+from baranov.scene import load_scene  # noqa: E402
+from baranov.solvers import solve  # noqa: E402
+from baranov.solvers.msolve import compare_modes  # noqa: E402
+
+RR_LEGS = [leg for leg in LEGS if leg.passive == "RR"]
+
+
+def _rotated(point, angle):
+    c, s = math.cos(angle), math.sin(angle)
+    return c * point[0] - s * point[1], s * point[0] + c * point[1]
+
+
+def _leg_at_pose(leg, rng, position, angle):
+    """A random geometry of ``leg`` and the actuator value that puts the platform at the
+    pose (position, angle): drawn from a configuration, so the pose is one of its modes."""
+    base, platform = tuple(rng.uniform(-5, 5, 2)), tuple(rng.uniform(-2, 2, 2))
+    world = np.add(position, _rotated(platform, angle))
+    middle = rng.uniform(-5, 5, 2)  # the leg's middle joint, where it has one
+    l1, l2 = float(np.linalg.norm(middle - base)), float(np.linalg.norm(world - middle))
+    kind = str(leg)
+    if kind == "RpR":
+        return LegGeometry(base, platform), float(np.linalg.norm(world - base))
+    if kind == "rRR":
+        return LegGeometry(base, platform, (l1, l2)), math.atan2(*(middle - base)[::-1])
+    if kind == "RrR":
+        a, b = base - middle, world - middle
+        return LegGeometry(base, platform, (l1, l2)), math.atan2(abs(a[0] * b[1] - a[1] * b[0]), a @ b)
+    if kind == "RRr":
+        local = _rotated(middle - world, -angle)
+        return LegGeometry(base, platform, (l1, l2)), math.atan2(local[1], local[0])
+    axis = rng.normal(size=2)
+    axis = tuple(axis / np.linalg.norm(axis))
+    offset = float(rng.uniform(-3, 3))
+    if kind == "pRR":
+        joint = np.add(base, np.multiply(offset, axis))
+        return LegGeometry(base, platform, (float(np.linalg.norm(world - joint)),), axis), offset
+    origin = tuple(np.subtract(platform, np.multiply(offset, axis)))  # RRp: the platform joint at origin + d·axis
+    return LegGeometry(base, origin, (float(np.linalg.norm(world - base)),), axis), offset
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.lists(st.sampled_from(RR_LEGS), min_size=3, max_size=3))
+def test_a_pose_is_found_again_from_its_actuator_values(seed, legs):
+    """Random geometry drawn around a random pose, its actuator values, forward
+    kinematics: the pose is among the results (both backends where the dimensions are
+    exact would need rational angles; the numeric backend here)."""
+    rng = np.random.default_rng(seed)
+    position, angle = tuple(rng.uniform(-3, 3, 2)), float(rng.uniform(-math.pi, math.pi))
+    drawn = [_leg_at_pose(leg, rng, position, angle) for leg in legs]
+    robot = Robot(tuple(legs), tuple(geometry for geometry, _ in drawn))
+    poses = forward_kinematics(robot, [value for _, value in drawn])
+    assert any(math.dist(p.position, position) < 1e-6 and abs(math.remainder(p.angle - angle, 2 * math.pi)) < 1e-6
+               for p in poses), (position, angle, [(p.position, p.angle) for p in poses])
+
+
+def test_the_3rpr_examples_through_the_robot_api():
+    """Thesis §5.1.3, example I: the robot API builds the scene examples/3-RPR-I.json
+    holds (base placed at (0, 0), (4, 0), (1, 8)) and finds the same mode."""
+    legs = tuple(Leg.parse("RpR") for _ in range(3))
+    geometry = tuple(LegGeometry(a, b) for a, b in [((0, 0), (0, 0)), ((4, 0), (6, 0)), ((1, 8), (3, 4))])
+    scene = locked_scene(Robot(legs, geometry), [1, 11, 13])
+    example = load_scene(REPO / "examples" / "3-RPR-I.json")
+    assert scene.known == example.known
+    for method in ("numeric", "exact"):
+        found = [mode.joints for mode in solve(scene, method=method).assembly_modes]
+        assert compare_modes(found, [{"P1": (0, 0), "P2": (4, 0), "P3": (1, 8), "P4": (-1, 0), "P5": (-7, 0),
+                                      "P6": (-4, -4)}]) == (0, 0, 0), method
+
+
+def test_forward_kinematics_refuses_what_it_cannot_do_yet():
+    legs = (Leg.parse("RpP"), Leg.parse("RpR"), Leg.parse("RpR"))
+    geometry = tuple(LegGeometry((0, 0), (0, 0)) for _ in range(3))
+    with pytest.raises(RobotInputError, match="passive joints RP: .* slider constructions"):
+        forward_kinematics(Robot(legs, geometry), [1, 2, 3])
+    with pytest.raises(RobotInputError, match="three values, one per leg"):
+        forward_kinematics(Robot(tuple(Leg.parse("RpR") for _ in range(3)), geometry), [1, 2])
+    with pytest.raises(RobotInputError, match="'long': not a number"):
+        forward_kinematics(Robot(tuple(Leg.parse("RpR") for _ in range(3)), geometry), [1, 2, "long"])
