@@ -102,9 +102,41 @@ def _parser() -> argparse.ArgumentParser:
     solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
     solve.add_argument("--time-limit", type=float, metavar="SECONDS",
                        help="numeric method: stop searching after this long and name what was left undecided")
+    robot = commands.add_parser("robot", help="forward kinematics of a fully-parallel planar robot given as a file")
+    robot.add_argument("robot", type=Path, help="robot JSON file (legs, geometry, actuators; see baranov.robots.model)")
+    robot.add_argument("--actuators", help="actuator values, e.g. 1,11,13 (default: the file's)")
+    robot.add_argument("--method", default="numeric", choices=("numeric", "exact"), help="solving backend")
+    robot.add_argument("--json", action="store_true", help="the solution as baranov solve --json, with the poses")
     robots = commands.add_parser("robots", help="the fully-parallel planar robots: their ten families (thesis §5.2)")
     robots.add_argument("--json", action="store_true", help="a list of families as JSON")
     return parser
+
+
+def run_robot(args: argparse.Namespace) -> int:
+    """``baranov robot FILE``: every platform pose of the robot at its actuator values."""
+    import json
+    import math
+
+    from baranov.robots import load_robot, robot_family, robot_solution
+
+    robot, actuators = load_robot(args.robot)
+    if args.actuators is not None:
+        actuators = [value.strip() for value in args.actuators.split(",")]
+    if actuators is None:
+        raise UsageError(f"{args.robot}: no actuator values: give --actuators a,b,c or \"actuators\" in the file")
+    solution, poses = robot_solution(robot, actuators, args.method)
+    family = robot_family(robot.legs).name
+    shown = [{"position": list(p.position), "angle": p.angle} for p in poses]
+    if args.json:
+        print(json.dumps({**solution.to_dict(), "family": family, "poses": shown}, indent=1))
+        return 0
+    legs = "-".join(str(leg) for leg in robot.legs)
+    print(f"{args.robot}: robot {legs}, family {family}, {len(poses)} pose{'s' if len(poses) != 1 else ''} "
+          f"({args.method})")
+    print("pose  x  y  angle (degrees)")
+    for number, pose in enumerate(poses, 1):
+        print(f"{number:4d}  {pose.position[0]:.10g}  {pose.position[1]:.10g}  {math.degrees(pose.angle):.10g}")
+    return 0
 
 
 def run_robots(args: argparse.Namespace) -> int:
@@ -243,6 +275,8 @@ def main(argv: list[str] | None = None) -> int:
             return run_solve(args)
         if args.command == "robots":
             return run_robots(args)
+        if args.command == "robot":
+            return run_robot(args)
         if args.command == "show":
             if args.plans < 1:
                 raise UsageError(f"--plans {args.plans}: must be at least 1")

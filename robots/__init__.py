@@ -3,8 +3,10 @@ families (:mod:`.families`), and forward kinematics of the robots whose legs loc
 RR links, family I (:mod:`.kinematics`); the slider families are to come (issue 18)."""
 
 from .families import RobotFamily, all_robots, robot_families, robot_family
-from .kinematics import LegGeometry, Pose, Robot, forward_kinematics, locked_scene
+from .kinematics import Pose, forward_kinematics, locked_scene, robot_solution
 from .legs import LEGS, Leg, RobotInputError, parse_robot
+from .model import LegGeometry, Robot, load_robot, robot_from_dict
 
 __all__ = ["LEGS", "Leg", "LegGeometry", "Pose", "Robot", "RobotFamily", "RobotInputError", "all_robots",
-           "forward_kinematics", "locked_scene", "parse_robot", "robot_families", "robot_family"]
+           "forward_kinematics", "load_robot", "locked_scene", "parse_robot", "robot_families", "robot_family",
+           "robot_from_dict", "robot_solution"]

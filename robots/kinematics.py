@@ -9,7 +9,8 @@ fitted to the placed platform joints (three points, an exact rigid motion up to
 rounding). Legs with a passive prismatic joint (families II–X) need the slider
 constructions and are refused for now (issue 18).
 
-Leg geometry, base points in the world frame, platform points in the platform's frame:
+Leg geometry (:class:`~baranov.robots.model.LegGeometry`), base points in the world frame,
+platform points in the platform's frame:
 
 ======  ==========================  ===========================================
 leg     geometry                    actuator
@@ -33,30 +34,11 @@ from fractions import Fraction
 from typing import Literal
 
 from baranov.scene import Scene, scene_from_dict
-from baranov.solvers import solve
+from baranov.solvers import Solution, solve
 
 from .families import robot_family
 from .legs import Leg, RobotInputError
-
-Point = tuple[float | Fraction, float | Fraction]
-
-
-@dataclass(frozen=True)
-class LegGeometry:
-    """Where one leg is attached and its fixed dimensions (see the module table)."""
-
-    base: Point
-    platform: Point
-    lengths: tuple[float | Fraction, ...] = ()
-    axis: Point | None = None
-
-
-@dataclass(frozen=True)
-class Robot:
-    """A fully-parallel planar robot: three legs and their geometry."""
-
-    legs: tuple[Leg, Leg, Leg]
-    geometry: tuple[LegGeometry, LegGeometry, LegGeometry]
+from .model import LegGeometry, Point, Robot, to_number
 
 
 @dataclass(frozen=True)
@@ -81,18 +63,18 @@ def locked_leg(leg: Leg, geometry: LegGeometry, actuator) -> tuple[Point, Point,
         raise RobotInputError(f"leg {kind}: passive joints {leg.passive}: forward kinematics of legs with a passive "
                               "prismatic joint needs the slider constructions (not yet; family I only)")
     if kind == "RpR":
-        return a, b, _number(actuator) ** 2
+        return a, b, to_number(actuator, 'actuator') ** 2
     if kind in ("pRR", "RRp"):
         if geometry.axis is None or len(geometry.lengths) != 1:
             raise RobotInputError(f"leg {kind}: give its axis direction and one length")
         (length,), (ux, uy) = geometry.lengths, geometry.axis
-        d = _number(actuator)
+        d = to_number(actuator, 'actuator')
         moved = (a[0] + d * ux, a[1] + d * uy) if kind == "pRR" else (b[0] + d * ux, b[1] + d * uy)
         return (moved, b, length**2) if kind == "pRR" else (a, moved, length**2)
     if len(geometry.lengths) != 2:
         raise RobotInputError(f"leg {kind}: give its two link lengths (l1 from the base, l2 to the platform)")
     l1, l2 = geometry.lengths
-    angle = float(_number(actuator))
+    angle = float(to_number(actuator, 'actuator'))
     if kind == "rRR":
         return (a[0] + l1 * math.cos(angle), a[1] + l1 * math.sin(angle)), b, l2**2
     if kind == "RRr":
@@ -130,11 +112,17 @@ def forward_kinematics(robot: Robot, actuators, method: Literal["numeric", "exac
     ...  for p in forward_kinematics(Robot(legs, geometry), [1, 11, 13])]
     [(-1.0, 0.0, 3.141593)]
     """
+    return robot_solution(robot, actuators, method)[1]
+
+
+def robot_solution(robot: Robot, actuators, method: str = "numeric") -> tuple[Solution, list[Pose]]:
+    """The backend's solution of the locked robot (plan, parameters, for the exact method
+    the characteristic polynomial) and the pose of each of its assembly modes."""
     robot_family(robot.legs)  # raises for a leg string no robot has
     solution = solve(locked_scene(robot, actuators), method=method)
     frame = {f"P{k + 4}": tuple(map(float, locked_leg(leg, geometry, actuators[k])[1]))
              for k, (leg, geometry) in enumerate(zip(robot.legs, robot.geometry, strict=True))}
-    return [_pose(mode.joints, frame, mode.parameters) for mode in solution.assembly_modes]
+    return solution, [_pose(mode.joints, frame, mode.parameters) for mode in solution.assembly_modes]
 
 
 def _pose(joints: dict, frame: dict, parameters: dict) -> Pose:
@@ -157,16 +145,8 @@ def _pose(joints: dict, frame: dict, parameters: dict) -> Pose:
     return Pose(position, angle, dict(joints), dict(parameters))
 
 
-def _number(value):
-    """An exact Fraction for int, Fraction and decimal strings; floats stay floats."""
-    try:
-        return Fraction(value) if isinstance(value, (int, Fraction, str)) else float(value)
-    except (TypeError, ValueError, ZeroDivisionError):
-        raise RobotInputError(f"{value!r}: not a number (an actuator value or a dimension)") from None
-
-
 def _text(value) -> str | float:
     """A scene number: exact as a string ("3/2") where ``value`` is exact (int, Fraction,
     decimal string), else the float."""
-    value = _number(value)
+    value = to_number(value, "dimension")
     return str(value) if isinstance(value, Fraction) else value

@@ -73,7 +73,7 @@ import numpy as np  # noqa: E402
 from hypothesis import given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from baranov.robots.kinematics import LegGeometry, Robot, forward_kinematics, locked_scene  # noqa: E402
+from baranov.robots import LegGeometry, Robot, forward_kinematics, locked_scene  # noqa: E402
 from baranov.scene import load_scene  # noqa: E402
 from baranov.solvers import solve  # noqa: E402
 from baranov.solvers.msolve import compare_modes  # noqa: E402
@@ -150,5 +150,22 @@ def test_forward_kinematics_refuses_what_it_cannot_do_yet():
         forward_kinematics(Robot(legs, geometry), [1, 2, 3])
     with pytest.raises(RobotInputError, match="three values, one per leg"):
         forward_kinematics(Robot(tuple(Leg.parse("RpR") for _ in range(3)), geometry), [1, 2])
-    with pytest.raises(RobotInputError, match="'long': not a number"):
+    with pytest.raises(RobotInputError, match="actuator: 'long' is not a number"):
         forward_kinematics(Robot(tuple(Leg.parse("RpR") for _ in range(3)), geometry), [1, 2, "long"])
+
+
+def test_robot_command(capsys):
+    """`baranov robot FILE`: the file's actuators or --actuators, both backends agree;
+    bad input is one line and exit code 2."""
+    example = str(REPO / "examples" / "robot-I-3RPR.json")
+    assert main(["robot", example]) == 0
+    assert "robot RpR-RpR-RpR, family I, 1 pose (numeric)\npose  x  y  angle (degrees)\n   1  -1  " in capsys.readouterr().out
+    lines = {}
+    for method in ("numeric", "exact"):
+        assert main(["robot", example, "--actuators", "2,11,13", "--method", method]) == 0
+        lines[method] = [line.split()[1:] for line in capsys.readouterr().out.splitlines()[2:]]
+    assert len(lines["exact"]) == 2
+    assert [[round(float(v), 6) for v in row] for row in lines["numeric"]] == \
+           [[round(float(v), 6) for v in row] for row in lines["exact"]]
+    assert main(["robot", example, "--actuators", "1,x,2"]) == 2
+    assert capsys.readouterr().err == "baranov: error: actuator: 'x' is not a number\n"
