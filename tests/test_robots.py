@@ -169,3 +169,22 @@ def test_robot_command(capsys):
            [[round(float(v), 6) for v in row] for row in lines["exact"]]
     assert main(["robot", example, "--actuators", "1,x,2"]) == 2
     assert capsys.readouterr().err == "baranov: error: actuator: 'x' is not a number\n"
+
+
+def test_example_vi_is_analytic_its_sextic_solvable():
+    """Thesis §5.1.2-5.1.3.6: mirrored base and platform (C4) give an irreducible sextic
+    whose Galois group is solvable: S4 × C2, order 48 (sympy)."""
+    from baranov.robots.analytic import analytic_conditions, galois_group
+
+    scene = load_scene(REPO / "examples" / "3-RPR-VI.json")
+    polynomial = solve(scene, method="exact").characteristic_polynomial
+    assert analytic_conditions(scene) == ("C4",) and polynomial.degree == 6 and len(polynomial.factors) == 1
+    name, order, solvable = galois_group(polynomial.monic_coefficients())
+    assert (name, order, solvable) == ("S6TransitiveSubgroups.S4xC2", 48, True)
+    # a 3-RPR with none of the conditions: an irreducible sextic with the full group S6
+    legs = tuple(Leg.parse("RpR") for _ in range(3))
+    geometry = (LegGeometry((0, 0), (0, 0)), LegGeometry((7, 1), (5, 0)), LegGeometry((2, 9), (1, 4)))
+    general = locked_scene(Robot(legs, geometry), [5, 8, 9])
+    polynomial = solve(general, method="exact").characteristic_polynomial
+    assert analytic_conditions(general) == () and polynomial.degree == 6 and len(polynomial.factors) == 1
+    assert galois_group(polynomial.monic_coefficients()) == ("S6TransitiveSubgroups.S6", 720, False)
