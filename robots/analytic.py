@@ -8,8 +8,13 @@ joins P_k and P_{k+3}):
 * C1: two attachments coincide, on the base or on the platform;
 * C2: the base and the platform attachments are each collinear;
 * C3: the two triangles are similar (P_k ↔ P_{k+3}, the same orientation);
-* C4: the two triangles are mirror images of each other up to scale (similar with
-  opposite orientations).
+* C4: the two triangles are mirror images of each other (congruent, opposite
+  orientations; thesis example VI). Mirror images at another scale are not analytic in
+  general: on base (0, 0), (6, 0), (2, 4) and platform (0, 0), (3, 0), (1, −2) the sextic
+  came out irreducible with an unsolvable Galois group for leg lengths 3, 7, 5
+  (tests/test_robots.py).
+
+C2 takes both triangles flat, a coincident pair included (two points are collinear).
 
 A robot is *analytic* when its characteristic polynomial is solvable by radicals, that
 is when its Galois group is solvable; the thesis's example VI (C4) has an irreducible
@@ -46,9 +51,12 @@ def analytic_conditions(scene: Scene) -> tuple[str, ...]:
         conditions.append("C2")
     ratios = [p / b if b else None for p, b in zip(platform, base, strict=True)]
     similar = None not in ratios and all(_zero(r - ratios[0], ratios[0]) for r in ratios)
-    if similar and not any(flat):
-        same = scene.orientation(("P1", "P2", "P3")) == scene.orientation(("P4", "P5", "P6"))
-        conditions.append("C3" if same else "C4")
+    if similar:  # flat similar triangles are their own mirror images: C3
+        same = any(flat) or scene.orientation(("P1", "P2", "P3")) == scene.orientation(("P4", "P5", "P6"))
+        if same:
+            conditions.append("C3")
+        elif _zero(ratios[0] - 1, 1):
+            conditions.append("C4")
     return tuple(conditions)
 
 

@@ -90,12 +90,22 @@ def locked_scene(robot: Robot, actuators) -> Scene:
         raise RobotInputError(f"actuators: three values, one per leg (got {len(actuators)})")
     locked = [locked_leg(leg, geometry, value)
               for leg, geometry, value in zip(robot.legs, robot.geometry, actuators, strict=True)]
-    base = {f"P{k + 1}": [_text(x) for x in point] for k, (point, _, _) in enumerate(locked)}
-    platform = {f"P{k + 4}": [_text(x) for x in point] for k, (_, point, _) in enumerate(locked)}
+    base = _link_joints({f"P{k + 1}": point for k, (point, _, _) in enumerate(locked)})
+    platform = _link_joints({f"P{k + 4}": point for k, (_, point, _) in enumerate(locked)})
     legs = [{"name": f"leg{k + 1}{k + 4}", "joints": [f"P{k + 1}", f"P{k + 4}"], "squared_length": _text(squared)}
             for k, (_, _, squared) in enumerate(locked)]
     return scene_from_dict({"ground": "base", "links": [{"name": "base", "joints": base},
                                                         {"name": "platform", "joints": platform}, *legs]})
+
+
+def _link_joints(points: dict[str, Point]) -> dict[str, list]:
+    """A link's joints for a scene, its first two at different points (they set the
+    link's frame; two coincident attachments, condition C1 of thesis §5.1.2, come later)."""
+    names = list(points)
+    first = next(((a, b) for a, b in [(names[0], names[1]), (names[0], names[2]), (names[1], names[2])]
+                  if points[a] != points[b]), (names[0], names[1]))
+    order = [*first, *(name for name in names if name not in first)]
+    return {name: [_text(x) for x in points[name]] for name in order}
 
 
 def forward_kinematics(robot: Robot, actuators, method: Literal["numeric", "exact"] = "numeric") -> list[Pose]:

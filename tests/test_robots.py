@@ -188,3 +188,48 @@ def test_example_vi_is_analytic_its_sextic_solvable():
     polynomial = solve(general, method="exact").characteristic_polynomial
     assert analytic_conditions(general) == () and polynomial.degree == 6 and len(polynomial.factors) == 1
     assert galois_group(polynomial.monic_coefficients()) == ("S6TransitiveSubgroups.S6", 720, False)
+
+
+TABLE_5_1 = [  # (row of thesis Table 5.1, base, platform, conditions, degree of Γ(T) without repeated factors)
+    ("coincidence", [(0, 0), (5, 1), (0, 0)], [(0, 0), (3, 1), (1, 4)], ("C1",), 2),
+    ("double coincidence", [(0, 0), (5, 1), (0, 0)], [(0, 0), (3, 1), (3, 1)], ("C1", "C2"), 1),
+    ("collinearity", [(0, 0), (4, 0), (9, 0)], [(0, 0), (2, 0), (7, 0)], ("C2",), 3),
+    ("collinearity + similarity", [(0, 0), (4, 0), (10, 0)], [(0, 0), (2, 0), (5, 0)], ("C2", "C3"), 2),
+    ("similarity", [(0, 0), (6, 0), (2, 4)], [(0, 0), (3, 0), (1, 2)], ("C3",), 4),
+    ("mirror reflection", [(0, 0), (6, 0), (2, 4)], [(0, 0), (6, 0), (2, -4)], ("C4",), 6),
+]
+
+
+def test_a_scaled_mirror_image_is_not_analytic():
+    """C4 is a congruent mirror image (example VI): at half the size, the sextic is
+    irreducible and its Galois group is not solvable (issue 18: the finding behind the
+    definition in robots/analytic.py)."""
+    from baranov.robots.analytic import analytic_conditions, galois_group
+
+    legs = tuple(Leg.parse("RpR") for _ in range(3))
+    geometry = tuple(LegGeometry(b, p) for b, p in zip([(0, 0), (6, 0), (2, 4)], [(0, 0), (3, 0), (1, -2)], strict=True))
+    scene = locked_scene(Robot(legs, geometry), [3, 7, 5])
+    polynomial = solve(scene, method="exact").characteristic_polynomial
+    assert analytic_conditions(scene) == () and len(polynomial.factors) == 1 and polynomial.degree == 6
+    assert not galois_group(polynomial.monic_coefficients())[2]
+
+
+@pytest.mark.parametrize(("row", "base", "platform", "conditions", "degree"), TABLE_5_1, ids=[r[0] for r in TABLE_5_1])
+def test_table_5_1_rows(row, base, platform, conditions, degree):
+    """Thesis Table 5.1 on robots meeting each row's conditions, three random leg-length
+    triples each: the characteristic polynomial in T = s1,5 (the thesis's variable, which
+    the planner picks here), its repeated factors counted once, has the table's degree;
+    the mirror row's sextic is irreducible and solvable by radicals."""
+    from baranov.robots.analytic import analytic_conditions, galois_group
+
+    legs = tuple(Leg.parse("RpR") for _ in range(3))
+    geometry = tuple(LegGeometry(b, p) for b, p in zip(base, platform, strict=True))
+    rng = np.random.default_rng(len(row))
+    for _ in range(3):
+        scene = locked_scene(Robot(legs, geometry), [int(v) for v in rng.integers(2, 10, 3)])
+        polynomial = solve(scene, method="exact").characteristic_polynomial
+        assert analytic_conditions(scene) == conditions
+        assert polynomial.variable == "s1,5"
+        assert sum(factor.degree() for factor, _ in polynomial.factors) == degree
+        if row == "mirror reflection":
+            assert len(polynomial.factors) == 1 and galois_group(polynomial.monic_coefficients())[2]
