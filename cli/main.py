@@ -107,6 +107,7 @@ def _parser() -> argparse.ArgumentParser:
     robot.add_argument("--actuators", help="actuator values, e.g. 1,11,13 (default: the file's)")
     robot.add_argument("--method", default="numeric", choices=("numeric", "exact"), help="solving backend")
     robot.add_argument("--json", action="store_true", help="the solution as baranov solve --json, with the poses")
+    robot.add_argument("--plot", type=Path, help="draw every pose (the locked robot's assembly modes) into this PNG file")
     robots = commands.add_parser("robots", help="the fully-parallel planar robots: their ten families (thesis §5.2)")
     robots.add_argument("--json", action="store_true", help="a list of families as JSON")
     return parser
@@ -124,8 +125,16 @@ def run_robot(args: argparse.Namespace) -> int:
         actuators = [value.strip() for value in args.actuators.split(",")]
     if actuators is None:
         raise UsageError(f"{args.robot}: no actuator values: give --actuators a,b,c or \"actuators\" in the file")
+    if args.plot is not None and not args.plot.parent.is_dir():
+        raise UsageError(f"--plot {args.plot}: folder {args.plot.parent} does not exist")
     solution, poses = robot_solution(robot, actuators, args.method)
     family = robot_family(robot.legs).name
+    if args.plot is not None:
+        from baranov.catalog.files import write_atomically
+        from baranov.robots import locked_scene
+        from baranov.solvers.drawing import render_modes  # matplotlib only when drawing
+
+        write_atomically(args.plot, render_modes(locked_scene(robot, actuators), solution))
     shown = [{"position": list(p.position), "angle": p.angle} for p in poses]
     if args.json:
         print(json.dumps({**solution.to_dict(), "family": family, "poses": shown}, indent=1))

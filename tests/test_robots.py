@@ -154,7 +154,7 @@ def test_forward_kinematics_refuses_what_it_cannot_do_yet():
         forward_kinematics(Robot(tuple(Leg.parse("RpR") for _ in range(3)), geometry), [1, 2, "long"])
 
 
-def test_robot_command(capsys):
+def test_robot_command(capsys, tmp_path):
     """`baranov robot FILE`: the file's actuators or --actuators, both backends agree;
     bad input is one line and exit code 2."""
     example = str(REPO / "examples" / "robot-I-3RPR.json")
@@ -167,6 +167,9 @@ def test_robot_command(capsys):
     assert len(lines["exact"]) == 2
     assert [[round(float(v), 6) for v in row] for row in lines["numeric"]] == \
            [[round(float(v), 6) for v in row] for row in lines["exact"]]
+    assert main(["robot", example, "--actuators", "2,11,13", "--plot", str(tmp_path / "poses.png")]) == 0
+    assert (tmp_path / "poses.png").read_bytes().startswith(b"\x89PNG")
+    capsys.readouterr()
     assert main(["robot", example, "--actuators", "1,x,2"]) == 2
     assert capsys.readouterr().err == "baranov: error: actuator: 'x' is not a number\n"
 
