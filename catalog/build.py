@@ -19,8 +19,15 @@ from baranov.planner import best_plan
 from baranov.topology import adjacency_masks, chain_from_link_graph
 from baranov.topology.automorphisms import link_graph_certificate
 
-from .entries import ASSEMBLY_MODES_MAX_LINKS, dump_entries, load_entries, truss_entry
-from .files import legacy_path, write_atomically
+from .entries import (
+    ASSEMBLY_MODES_MAX_LINKS,
+    COMPACT_FROM_LINKS,
+    compact_entries,
+    dump_entries,
+    load_entries,
+    truss_entry,
+)
+from .files import gzipped, legacy_path, write_atomically
 from .slider_chains import SLIDER_MODES_MAX_LINKS, load_slider_chains, slider_chain_entries
 from .summary import render_summary
 from .tasks import dask_client, run_in_shards, shard_folder
@@ -91,7 +98,9 @@ def build_catalog(
     entries are computed as Dask tasks (:mod:`.tasks`): on an embedded cluster of
     ``workers`` processes, or on the cluster of ``scheduler``; finished shards wait in
     ``out/.shards/`` until their file is written, so an interrupted job resumes. Files:
-    ``trusses-<L>.jsonl`` and ``slider-chains-<L>.jsonl``, JSON lines (one object per
+    ``trusses-<L>.jsonl`` (from COMPACT_FROM_LINKS links on also ``trusses-<L>.jsonl.gz``,
+    :data:`~baranov.catalog.entries.COMPACT_FIELDS` only) and ``slider-chains-<L>.jsonl``,
+    JSON lines (one object per
     line, :func:`~baranov.catalog.files.iter_objects` streams them)."""
     crosscheck_path = out / "crosscheck.json"
     try:
@@ -113,6 +122,8 @@ def build_catalog(
                 write_atomically(path, dump_entries(entries))
             else:
                 log(f"{links} links: reusing {path}")
+            if links >= COMPACT_FROM_LINKS:  # seconds, and always what the full file says
+                write_atomically(path.with_name(path.name + ".gz"), gzipped(dump_entries(compact_entries(entries))))
             if geng and (force or links not in checks or checks[links].get("trusses") != len(entries)):
                 log(f"{links} links: brute-force cross-check")
                 checks[links] = crosscheck_links(links, entries, workers)

@@ -93,6 +93,12 @@ def dump_objects(objects: list[dict]) -> str:
     return "".join(json.dumps(o, separators=(",", ":"), ensure_ascii=False) + "\n" for o in objects)
 
 
+def gzipped(text: str) -> bytes:
+    """``text`` (UTF-8) gzip-compressed, byte-identical from run to run (no file name or
+    time stamp in the header)."""
+    return gzip.compress(text.encode("utf-8"), compresslevel=9, mtime=0)
+
+
 def iter_objects(path: Path) -> Iterator[dict]:
     """The objects of a JSON-lines file one at a time (gzip-compressed if its name ends
     in ``.gz``), without reading the whole file. Raises ``OSError`` or ``ValueError``

@@ -392,3 +392,22 @@ def test_assembly_modes_are_counted_up_to_the_links_asked(tmp_path, capsys):
     assert (tmp_path / "trusses-7.jsonl").read_bytes() == (REPO / "catalog" / "trusses-7.jsonl").read_bytes()
     assert main([*args, "--assembly-modes", "-1"]) == 2
     assert "--assembly-modes -1: a number of links" in capsys.readouterr().err
+
+
+def test_a_compact_gzip_file_beside_the_full_one_from_13_links(tmp_path, monkeypatch):
+    """From 13 links on (here lowered to 7), ``trusses-<L>.jsonl.gz`` holds the compact
+    fields of every entry, byte-identical from run to run (issue 20: the committed 13-link
+    results)."""
+    import baranov.catalog.build as build
+    from baranov.catalog.entries import COMPACT_FIELDS
+
+    monkeypatch.setattr(build, "COMPACT_FROM_LINKS", 7)
+    args = ["catalog", "--links", "5,7", "--out", str(tmp_path), "--no-crosscheck", "--slider-modes", "0", "--quiet"]
+    assert main(args) == 0
+    assert not (tmp_path / "trusses-5.jsonl.gz").exists()
+    compact = list(iter_objects(tmp_path / "trusses-7.jsonl.gz"))
+    full = list(iter_objects(tmp_path / "trusses-7.jsonl"))
+    assert compact == [{field: entry[field] for field in COMPACT_FIELDS} for entry in full]
+    first = (tmp_path / "trusses-7.jsonl.gz").read_bytes()
+    assert main(args) == 0
+    assert (tmp_path / "trusses-7.jsonl.gz").read_bytes() == first
