@@ -233,6 +233,42 @@ def with_modes_where_undefined(scene: Scene, plan: Plan, pairs: set[frozenset[st
     return found, by_msolve, unsettled or unexamined_coincidences(pairs)
 
 
+def with_modes_where_plan_divides_by_zero(scene: Scene, plan: Plan, modes: tuple[AssemblyMode, ...],
+                                          solver: Callable[[Plan], Solution]
+                                          ) -> tuple[tuple[AssemblyMode, ...], bool, tuple[str, ...]]:
+    """``modes`` and the modes where two joints that ``plan`` divides by coincide: its
+    bases and reference whose distance is not known (:func:`computed_base_pairs`), and its
+    parameters' own joints (s = 0, where the first bilateration that uses a parameter as
+    its base is undefined). Both backends call this with ``solver`` their own solve with
+    another plan.
+
+    The parameter's own coincidence is never a root of the characteristic polynomial
+    that the plan could decide: clearing the denominators s_{i,j} of eq. 2.7 can remove
+    the factor s altogether (issue 25's 7/N2, small-box 30 of seed 36: four of its eight
+    modes have P1 = P8, s1,8 = 0, and the exact backend had certified the other four).
+
+    Listed by msolve where it can run, otherwise by ``solver`` (:func:`with_modes_where_undefined`);
+    returns the modes, whether msolve listed them and what neither settled."""
+    two = plan.number_of_parameters == 2
+    bases = computed_base_pairs(scene, plan, with_parameters=two)
+    parameters = {frozenset(pair) for pair in plan.parameters if coincidence_possible(scene, frozenset(pair))}
+    if not bases | parameters:
+        return modes, False, ()
+
+    def alternative(found: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], bool]:
+        if two:  # along curves of the plane, not at one value (9/N27: v = 0)
+            return with_modes_of_coincident_joints(scene, plan, parameters | bases, found, solver)
+        covered = True
+        if parameters:  # at s = 0 only
+            found, covered = with_coincident_modes(scene, plan, parameters, [0.0], found, solver)
+        if bases:
+            found, settled = with_modes_of_coincident_joints(scene, plan, bases, found, solver)
+            covered = covered and settled
+        return found, covered
+
+    return with_modes_where_undefined(scene, plan, bases | parameters, modes, alternative)
+
+
 def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:
     """The gaps for ``pairs`` whose coincidences neither msolve nor another plan settled."""
     return tuple(f"joints {'='.join(sorted(pair))} (a bilateration base) may coincide: modes where they do "

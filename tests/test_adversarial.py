@@ -6,6 +6,7 @@ linkages said to be movable."""
 from __future__ import annotations
 
 import json
+import math
 import multiprocessing
 import os
 from pathlib import Path
@@ -22,7 +23,7 @@ from baranov.scene.adversarial import (
     double_root_configuration,
     is_infinitesimally_flexible,
 )
-from baranov.solvers import ExactSolution, MovableLinkageError, solve
+from baranov.solvers import ExactSolution, MovableLinkageError, coincidence, solve
 from baranov.solvers.msolve import compare_modes, find_msolve, msolve_modes
 
 REGRESSIONS = Path(__file__).resolve().parent / "regressions"
@@ -201,3 +202,36 @@ def test_singular_modes_inside_and_on_edge_lines_are_found_to_the_digit(name):
     scene = load_scene(REGRESSIONS / f"{name}.json")
     found = [mode.joints for mode in solve(scene).assembly_modes]
     assert compare_modes(found, list(msolve_modes(scene).configurations)) == (0, 0, 0)
+
+
+PARAMETER_JOINTS_COINCIDE = ["7-N2-parameter-joints-coincide", "7-N2-parameter-joints-coincide-double-root"]
+
+
+@needs_msolve
+@pytest.mark.parametrize("name", PARAMETER_JOINTS_COINCIDE)
+@pytest.mark.parametrize("with_msolve", [True, False], ids=["msolve", "another-plan"])
+def test_exact_backend_settles_the_parameter_joints_coinciding(name, with_msolve, monkeypatch):
+    """Issue 25, seed 36 (7/N2, coordinates in [-3, 3]²): four of the eight modes have
+    P1 = P8, s1,8 = 0, a value at which the cleared characteristic polynomial does not
+    vanish; the exact backend certified the other four. Now it settles s = 0 as the
+    numeric backend does, by msolve or, without it, by another plan: all eight, certified."""
+    scene = load_scene(REGRESSIONS / f"{name}.json")
+    oracle = list(msolve_modes(scene).configurations)
+    if not with_msolve:
+        monkeypatch.setattr(coincidence, "find_msolve", lambda: None)
+    solution = solve(scene, method="exact")
+    assert solution.certificate.complete and len(oracle) == 8
+    assert compare_modes([mode.joints for mode in solution.assembly_modes], oracle) == (0, 0, 0)
+    coincident = [m for m in solution.assembly_modes if math.dist(m.joints["P1"], m.joints["P8"]) < 1e-9]
+    assert len(coincident) == 4 and all(m.parameters["s1,8"] == 0 for m in coincident)
+
+
+def test_exact_certificate_names_a_coincidence_nothing_settles(monkeypatch):
+    """Where neither msolve nor another plan can examine the parameter's joints
+    coinciding, the exact backend says so instead of certifying."""
+    monkeypatch.setattr(coincidence, "find_msolve", lambda: None)
+    planned = coincidence.plan_avoiding  # the best plan avoids no pair; none avoids P1 P8
+    monkeypatch.setattr(coincidence, "plan_avoiding", lambda chain, pairs: None if pairs else planned(chain, pairs))
+    solution = solve(load_scene(REGRESSIONS / f"{PARAMETER_JOINTS_COINCIDE[0]}.json"), method="exact")
+    assert not solution.certificate.complete
+    assert any("P1=P8" in gap and "not examined" in gap for gap in solution.certificate.gaps)

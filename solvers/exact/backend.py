@@ -11,9 +11,11 @@ arithmetic").
    the condition in floats instead lost both modes of a pentad whose platform is 1e-8 of
    its width from collinear: rounding the dimensions moves the float condition's roots
    by ~4e-6 there, docs/stability.md);
-4. at a real root where the plan itself is undefined — a bilateration's base joints
-   coincide, as at T = s1,5 = 0 in thesis §5.1.3.2 — solve again with another plan
-   (:mod:`baranov.solvers.coincidence`).
+4. wherever the plan itself is undefined — a bilateration's base joints coincide, as at
+   T = s1,5 = 0 in thesis §5.1.3.2 — msolve or another plan lists the modes
+   (:func:`~baranov.solvers.coincidence.with_modes_where_plan_divides_by_zero`): for every
+   pair that can coincide, not only at the roots of the polynomial, which clearing the
+   denominators can lose (issue 25's 7/N2 at s1,8 = 0).
 
 Coupling degree 0 needs no polynomial: every branch is a candidate. Coupling degree 2
 (thesis §3.4.1.3) eliminates the second parameter (:mod:`baranov.solvers.exact.coupling_two`);
@@ -46,9 +48,7 @@ from ..coincidence import (
     modes_without_plan,
     solvable_plan,
     unexamined_coincidences,
-    with_coincident_modes,
-    with_modes_of_coincident_joints,
-    with_modes_where_undefined,
+    with_modes_where_plan_divides_by_zero,
 )
 from ..modes import AssemblyMode, Certificate, ExactSolution
 from ..placement import compile_scene, placed_from_ground
@@ -98,29 +98,24 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         report_stage("exact: deriving the characteristic polynomial")
         polynomial = characteristic_polynomial(scene, plan)
         report_stage(f"exact: isolating the real roots (degree {polynomial.degree}) and placing the modes")
-        modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches)
+        modes, gaps = modes_at_real_roots(scene, plan, polynomial, branches)
     elif plan.number_of_parameters == 2:
         report_stage("exact: the characteristic polynomial from its images modulo primes (coupling degree 2)")
         polynomial, fibers = characteristic_polynomial_two(scene, plan)
         report_stage(f"exact: isolating the real roots (degree {polynomial.degree}) and placing the modes")
-        modes, gaps, undefined = modes_at_real_roots(scene, plan, polynomial, branches, fibers)
+        modes, gaps = modes_at_real_roots(scene, plan, polynomial, branches, fibers)
         notes.append(LIFTING_NOTE)
-        # coupling 2: where a base pair (a parameter's included) coincides the plan is undefined
-        # along a whole curve, which the genuine curves leave out
-        pairs = computed_base_pairs(scene, plan, with_parameters=True)
-        # a parameter's own joints may meet too (v = 0 is no common point of the curves: 9/N27)
-        pairs |= {frozenset(p) for p in plan.parameters if coincidence_possible(scene, frozenset(p))}
-        if pairs and coincidences:
-            modes, by_msolve, unsettled = with_modes_where_undefined(
-                scene, plan, pairs, modes, lambda found: with_modes_of_coincident_joints(
-                    scene, plan, pairs, found, lambda other: solve_exact(scene, other, coincidences=False)))
-            gaps += unsettled
-            notes += [MSOLVE_NOTE] if by_msolve else []
-        elif pairs:
-            gaps += unexamined_coincidences(pairs)
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
+    if plan.number_of_parameters and coincidences:
+        modes, by_msolve, unsettled = with_modes_where_plan_divides_by_zero(
+            scene, plan, modes, lambda other: solve_exact(scene, other, coincidences=False))
+        gaps += unsettled
+        notes += [MSOLVE_NOTE] if by_msolve else []
+    elif plan.number_of_parameters and not scene.sliders:
+        gaps += unexamined_coincidences(computed_base_pairs(scene, plan, with_parameters=True) | {
+            frozenset(pair) for pair in plan.parameters if coincidence_possible(scene, frozenset(pair))})
     if polynomial is not None and polynomial.vanishing:
         # issue 25's 9/N20 (msolve: positive-dimensional; numeric: the condition vanishes along
         # s8,10 in (0, 68)): the norm is 0 and only the contents divided out (powers of the
@@ -139,9 +134,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         gaps += ("the characteristic polynomial has no factor but powers of the parameter: a degenerate "
                  "instance (it may move) that this plan cannot decide",)
     if polynomial is not None:
-        modes, more, by_msolve = _modes_where_undefined(scene, plan, polynomial, undefined, modes, coincidences)
-        gaps += more
-        notes += [MSOLVE_NOTE] if by_msolve and MSOLVE_NOTE not in notes else []
+        gaps += _undecided_factors(plan, polynomial)
     return ExactSolution.of_plan("exact", plan, modes, [slider.joint for slider in scene.sliders],
                                  characteristic_polynomial=polynomial,
                                  certificate=Certificate(not gaps, "; ".join(notes) or None, gaps))
@@ -151,50 +144,24 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
 LIFTING_NOTE = "the polynomial is lifted from its images modulo random 62-bit primes"
 
 
-def _modes_where_undefined(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
-                           undefined: list[tuple[float, frozenset]], modes: tuple[AssemblyMode, ...],
-                           coincidences: bool) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...], bool]:
-    """Step 4: the dropped factors that the plan could not decide (``polynomial.degenerate``)
-    and that have a positive real root, and the real roots of kept factors at which the
-    plan is undefined on some branch (``undefined``). Where no joint pair found coincident
-    there can coincide (:func:`~baranov.solvers.coincidence.coincidence_possible`) no real
-    mode is lost; otherwise the scene is solved again with a plan that avoids those pairs
-    and its modes at those roots are added (thesis §5.1.3.2). What remains undecided is
-    returned as gaps, and whether msolve was needed
-    (:func:`~baranov.solvers.coincidence.with_modes_from_msolve`)."""
+def _undecided_factors(plan: Plan, polynomial: CharacteristicPolynomial) -> tuple[str, ...]:
+    """The gaps left by the dropped factors that ``plan`` could not decide
+    (``polynomial.degenerate``) with a positive real root and no coincident joint pair to
+    blame: undecided at the highest precision. Those with a coincident pair are settled
+    with every other coincidence the plan divides by
+    (:func:`~baranov.solvers.coincidence.with_modes_where_plan_divides_by_zero`)."""
     name = parameter_name(plan.parameters[0])
-    pairs, roots, gaps = set(), [], []
+    gaps = []
     for factor, coincident in polynomial.degenerate:
         real = [float(root.real.mid()) for root, _ in factor.complex_roots() if root.imag == 0 and root.real >= 0]
-        if not real:
-            continue
-        if not coincident:
+        if real and not coincident:
             gaps.append(f"a factor of degree {factor.degree()} with real roots near "
                         f"{name} = {real[0]:.6g} could not be decided at {TEST_BITS[-1]} bits")
-        elif any(coincidence_possible(scene, pair) for pair in coincident):
-            pairs |= coincident
-            roots += real
-    for value, coincident in undefined:
-        pairs |= coincident
-        roots.append(value)
-    if not roots:
-        return modes, tuple(gaps), False
-    by_msolve, unsettled = False, ("not examined",)
-    if coincidences:
-        modes, by_msolve, unsettled = with_modes_where_undefined(
-            scene, plan, pairs, modes, lambda found: with_coincident_modes(
-                scene, plan, pairs, roots, found, lambda other: solve_exact(scene, other, coincidences=False)))
-    if by_msolve:  # msolve's own sentences (a continuum, a failure)
-        gaps += unsettled
-    elif unsettled:
-        gaps.append(f"{name} ≈ {', '.join(f'{r:.6g}' for r in roots)}: the plan is undefined there "
-                    f"(joints {_pair_names(pairs)} may coincide) and no other plan decides")
-    return modes, tuple(gaps), by_msolve
+    return tuple(gaps)
 
 
 def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial, branches: np.ndarray,
-                        fibers: Sequence[Fiber] | None = None) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...],
-                                                                        list[tuple[float, frozenset]]]:
+                        fibers: Sequence[Fiber] | None = None) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...]]:
     """The verified assembly modes at the positive real roots of ``polynomial``; for
     coupling degree 2, at the real common points (u, v > 0) of the two genuine curves
     above each root u, one :class:`~baranov.solvers.exact.fibers.Fiber` per factor (exact).
@@ -211,10 +178,9 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
     close; at one root, branches that place every joint alike (a flat free-sign triangle)
     are one mode.
 
-    Returns the modes, the *gaps* (roots at which some branch stayed undecided at the
-    highest precision) and the roots at which the plan is undefined on some branch for a
-    joint pair that can coincide (:func:`~baranov.solvers.coincidence.coincidence_possible`),
-    with those pairs.
+    Returns the modes and the *gaps* (roots at which some branch stayed undecided at the
+    highest precision). A branch on which the plan is undefined at a root (a base's joints
+    coincide) is ruled out here; such modes are the coincidences' (step 4).
 
     Cost: O(real roots × 2^m × steps) ball operations (m free-sign triangles), plus a
     root isolation per precision used."""
@@ -225,14 +191,12 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
     signed = bool(set(plan.parameters[0]) & set(sliders))  # t: an oriented distance, of either sign
     modes: list[AssemblyMode] = []
     gaps: list[str] = []
-    undefined: list[tuple[float, frozenset]] = []
     previous = flint.ctx.prec
     try:
         for number, (factor, _) in enumerate(polynomial.factors):
             fiber = None if fibers is None else fibers[number]
             undecided: dict[int, list[tuple[int, ...]]] | None = None
             found: dict[int, list[AssemblyMode]] = {}
-            coincident: dict[int, set] = {}
             for bits in ROOT_BITS if fibers is None else ROOT_BITS_TWO:
                 flint.ctx.prec = bits
                 roots = sorted((root.real for root, _ in factor.complex_roots() if root.imag == 0),
@@ -242,8 +206,7 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
                     found = {index: [] for index in undecided}
                 for index, signs_list in list(undecided.items()):
                     points = _parameter_points(roots[index], fiber, zero, signed)
-                    still = _modes_at_root(scene, plan, points, signs_list, names,
-                                           found[index], coincident.setdefault(index, set()))
+                    still = _modes_at_root(scene, plan, points, signs_list, names, found[index])
                     if still:
                         undecided[index] = sorted(still)
                     else:
@@ -253,26 +216,22 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
             modes += [mode for at_root in found.values() for mode in at_root]
             gaps += [f"{names[0]} ≈ {float(roots[index].mid()):.6g}: sign branches undecided at {bits} bits"
                      for index in undecided or {}]
-            undefined += [(float(roots[index].mid()), frozenset(pairs)) for index, pairs in coincident.items() if pairs]
     finally:
         flint.ctx.prec = previous
-    return sorted_modes(modes), tuple(gaps), undefined
+    return sorted_modes(modes), tuple(gaps)
 
 
 def _modes_at_root(scene: Scene, plan: Plan, points: list | None, signs_list: list[tuple[int, ...]],
-                   names: tuple[str, ...], found: list[AssemblyMode], coincident: set) -> set[tuple[int, ...]]:
+                   names: tuple[str, ...], found: list[AssemblyMode]) -> set[tuple[int, ...]]:
     """One round of :func:`modes_at_real_roots` at one root: every branch of
     ``signs_list`` at every parameter point (None: not isolated at this precision). New
-    verified modes are appended to ``found``, joint pairs that can coincide where the plan
-    is undefined are added to ``coincident``; returns the branches still undecided."""
+    verified modes are appended to ``found``; returns the branches still undecided."""
     if points is None:  # the second parameter could not be isolated: more bits
         return set(signs_list)
     still = set()
     for point in points:
         for signs in signs_list:
-            residuals, placed, pair = closure_residuals(scene, plan, point, signs, real_only=True)
-            if residuals is None and pair is not None and coincidence_possible(scene, pair):
-                coincident.add(pair)
+            residuals, placed, _ = closure_residuals(scene, plan, point, signs, real_only=True)
             verdict = residual_verdict(residuals, BRANCH_TOLERANCE)
             if verdict is False:
                 continue
@@ -282,10 +241,6 @@ def _modes_at_root(scene: Scene, plan: Plan, points: list | None, signs_list: li
             elif not any(same_mode(mode, other, scene) for other in found):
                 found.append(mode)
     return still
-
-
-def _pair_names(pairs) -> str:
-    return ", ".join(sorted("=".join(sorted(pair)) for pair in pairs))
 
 
 def _parameter_points(root: flint.arb, fiber: Fiber | None, zero: bool,

@@ -27,13 +27,9 @@ from baranov.scene import Scene
 from ..candidates import assembly_modes
 from ..coincidence import (
     NoPlanError,
-    coincidence_possible,
-    computed_base_pairs,
     modes_without_plan,
     solvable_plan,
-    with_coincident_modes,
-    with_modes_of_coincident_joints,
-    with_modes_where_undefined,
+    with_modes_where_plan_divides_by_zero,
 )
 from ..mode_clusters import merged_clusters
 from ..modes import AssemblyMode, MovableLinkageError, Solution, SolverError, signs_text
@@ -171,32 +167,13 @@ def _unsearched_cells(compiled: CompiledSystem, branches: np.ndarray, cells) -> 
 
 def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int,
                                 modes: tuple[AssemblyMode, ...]) -> tuple[AssemblyMode, ...]:
-    """``modes`` and the modes where joints the plan divides by coincide: its bases and
-    reference (:func:`~baranov.solvers.coincidence.computed_base_pairs`, parameters
-    included for coupling 2) and, for coupling 1, the parameter's own joints (sampling
-    starts above 0). With msolve and an exact scene, msolve lists them
-    (:func:`~baranov.solvers.coincidence.with_modes_from_msolve`; a continuum there raises
-    :class:`MovableLinkageError`); otherwise the scene is solved again with a plan that
-    avoids those pairs, which can itself be undefined elsewhere (issue 25: 9/N3, 9/N5
-    missed 2-4 modes so)."""
-    pairs = computed_base_pairs(scene, plan, with_parameters=plan.number_of_parameters == 2)
-    pairs |= {frozenset(p) for p in plan.parameters if coincidence_possible(scene, frozenset(p))}
-    if not pairs:
-        return modes
-
-    def again(other: Plan) -> Solution:
-        return solve_numeric(scene, other, samples, coincidences=False)
-
-    def alternative(found: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], bool]:
-        covered = True
-        if plan.number_of_parameters == 1:  # the sampled interval starts above 0
-            found, covered = with_coincident_modes(scene, plan, [frozenset(plan.parameters[0])], [0.0], found, again)
-        if bases := computed_base_pairs(scene, plan, with_parameters=plan.number_of_parameters == 2):
-            found, settled = with_modes_of_coincident_joints(scene, plan, bases, found, again)
-            covered = covered and settled
-        return found, covered
-
-    modes, _, unsettled = with_modes_where_undefined(scene, plan, pairs, modes, alternative)
+    """``modes`` and the modes where joints the plan divides by coincide
+    (:func:`~baranov.solvers.coincidence.with_modes_where_plan_divides_by_zero`: msolve
+    with an exact scene, else another plan, which can itself be undefined elsewhere —
+    issue 25: 9/N3, 9/N5 missed 2-4 modes so); a continuum there raises
+    :class:`MovableLinkageError`."""
+    modes, _, unsettled = with_modes_where_plan_divides_by_zero(
+        scene, plan, modes, lambda other: solve_numeric(scene, other, samples, coincidences=False))
     movable = [gap for gap in unsettled if "movable" in gap]
     if movable:
         raise MovableLinkageError(movable[0])
