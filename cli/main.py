@@ -105,7 +105,7 @@ def _parser() -> argparse.ArgumentParser:
     robot = commands.add_parser("robot", help="forward kinematics of a fully-parallel planar robot given as a file")
     robot.add_argument("robot", type=Path, help="robot JSON file (legs, geometry, actuators; see baranov.robots.model)")
     robot.add_argument("--actuators", help="actuator values, e.g. 1,11,13 (default: the file's)")
-    robot.add_argument("--method", default="numeric", choices=("numeric", "exact"), help="solving backend")
+    robot.add_argument("--method", default="numeric", choices=("numeric", "exact", "msolve"), help="solving backend")
     robot.add_argument("--json", action="store_true", help="the solution as baranov solve --json, with the poses")
     robot.add_argument("--plot", type=Path, help="draw every pose (the locked robot's assembly modes) into this PNG file")
     robots = commands.add_parser("robots", help="the fully-parallel planar robots: their ten families (thesis §5.2)")

@@ -12,6 +12,14 @@ Base points in the world frame, platform points in the platform's frame; ``lengt
 and ``axis`` as each leg type needs them (:mod:`.kinematics`); ``actuators`` optional
 (lengths, offsets or angles in radians, one per leg). Numbers as in scene files:
 integers, decimal strings and fractions stay exact.
+
+Any of the 21 legs, those with a prismatic passive joint included, can instead be given
+by its home configuration (:mod:`.home`): its three joints base to platform, each a
+point ``at`` (world frame, the platform frame on the world frame) and, for a prismatic
+joint, its ``direction``; its actuator value is then the displacement from home::
+
+    {"type": "RpP", "home": [{"at": [0, 0]}, {"at": [0, 0], "direction": [0, 1]},
+                             {"at": [0, 1], "direction": [-1, 1]}]}
 """
 
 from __future__ import annotations
@@ -28,13 +36,25 @@ Point = tuple[float | Fraction, float | Fraction]
 
 
 @dataclass(frozen=True)
+class HomeJoint:
+    """A joint of a leg at its home configuration: a revolute joint's centre, or a point of
+    a prismatic joint's axis and its direction (world frame)."""
+
+    at: Point
+    direction: Point | None = None
+
+
+@dataclass(frozen=True)
 class LegGeometry:
-    """Where one leg is attached and its fixed dimensions (see the module table)."""
+    """Where one leg is attached and its fixed dimensions (see the module table), or its
+    home configuration (``home``, three joints base to platform; then ``base`` and
+    ``platform`` are its first and last joints' points)."""
 
     base: Point
     platform: Point
     lengths: tuple[float | Fraction, ...] = ()
     axis: Point | None = None
+    home: tuple[HomeJoint, HomeJoint, HomeJoint] | None = None
 
 
 @dataclass(frozen=True)
@@ -54,8 +74,12 @@ def robot_from_dict(data) -> tuple[Robot, list | None]:
         raise RobotInputError(f"robot: unknown key {unknown[0]!r} (legs, actuators, comment)")
     legs, geometry = [], []
     for number, entry in enumerate(data["legs"], 1):
+        if isinstance(entry, Mapping) and "type" in entry and "home" in entry:
+            legs.append(Leg.parse(str(entry["type"])))
+            geometry.append(_home_geometry(entry, number))
+            continue
         if not isinstance(entry, Mapping) or "type" not in entry or "base" not in entry or "platform" not in entry:
-            raise RobotInputError(f'leg {number}: needs "type" (e.g. RpR), "base" and "platform" points')
+            raise RobotInputError(f'leg {number}: needs "type" (e.g. RpR), and "base" and "platform" points or "home"')
         legs.append(Leg.parse(str(entry["type"])))
         geometry.append(LegGeometry(_point(entry["base"], number, "base"), _point(entry["platform"], number, "platform"),
                                     tuple(to_number(v, f"leg {number}, lengths") for v in entry.get("lengths", ())),
@@ -64,6 +88,27 @@ def robot_from_dict(data) -> tuple[Robot, list | None]:
     if actuators is not None and (not isinstance(actuators, list) or len(actuators) != 3):
         raise RobotInputError('robot: "actuators" should be a list of three values, one per leg')
     return Robot(tuple(legs), tuple(geometry)), actuators
+
+
+def _home_geometry(entry: Mapping, number: int) -> LegGeometry:
+    """A leg entry's home configuration (``"home"``: three joints, each ``{"at": [x, y]}``
+    and a ``"direction"`` for a prismatic joint)."""
+    unknown = sorted(set(entry) - {"type", "home", "comment"})
+    if unknown:
+        raise RobotInputError(f"leg {number}: unknown key {unknown[0]!r} beside \"home\" (type, home, comment)")
+    home = entry["home"]
+    if not isinstance(home, list) or len(home) != 3 or not all(isinstance(j, Mapping) and "at" in j for j in home):
+        raise RobotInputError(f'leg {number}, home: three joints base to platform, each {{"at": [x, y]}} '
+                              '(and "direction" for a prismatic joint)')
+    joints = []
+    for k, joint in enumerate(home, 1):
+        where = f"leg {number}, joint {k}"
+        if set(joint) - {"at", "direction"}:
+            raise RobotInputError(f"{where}: unknown key {sorted(set(joint) - {'at', 'direction'})[0]!r} (at, direction)")
+        joints.append(HomeJoint(_point(joint["at"], number, f"joint {k} at"),
+                                _point(joint["direction"], number, f"joint {k} direction") if "direction" in joint
+                                else None))
+    return LegGeometry(joints[0].at, joints[2].at, home=tuple(joints))
 
 
 def load_robot(path: Path) -> tuple[Robot, list | None]:

@@ -2,6 +2,7 @@
 ten families, every count computed and compared with thesis §5.2 (Tables 5.2-5.3)."""
 
 from collections import Counter
+from fractions import Fraction
 
 import pytest
 
@@ -143,11 +144,8 @@ def test_the_3rpr_examples_through_the_robot_api():
                                       "P6": (-4, -4)}]) == (0, 0, 0), method
 
 
-def test_forward_kinematics_refuses_what_it_cannot_do_yet():
-    legs = (Leg.parse("RpP"), Leg.parse("RpR"), Leg.parse("RpR"))
+def test_forward_kinematics_bad_input():
     geometry = tuple(LegGeometry((0, 0), (0, 0)) for _ in range(3))
-    with pytest.raises(RobotInputError, match="passive joints RP: .* slider constructions"):
-        forward_kinematics(Robot(legs, geometry), [1, 2, 3])
     with pytest.raises(RobotInputError, match="three values, one per leg"):
         forward_kinematics(Robot(tuple(Leg.parse("RpR") for _ in range(3)), geometry), [1, 2])
     with pytest.raises(RobotInputError, match="actuator: 'long' is not a number"):
@@ -170,6 +168,8 @@ def test_robot_command(capsys, tmp_path):
     assert main(["robot", example, "--actuators", "2,11,13", "--plot", str(tmp_path / "poses.png")]) == 0
     assert (tmp_path / "poses.png").read_bytes().startswith(b"\x89PNG")
     capsys.readouterr()
+    assert main(["robot", str(REPO / "examples" / "robot-II-RpP-RpR-RpR.json"), "--method", "msolve"]) == 0
+    assert "robot RpP-RpR-RpR, family II, 4 poses (msolve)" in capsys.readouterr().out
     assert main(["robot", example, "--actuators", "1,x,2"]) == 2
     assert capsys.readouterr().err == "baranov: error: actuator: 'x' is not a number\n"
 
@@ -236,3 +236,135 @@ def test_table_5_1_rows(row, base, platform, conditions, degree):
         assert sum(factor.degree() for factor, _ in polynomial.factors) == degree
         if row == "mirror reflection":
             assert len(polynomial.factors) == 1 and galois_group(polynomial.monic_coefficients())[2]
+
+
+# --- every family: legs by their home configuration (families II-X: slider joints) -----
+
+from baranov.robots import HomeJoint, load_robot, robot_solution  # noqa: E402
+from baranov.robots.home import locked_leg_from_home  # noqa: E402
+
+#: Pairwise non-parallel directions of rational length (Pythagorean), so that the exact
+#: backend takes them; two parallel axes on one link make the construction "a point on
+#: two axes" singular (tests/regressions/sliders/open/robot-*-exact-zero-division.json).
+DIRECTIONS = [(1, 0), (0, 1), (3, 4), (-3, 4), (4, 3), (4, -3), (5, 12), (-5, 12), (12, 5), (12, -5), (8, 15),
+              (-8, 15), (15, 8), (15, -8)]
+
+
+def _random_home_robot(rng, legs):
+    """Random home configurations of ``legs`` (coordinates in [-30, 30]², pairwise
+    non-parallel directions of rational length, either sense): with every actuator at 0
+    the platform frame on the world frame is a pose."""
+    directions = iter(rng.permutation(len(DIRECTIONS)))
+    geometry = []
+    for leg in legs:
+        joints = []
+        for letter in leg.joints:
+            at = tuple(int(v) for v in rng.integers(-30, 31, 2))
+            if letter == "P":
+                sense = int(rng.choice((-1, 1)))
+                joints.append(HomeJoint(at, tuple(sense * c for c in DIRECTIONS[next(directions)])))
+            else:
+                joints.append(HomeJoint(at))
+        geometry.append(LegGeometry(joints[0].at, joints[2].at, home=tuple(joints)))
+    return Robot(tuple(legs), tuple(geometry))
+
+
+def _pose_values(poses):
+    return sorted((round(p.position[0], 6), round(p.position[1], 6), round(p.angle, 6)) for p in poses)
+
+
+def test_thesis_example_ii_rpp_rpr_rpr():
+    """Thesis §5.2.2: example I's 3-RPR with the platform's joint P4 a prismatic joint
+    (RPP-RPR-RPR, family II, alpha1 = 3π/4, alpha3 = 5π/4): the published roots
+    s1,6 = 32.0000, 112.2332, 141.1726, 342.8691, by every backend; six modes generic
+    (the exact characteristic polynomial's degree)."""
+    robot, actuators = load_robot(REPO / "examples" / "robot-II-RpP-RpR-RpR.json")
+    assert robot_family(robot.legs).name == "II"
+    poses = {}
+    for method in ("numeric", "exact", "msolve"):
+        solution, found = robot_solution(robot, actuators, method)
+        s16 = sorted(math.dist(m.joints["P1"], m.joints["P6"]) ** 2 for m in solution.assembly_modes)
+        assert [round(v, 4) for v in s16] == [32.0, 112.2332, 141.1726, 342.8691], method
+        poses[method] = _pose_values(found)
+        if method == "exact":
+            assert solution.characteristic_polynomial.degree == 6
+    assert poses["numeric"] == poses["exact"] == poses["msolve"]
+
+
+FAMILY_NAMES = ["I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX", "X"]
+
+
+@pytest.mark.parametrize("family", FAMILY_NAMES)
+def test_every_family_finds_the_home_pose(family):
+    """Five random robots of each family, random home configurations: with the actuators
+    at 0 the home pose is found; at most the family's generic number of poses; numeric =
+    msolve mode for mode (a numeric mode may be *coarse*, within 1e-4 not 1e-6, as on a
+    family-I robot of an earlier draw: tests/regressions/open/robot-I-RrR-RRr-pRR-coarse-root.json);
+    the exact backend = msolve where it takes the scene (a slider's frames rational in one
+    unit, docs/sliders.md)."""
+    rng = np.random.default_rng([18, FAMILY_NAMES.index(family)])
+    members = [legs for legs in all_robots() if robot_family(legs).name == family]
+    generic = next(f.assembly_modes for f in robot_families() if f.name == family)
+    for _ in range(5):
+        robot = _random_home_robot(rng, members[rng.integers(len(members))])
+        found = {}
+        for method in ("numeric", "msolve", "exact"):
+            try:
+                found[method] = robot_solution(robot, [0, 0, 0], method)
+            except ValueError as error:  # the exact method's refusal, by name
+                assert method == "exact" and "rational" in str(error), error
+        oracle = [m.joints for m in found["msolve"][0].assembly_modes]
+        assert len(oracle) <= generic
+        assert any(max(abs(v) for v in (*pose.position, pose.angle)) < 1e-12 for pose in found["msolve"][1])
+        assert any(max(abs(v) for v in (*pose.position, pose.angle)) < 1e-5 for pose in found["numeric"][1])
+        assert compare_modes([m.joints for m in found["numeric"][0].assembly_modes], oracle)[:2] == (0, 0)
+        if "exact" in found:
+            assert compare_modes([m.joints for m in found["exact"][0].assembly_modes], oracle) == (0, 0, 0)
+
+
+def test_random_actuators_numeric_equals_msolve():
+    """Random home configurations moved by random actuator values (every family): the
+    numeric poses are msolve's (the independent oracle: the Cartesian system, which needs
+    exact dimensions, so a revolute actuator stays at home)."""
+    rng = np.random.default_rng(1805)
+    robots = all_robots()
+    for _ in range(20):
+        robot = _random_home_robot(rng, robots[rng.integers(len(robots))])
+        actuators = [int(v) if leg.joints[leg.actuated] == "P" else 0
+                     for v, leg in zip(rng.integers(-4, 5, 3), robot.legs, strict=True)]
+        numeric = robot_solution(robot, actuators, "numeric")[0]
+        oracle = robot_solution(robot, actuators, "msolve")[0]
+        assert compare_modes([m.joints for m in numeric.assembly_modes],
+                             [m.joints for m in oracle.assembly_modes])[:2] == (0, 0)
+
+
+def test_a_home_leg_locks_like_the_leg_conventions():
+    """An RpR leg given by its home configuration locks to the link the RpR convention
+    gives (|AB| the actuator), exactly."""
+    home = (HomeJoint((1, 8)), HomeJoint((1, 8), (3, -4)), HomeJoint((4, 4)))  # |AB| = 5 at home
+    legs = (Leg.parse("RpR"),) * 3
+    by_home = Robot(legs, (LegGeometry((0, 0), (0, 0)), LegGeometry((4, 0), (6, 0)),
+                           LegGeometry((1, 8), (4, 4), home=home)))
+    by_convention = Robot(legs, (LegGeometry((0, 0), (0, 0)), LegGeometry((4, 0), (6, 0)),
+                                 LegGeometry((1, 8), (4, 4))))
+    moved = locked_leg_from_home(legs[2], home, 8)  # 8 along (3, -4)/5 from home: the platform moves by (24/5, -32/5)
+    assert moved.platform.point == (4, 4) and moved.placed.point == (Fraction(44, 5), Fraction(-12, 5))
+    assert locked_scene(by_home, [1, 11, 8]).known == locked_scene(by_convention, [1, 11, 13]).known
+
+
+@pytest.mark.parametrize(("leg", "message"), [
+    ({"type": "RpP", "home": [{"at": [0, 0]}, {"at": [0, 0], "direction": [0, 1]}, {"at": [0, 0]}]},
+     "leg RpP, joint 3: a prismatic joint needs a non-zero direction"),
+    ({"type": "RpR", "home": [{"at": [0, 0]}, {"at": [0, 0], "direction": [0, 1]}]},
+     "leg 1, home: three joints base to platform"),
+    ({"type": "RpR", "home": [{"at": [0, 0]}, {"at": [0, 0], "dir": [0, 1]}, {"at": [0, 1]}]},
+     "leg 1, joint 2: unknown key 'dir'"),
+    ({"type": "RrP", "base": [0, 0], "platform": [0, 0]}, "leg RrP: passive joints RP: give the leg by its home"),
+])
+def test_home_legs_bad_input(leg, message):
+    from baranov.robots import robot_from_dict
+
+    rest = [{"type": "RpR", "base": [4, 0], "platform": [6, 0]}, {"type": "RpR", "base": [1, 8], "platform": [3, 4]}]
+    with pytest.raises(RobotInputError, match=message):
+        robot, _ = robot_from_dict({"legs": [leg, *rest]})
+        forward_kinematics(robot, [1, 11, 13])
