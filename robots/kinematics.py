@@ -17,7 +17,8 @@ from typing import Literal
 from baranov.solvers import Solution, solve
 
 from .families import robot_family
-from .locked import locked_robot
+from .home import LockedLeg, Motion
+from .locked import locked_leg, locked_robot
 from .model import Robot
 
 
@@ -59,6 +60,50 @@ def robot_solution(robot: Robot, actuators, method: str = "numeric") -> tuple[So
     solution = solve(scene, method=method)
     frame = {name: (float(x), float(y)) for name, (x, y) in platform.items()}
     return solution, [_pose(mode.joints, frame, mode.parameters) for mode in solution.assembly_modes]
+
+
+def pose_residuals(robot: Robot, actuators, pose: Pose) -> tuple[float, float, float]:
+    """How far ``pose`` is from satisfying each leg at its actuator value, by forward
+    substitution into the leg alone (not the locked scene): a locked leg is one rigid link
+    and constrains the platform by one equation, by its passive joints:
+
+    * RR: the distance between its base point and the platform point, placed by the pose;
+    * RP, PR: the signed distance from its revolute joint to its prismatic joint's axis;
+    * PP: the angle between its two axes.
+
+    Each residual is the difference from the locked leg's own value, in length units
+    (radians for PP).
+
+    Cost: O(1) per leg."""
+    motion = Motion(math.cos(pose.angle), math.sin(pose.angle), pose.position)
+    return tuple(_leg_residual(locked_leg(leg, geometry, value), motion)
+                 for leg, geometry, value in zip(robot.legs, robot.geometry, actuators, strict=True))
+
+
+def _leg_residual(leg: LockedLeg, motion: Motion) -> float:
+    base, platform = leg.base, leg.platform
+    point = motion.point(platform.point)
+    if leg.squared_length is not None:
+        return math.dist(base.point, point) - math.sqrt(float(leg.squared_length))
+    if base.direction is None and platform.direction is None:
+        return math.dist(base.point, point) - math.dist(base.point, leg.placed.point)
+    if base.direction is not None and platform.direction is not None:
+        return math.remainder(_turn(base.direction, motion.vector(platform.direction))
+                              - _turn(base.direction, leg.placed.direction), 2 * math.pi)
+    if platform.direction is not None:  # RP: the base joint to the platform's axis
+        return (_height(motion.vector(platform.direction), point, base.point)
+                - _height(leg.placed.direction, leg.placed.point, base.point))
+    return _height(base.direction, base.point, point) - _height(base.direction, base.point, leg.placed.point)
+
+
+def _height(direction, on_axis, point) -> float:
+    """The signed distance of ``point`` to the line through ``on_axis`` along ``direction``."""
+    (ux, uy), vx, vy = direction, point[0] - on_axis[0], point[1] - on_axis[1]
+    return float(ux * vy - uy * vx) / math.hypot(ux, uy)
+
+
+def _turn(first, second) -> float:
+    return math.atan2(float(first[0] * second[1] - first[1] * second[0]), float(first[0] * second[0] + first[1] * second[1]))
 
 
 def _pose(joints: dict, frame: dict, parameters: dict) -> Pose:

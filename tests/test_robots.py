@@ -168,7 +168,7 @@ def test_robot_command(capsys, tmp_path):
     assert main(["robot", example, "--actuators", "2,11,13", "--plot", str(tmp_path / "poses.png")]) == 0
     assert (tmp_path / "poses.png").read_bytes().startswith(b"\x89PNG")
     capsys.readouterr()
-    assert main(["robot", str(REPO / "examples" / "robot-II-RpP-RpR-RpR.json"), "--method", "msolve"]) == 0
+    assert main(["robot", str(REPO / "examples" / "robot-II-RPP-RPR-RPR.json"), "--method", "msolve"]) == 0
     assert "robot RpP-RpR-RpR, family II, 4 poses (msolve)" in capsys.readouterr().out
     assert main(["robot", example, "--actuators", "1,x,2"]) == 2
     assert capsys.readouterr().err == "baranov: error: actuator: 'x' is not a number\n"
@@ -240,7 +240,7 @@ def test_table_5_1_rows(row, base, platform, conditions, degree):
 
 # --- every family: legs by their home configuration (families II-X: slider joints) -----
 
-from baranov.robots import HomeJoint, load_robot, robot_solution  # noqa: E402
+from baranov.robots import HomeJoint, load_robot, pose_residuals, robot_solution  # noqa: E402
 from baranov.robots.home import locked_leg_from_home  # noqa: E402
 
 #: Pairwise non-parallel directions of rational length (Pythagorean), so that the exact
@@ -278,11 +278,12 @@ def test_thesis_example_ii_rpp_rpr_rpr():
     (RPP-RPR-RPR, family II, alpha1 = 3π/4, alpha3 = 5π/4): the published roots
     s1,6 = 32.0000, 112.2332, 141.1726, 342.8691, by every backend; six modes generic
     (the exact characteristic polynomial's degree)."""
-    robot, actuators = load_robot(REPO / "examples" / "robot-II-RpP-RpR-RpR.json")
+    robot, actuators = load_robot(REPO / "examples" / "robot-II-RPP-RPR-RPR.json")
     assert robot_family(robot.legs).name == "II"
     poses = {}
     for method in ("numeric", "exact", "msolve"):
         solution, found = robot_solution(robot, actuators, method)
+        assert all(max(map(abs, pose_residuals(robot, actuators, pose))) < 1e-9 for pose in found)
         s16 = sorted(math.dist(m.joints["P1"], m.joints["P6"]) ** 2 for m in solution.assembly_modes)
         assert [round(v, 4) for v in s16] == [32.0, 112.2332, 141.1726, 342.8691], method
         poses[method] = _pose_values(found)
@@ -292,6 +293,36 @@ def test_thesis_example_ii_rpp_rpr_rpr():
 
 
 FAMILY_NAMES = ["I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX", "X"]
+
+
+def _distances_to_p6_axis(poses, axis=(1, 0), point=(3, 4)):
+    """For each pose, P1's oriented distance (cross(u, P1 − q), u the axis direction, q
+    its point, world frame; P1 at the origin) to P6's axis, fixed in the platform frame."""
+    values = []
+    for pose in poses:
+        c, s = math.cos(pose.angle), math.sin(pose.angle)
+        u = (c * axis[0] - s * axis[1], s * axis[0] + c * axis[1])
+        q = (pose.position[0] + c * point[0] - s * point[1], pose.position[1] + s * point[0] + c * point[1])
+        values.append(u[0] * -q[1] - u[1] * -q[0])
+    return sorted(round(v, 4) for v in values)
+
+
+@pytest.mark.parametrize(("name", "family", "published"), [
+    ("robot-IV-RPP-RPP-RPR", "IV", [3.9529, 4.0, 11.0, 16.2235]),
+    ("robot-VIII-3RPP", "VIII", [4.0, 4.1681]),
+])
+def test_thesis_examples_iv_and_viii(name, family, published):
+    """Thesis §5.2.2: P6, then P5 too, made prismatic (RPP-RPP-RPR, family IV; 3-RPP,
+    family VIII, every platform joint a slider): the published roots t, P1's oriented
+    distance to P6's axis, by every backend. Ours are their negatives: with the axis
+    sense the published angles α4, α5 fix, P1 lies on the negative side of it
+    (docs/sliders.md, "Robots")."""
+    robot, actuators = load_robot(REPO / "examples" / f"{name}.json")
+    assert robot_family(robot.legs).name == family
+    for method in ("numeric", "exact", "msolve"):
+        poses = robot_solution(robot, actuators, method)[1]
+        assert _distances_to_p6_axis(poses) == [-t for t in published[::-1]]
+        assert all(max(map(abs, pose_residuals(robot, actuators, pose))) < 1e-9 for pose in poses)
 
 
 @pytest.mark.parametrize("family", FAMILY_NAMES)
@@ -315,6 +346,7 @@ def test_every_family_finds_the_home_pose(family):
                 assert method == "exact" and "rational" in str(error), error
         oracle = [m.joints for m in found["msolve"][0].assembly_modes]
         assert len(oracle) <= generic
+        assert all(max(map(abs, pose_residuals(robot, [0, 0, 0], pose))) < 1e-9 for pose in found["msolve"][1])
         assert any(max(abs(v) for v in (*pose.position, pose.angle)) < 1e-12 for pose in found["msolve"][1])
         assert any(max(abs(v) for v in (*pose.position, pose.angle)) < 1e-5 for pose in found["numeric"][1])
         assert compare_modes([m.joints for m in found["numeric"][0].assembly_modes], oracle)[:2] == (0, 0)
@@ -368,3 +400,12 @@ def test_home_legs_bad_input(leg, message):
     with pytest.raises(RobotInputError, match=message):
         robot, _ = robot_from_dict({"legs": [leg, *rest]})
         forward_kinematics(robot, [1, 11, 13])
+
+
+def test_pose_residuals_see_a_wrong_pose():
+    """Forward substitution tells a pose from a nearby one: each leg's residual moves."""
+    robot, actuators = load_robot(REPO / "examples" / "robot-VIII-3RPP.json")
+    pose = robot_solution(robot, actuators, "msolve")[1][0]
+    assert max(map(abs, pose_residuals(robot, actuators, pose))) < 1e-12
+    turned = type(pose)(pose.position, pose.angle + 1e-6, pose.joints, pose.parameters)
+    assert all(abs(r) > 1e-8 for r in pose_residuals(robot, actuators, turned))  # three RP legs: every axis turns
