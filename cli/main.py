@@ -106,6 +106,8 @@ def _parser() -> argparse.ArgumentParser:
     robot.add_argument("robot", type=Path, help="robot JSON file (legs, geometry, actuators; see baranov.robots.model)")
     robot.add_argument("--actuators", help="actuator values, e.g. 1,11,13 (default: the file's)")
     robot.add_argument("--method", default="numeric", choices=("numeric", "exact", "msolve"), help="solving backend")
+    robot.add_argument("--parameter", help="solve in a plan with this parameter pair, e.g. P1,P6 (thesis §5.2.2); "
+                       "default: the best plan")
     robot.add_argument("--json", action="store_true", help="the solution as baranov solve --json, with the poses")
     robot.add_argument("--plot", type=Path, help="draw every pose (the locked robot's assembly modes) into this PNG file")
     robots = commands.add_parser("robots", help="the fully-parallel planar robots: their ten families (thesis §5.2)")
@@ -127,7 +129,14 @@ def run_robot(args: argparse.Namespace) -> int:
         raise UsageError(f"{args.robot}: no actuator values: give --actuators a,b,c or \"actuators\" in the file")
     if args.plot is not None and not args.plot.parent.is_dir():
         raise UsageError(f"--plot {args.plot}: folder {args.plot.parent} does not exist")
-    solution, poses = robot_solution(robot, actuators, args.method)
+    parameter = None
+    if args.parameter is not None:
+        parameter = tuple(name.strip() for name in args.parameter.split(","))
+        if len(parameter) != 2 or not all(parameter):
+            raise UsageError(f"--parameter {args.parameter}: two joints, e.g. P1,P6")
+        if args.method == "msolve":
+            raise UsageError("--parameter: msolve describes its modes in the best plan; use --method numeric or exact")
+    solution, poses = robot_solution(robot, actuators, args.method, parameter)
     family = robot_family(robot.legs).name
     if args.plot is not None:
         from baranov.catalog.files import write_atomically
@@ -142,9 +151,14 @@ def run_robot(args: argparse.Namespace) -> int:
     legs = "-".join(str(leg) for leg in robot.legs)
     print(f"{args.robot}: robot {legs}, family {family}, {len(poses)} pose{'s' if len(poses) != 1 else ''} "
           f"({args.method})")
-    print("pose  x  y  angle (degrees)")
+    if not poses:
+        print("no pose: the legs cannot all reach the platform with these actuator values (the locked robot has "
+              "no real assembly mode)")
+        return 0
+    print("  ".join(["pose  x  y  angle (degrees)", *solution.parameters]))
     for number, pose in enumerate(poses, 1):
-        print(f"{number:4d}  {pose.position[0]:.10g}  {pose.position[1]:.10g}  {math.degrees(pose.angle):.10g}")
+        print("  ".join([f"{number:4d}  {pose.position[0]:.10g}  {pose.position[1]:.10g}  {math.degrees(pose.angle):.10g}",
+                         *(f"{pose.parameters[name]:.10g}" for name in solution.parameters)]))
     return 0
 
 

@@ -56,11 +56,13 @@ def slider_plan_obstacle(plan: Plan, sliders: Collection[str]) -> str | None:
     return None
 
 
-def slider_plan(chain: KinematicChain, sliders: Collection[str], count: int = ALTERNATIVE_PLANS) -> Plan:
+def slider_plan(chain: KinematicChain, sliders: Collection[str], count: int = ALTERNATIVE_PLANS,
+                parameters: Collection[tuple[str, str]] | None = None) -> Plan:
     """The best plan of ``chain`` (with ``sliders`` taken as revolute joints), among its
     ``count`` best, that the slider constructions can run (:func:`slider_plan_obstacle`);
     raises :class:`SliderPlanError` naming the best plan's obstacle if none can. The best
-    plan itself when there are no sliders. Cost: that of
+    plan itself when there are no sliders. ``parameters``: only plans whose parameters are
+    among these pairs (thesis §5.2.2 works in s1,6). Cost: that of
     :func:`~baranov.planner.bilateration_plans` with ``count`` plans.
 
     >>> from baranov.literature.trusses import thesis_truss
@@ -69,7 +71,9 @@ def slider_plan(chain: KinematicChain, sliders: Collection[str], count: int = AL
     >>> slider_plan(truss, ["P1"]) == best_plan(truss)  # a slider in the reference: the frame on its axis
     True
     """
-    plans = bilateration_plans(chain, count if sliders else 1)
+    plans = bilateration_plans(chain, count if sliders else 1, parameters=parameters)
+    if not plans:
+        raise SliderPlanError(f"no plan of the chain has its parameters among {sorted(parameters or ())}")
     for plan in plans:
         if slider_plan_obstacle(plan, sliders) is None:
             return plan

@@ -14,10 +14,12 @@ import math
 from dataclasses import dataclass
 from typing import Literal
 
+from baranov.planner import SliderPlanError, slider_plan
 from baranov.solvers import Solution, solve
 
 from .families import robot_family
 from .home import LockedLeg, Motion
+from .legs import RobotInputError
 from .locked import locked_leg, locked_robot
 from .model import Robot
 
@@ -52,12 +54,23 @@ def forward_kinematics(robot: Robot, actuators, method: Literal["numeric", "exac
     return robot_solution(robot, actuators, method)[1]
 
 
-def robot_solution(robot: Robot, actuators, method: str = "numeric") -> tuple[Solution, list[Pose]]:
+def robot_solution(robot: Robot, actuators, method: str = "numeric",
+                   parameter: tuple[str, str] | None = None) -> tuple[Solution, list[Pose]]:
     """The backend's solution of the locked robot (plan, parameters, for the exact method
-    the characteristic polynomial) and the pose of each of its assembly modes."""
+    the characteristic polynomial) and the pose of each of its assembly modes.
+    ``parameter``: solve (numeric, exact) in a plan with this parameter, e.g. ``("P1",
+    "P6")`` as thesis §5.2.2 does (s1,6, or t1,6 where P6 is a slider), instead of the
+    best plan; msolve describes its modes in the best plan."""
     robot_family(robot.legs)  # raises for a leg string no robot has
     scene, platform = locked_robot(robot, actuators)
-    solution = solve(scene, method=method)
+    if parameter is None or method == "msolve":
+        solution = solve(scene, method=method)
+    else:
+        try:
+            plan = slider_plan(scene.chain, [slider.joint for slider in scene.sliders], parameters=[parameter])
+        except SliderPlanError as error:
+            raise RobotInputError(f"parameter {','.join(parameter)}: {error}") from None
+        solution = solve(scene, method=method, plan=plan)
     frame = {name: (float(x), float(y)) for name, (x, y) in platform.items()}
     return solution, [_pose(mode.joints, frame, mode.parameters) for mode in solution.assembly_modes]
 

@@ -38,8 +38,8 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates,
     """The verified, distinct assembly modes among ``candidates`` (parameter values,
     branch), sorted by parameters then signs. All candidates are placed, verified and
     polished together (a coupling-2 solve can bring 10⁴ candidates: one at a time, they
-    took 41 of 62 s on an issue-25 instance of 9/N18); the first candidate of each mode
-    is kept. Cost O(K · J) array work for K candidates of J joints, and O(K · n · J) for
+    took 41 of 62 s on an issue-25 instance of 9/N18); the candidate of each mode with the
+    smallest residual is kept. Cost O(K · J) array work for K candidates of J joints, and O(K · n · J) for
     the duplicate check against the n modes.
 
     ``configurations`` ``(joints, points (K', J) complex, values, branches)``: candidates
@@ -75,6 +75,9 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates,
     kept = np.flatnonzero(residual < RESIDUAL_TOLERANCE)
     if len(kept) == 0:
         return ()
+    # the best placed candidate of each mode first: a shallow root's minimum of |f| lay
+    # 7e-6 beside Brent's root and, listed first, had stood for the mode (issue 18)
+    kept = kept[np.argsort(residual[kept], kind="stable")]
     kept = kept[first_of_each_mode(points[kept], scene)]
     modes = [flattened_mode(scene, compiled, mode_of(compiled, joints, values[k], branches[k], points[k], residual[k]))
              for k in kept]

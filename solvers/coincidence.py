@@ -21,14 +21,19 @@ chooses the plan accordingly.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable
 
+import numpy as np
+
+from baranov.closure import sign_branches
 from baranov.planner import ALTERNATIVE_PLANS, Plan, SliderPlanError, best_plan, plan_avoiding, slider_plan
 from baranov.scene import Scene
 
 from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
 from .msolve import find_msolve, msolve_modes
 from .msolve_backend import described_mode, verified_modes
+from .placement import compile_scene
 from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residual, same_mode, sorted_modes
 
 
@@ -57,9 +62,13 @@ def solvable_plan(scene: Scene) -> Plan:
     has that property (:class:`MovableLinkageError` if msolve finds the linkage moves)."""
     if scene.sliders:
         try:
-            return slider_plan(scene.chain, [slider.joint for slider in scene.sliders])
+            plan = slider_plan(scene.chain, [slider.joint for slider in scene.sliders])
         except SliderPlanError as error:
             raise NoPlanError(str(error)) from None
+        undefined = slider_plan_undefined(scene, plan)
+        if undefined is not None:
+            raise NoPlanError(f"sliders {', '.join(s.joint for s in scene.sliders)}: the slider plan {undefined}")
+        return plan
     plan = plan_avoiding(scene.chain, scene.coincident_pairs)
     if plan is None:
         names = ", ".join(sorted(",".join(sorted(pair)) for pair in scene.coincident_pairs))
@@ -71,6 +80,45 @@ def solvable_plan(scene: Scene) -> Plan:
                                       "(a positive-dimensional solution set, over the complex numbers)")
         raise NoPlanError(message)
     return plan
+
+
+#: Samples per parameter of the probe of :func:`slider_plan_undefined`.
+PROBES = 32
+#: A closure condition whose median size over the probe exceeds this divides by a
+#: rounding-level 0 (issue 18's degenerate random robots: medians 1.5e16 to 3.2e16; the
+#: slider regressions and examples: 0.45 to 10.7).
+DIVIDED_BY_ROUNDING = 1e12
+
+
+def slider_plan_undefined(scene: Scene, plan: Plan) -> str | None:
+    """Why a slider chain's ``plan`` is undefined for the scene's dimensions, or None: its
+    constructions divide by an exact 0 (two joints of a slider's link at one point, an
+    axis through them undefined), or — where msolve can list the modes instead (an exact
+    scene) — the closure condition is undefined at every one of PROBES samples per
+    parameter over its searched range on every branch (two parallel axes fixed in one
+    link, "a point on two axes" dividing by 0), or it divides by a rounding-level 0 at most
+    samples (DIVIDED_BY_ROUNDING). Found by issue 18's random robots: the
+    exact backend raised ZeroDivisionError and the numeric one found 0 of msolve's modes.
+    Cost: one vectorised evaluation of PROBES^p points × 2^m branches."""
+    try:
+        compiled = compile_scene(scene, plan)
+        upper = [compiled.search_bound(n, scene.largest_distance(u, v) ** 2) for n, (u, v) in enumerate(plan.parameters)]
+        axes = [np.linspace(0, math.sqrt(bound), PROBES + 1)[1:] ** 2 for bound in upper]
+        points = np.stack([grid.ravel() for grid in np.meshgrid(*axes, indexing="ij")], axis=-1) if axes else np.zeros((1, 0))
+        with np.errstate(all="ignore"):
+            residuals = compiled.residuals(points, sign_branches(len(plan.free_sign_triangles)))
+    except ZeroDivisionError:
+        return "divides by 0 for these dimensions (two joints of a slider's link at one point?)"
+    if find_msolve() is None or not scene.exact:
+        return None
+    finite = np.abs(residuals[np.isfinite(residuals)])
+    if finite.size == 0:
+        return (f"is undefined at all {len(points)} samples of its parameters on every branch (two parallel axes "
+                "fixed in one link?)")
+    if np.median(finite) > DIVIDED_BY_ROUNDING:
+        return (f"divides by a rounding-level 0 at most of its {len(points)} probe points (its closure "
+                f"condition's median size {np.median(finite):.1e}; two parallel axes?)")
+    return None
 
 
 #: What a solution found without a plan says of its modes.
@@ -233,8 +281,22 @@ def with_modes_where_undefined(scene: Scene, plan: Plan, pairs: set[frozenset[st
     return found, by_msolve, unsettled or unexamined_coincidences(pairs)
 
 
+def division_pairs(scene: Scene, plan: Plan) -> tuple[set[frozenset[str]], set[frozenset[str]]]:
+    """The joint pairs ``plan`` divides by that can coincide: its bases and reference whose
+    distance is not known (:func:`computed_base_pairs`; parameters included for coupling
+    2), and its parameters' own joints. A slider joint's pairs are left out: a step with a
+    slider is a limit construction, which divides by no squared distance of it
+    (closure/sliders.py). O(steps · known distances)."""
+    sliders = {slider.joint for slider in scene.sliders}
+    bases = {pair for pair in computed_base_pairs(scene, plan, with_parameters=plan.number_of_parameters == 2)
+             if not pair & sliders}
+    parameters = {frozenset(pair) for pair in plan.parameters
+                  if not set(pair) & sliders and coincidence_possible(scene, frozenset(pair))}
+    return bases, parameters
+
+
 def with_modes_where_plan_divides_by_zero(scene: Scene, plan: Plan, modes: tuple[AssemblyMode, ...],
-                                          solver: Callable[[Plan], Solution]
+                                          solver: Callable[[Plan], Solution] | None
                                           ) -> tuple[tuple[AssemblyMode, ...], bool, tuple[str, ...]]:
     """``modes`` and the modes where two joints that ``plan`` divides by coincide: its
     bases and reference whose distance is not known (:func:`computed_base_pairs`), and its
@@ -247,15 +309,17 @@ def with_modes_where_plan_divides_by_zero(scene: Scene, plan: Plan, modes: tuple
     the factor s altogether (issue 25's 7/N2, small-box 30 of seed 36: four of its eight
     modes have P1 = P8, s1,8 = 0, and the exact backend had certified the other four).
 
-    Listed by msolve where it can run, otherwise by ``solver`` (:func:`with_modes_where_undefined`);
+    Listed by msolve where it can run, otherwise by ``solver`` (:func:`with_modes_where_undefined`;
+    None: no other plan, as for a slider chain, whose other plans are not slider plans);
     returns the modes, whether msolve listed them and what neither settled."""
     two = plan.number_of_parameters == 2
-    bases = computed_base_pairs(scene, plan, with_parameters=two)
-    parameters = {frozenset(pair) for pair in plan.parameters if coincidence_possible(scene, frozenset(pair))}
+    bases, parameters = division_pairs(scene, plan)
     if not bases | parameters:
         return modes, False, ()
 
     def alternative(found: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], bool]:
+        if solver is None:
+            return found, False
         if two:  # along curves of the plane, not at one value (9/N27: v = 0)
             return with_modes_of_coincident_joints(scene, plan, parameters | bases, found, solver)
         covered = True

@@ -235,3 +235,23 @@ def test_exact_certificate_names_a_coincidence_nothing_settles(monkeypatch):
     solution = solve(load_scene(REGRESSIONS / f"{PARAMETER_JOINTS_COINCIDE[0]}.json"), method="exact")
     assert not solution.certificate.complete
     assert any("P1=P8" in gap and "not examined" in gap for gap in solution.certificate.gaps)
+
+
+def test_a_shallow_simple_root_is_placed_to_rounding():
+    """tests/regressions/robot-I-shallow-root.json (a family-I robot of issue 18's random
+    draws): the simple root s1,5 = 1044 where f' = 6.7e-5. A minimum of |f| below 1e-7,
+    7e-6 beside it, had stood for the mode (residual 4.8e-10, the pose 1.4e-6 off)."""
+    modes = solve(load_scene(REGRESSIONS / "robot-I-shallow-root.json")).assembly_modes
+    values = [mode.parameters["s1,5"] for mode in modes]
+    assert len(values) == 2 and abs(values[1] - 1044) < 1e-9 and abs(values[0] - 1041.7013798524135) < 1e-9
+    assert all(mode.max_residual < 1e-13 for mode in modes)
+
+
+@needs_msolve
+def test_a_tangential_root_beside_a_crossing_is_found():
+    """tests/regressions/7-N2-tangential-beside-crossing.json (seed 37): on branch -++ f
+    touches 0 at s1,8 = 5 and crosses it at 5.0012146; the fine re-sampling's minimum at 5
+    had been skipped (its parabola's vertex, 1.1e-14, above half the middle sample)."""
+    scene = load_scene(REGRESSIONS / "7-N2-tangential-beside-crossing.json")
+    found = [mode.joints for mode in solve(scene).assembly_modes]
+    assert compare_modes(found, list(msolve_modes(scene).configurations)) == (0, 0, 0)

@@ -4,6 +4,7 @@ ten families, every count computed and compared with thesis §5.2 (Tables 5.2-5.
 from collections import Counter
 from fractions import Fraction
 
+import flint
 import pytest
 
 from baranov.cli.main import main
@@ -144,6 +145,39 @@ def test_the_3rpr_examples_through_the_robot_api():
                                       "P6": (-4, -4)}]) == (0, 0, 0), method
 
 
+SQRT3, SQRT10 = math.sqrt(3), math.sqrt(10)
+#: Thesis §5.1.3's six 3-RPR examples as robots: base and platform points (placed to give
+#: examples/3-RPR-*.json's squared distances and orientations) and the leg lengths.
+THESIS_3RPR = {
+    "I": ([(0, 0), (4, 0), (1, 8)], [(0, 0), (6, 0), (3, 4)], [1, 11, 13]),
+    "II": ([(0, 0), (4, 0), (0, 3)], [(0, 0), (4, 0), (2, 3)], [4, 4, 2]),
+    "III": ([(0, 0), (5, 0), (0, 0)], [(0, 0), (1, 3), (3, 1)], [SQRT10, 5, 6]),
+    "IV": ([(0, 0), (1, 0), (2, 0)], [(0, 0), (3, 0), (2, 0)], [1, 2, 2]),
+    "V": ([(0, 0), (40, 0), (10 * SQRT3, 10)], [(0, 0), (20, 0), (5 * SQRT3, 5)], [2, 44, 21]),
+    "VI": ([(0, 0), (1, 0), (0, 1)], [(0, 0), (1, 0), (0, -1)], [2, "1/2", 1]),
+}
+
+
+@pytest.mark.parametrize("name", THESIS_3RPR)
+def test_the_six_3rpr_examples_through_the_robot_api(name):
+    """Thesis §5.1.3's examples I-VI built as robots lock to the scenes of
+    examples/3-RPR-*.json (the same squared distances, exactly where the example's are
+    exact) and give the same modes (parameter values and signs) by both backends (the
+    numeric one only where a leg length is irrational: III, V)."""
+    base, platform, lengths = THESIS_3RPR[name]
+    legs = tuple(Leg.parse("RpR") for _ in range(3))
+    robot = Robot(legs, tuple(LegGeometry(b, p) for b, p in zip(base, platform, strict=True)))
+    scene, example = locked_scene(robot, lengths), load_scene(REPO / "examples" / f"3-RPR-{name}.json")
+    assert scene.known.keys() == example.known.keys()
+    assert all(abs(float(scene.known[pair]) - float(value)) < 1e-9 * (1 + float(value))
+               for pair, value in example.known.items())
+    assert scene.known == example.known or not scene.exact
+    for method in ("numeric", "exact") if scene.exact and example.exact else ("numeric",):
+        ours, theirs = (sorted((tuple(round(v, 6) for v in m.parameters.values()), m.signs)
+                               for m in solve(s, method=method).assembly_modes) for s in (scene, example))
+        assert ours == theirs and ours, method
+
+
 def test_forward_kinematics_bad_input():
     geometry = tuple(LegGeometry((0, 0), (0, 0)) for _ in range(3))
     with pytest.raises(RobotInputError, match="three values, one per leg"):
@@ -157,7 +191,8 @@ def test_robot_command(capsys, tmp_path):
     bad input is one line and exit code 2."""
     example = str(REPO / "examples" / "robot-I-3RPR.json")
     assert main(["robot", example]) == 0
-    assert "robot RpR-RpR-RpR, family I, 1 pose (numeric)\npose  x  y  angle (degrees)\n   1  -1  " in capsys.readouterr().out
+    assert "robot RpR-RpR-RpR, family I, 1 pose (numeric)\npose  x  y  angle (degrees)  s1,5\n   1  -1  " in \
+        capsys.readouterr().out
     lines = {}
     for method in ("numeric", "exact"):
         assert main(["robot", example, "--actuators", "2,11,13", "--method", method]) == 0
@@ -170,6 +205,14 @@ def test_robot_command(capsys, tmp_path):
     capsys.readouterr()
     assert main(["robot", str(REPO / "examples" / "robot-II-RPP-RPR-RPR.json"), "--method", "msolve"]) == 0
     assert "robot RpP-RpR-RpR, family II, 4 poses (msolve)" in capsys.readouterr().out
+    assert main(["robot", str(REPO / "examples" / "robot-IV-RPP-RPP-RPR.json"), "--parameter", "P1,P6"]) == 0
+    assert "pose  x  y  angle (degrees)  t1,6\n" in capsys.readouterr().out
+    for bad, message in [("P1", "--parameter P1: two joints, e.g. P1,P6"), ("P1,P9", "joint P9: no such joint")]:
+        assert main(["robot", example, "--parameter", bad]) == 2
+        assert message in capsys.readouterr().err
+    assert main(["robot", example, "--actuators", "1,1,1"]) == 0
+    assert capsys.readouterr().out.endswith("0 poses (numeric)\nno pose: the legs cannot all reach the platform with "
+                                            "these actuator values (the locked robot has no real assembly mode)\n")
     assert main(["robot", example, "--actuators", "1,x,2"]) == 2
     assert capsys.readouterr().err == "baranov: error: actuator: 'x' is not a number\n"
 
@@ -287,9 +330,45 @@ def test_thesis_example_ii_rpp_rpr_rpr():
         s16 = sorted(math.dist(m.joints["P1"], m.joints["P6"]) ** 2 for m in solution.assembly_modes)
         assert [round(v, 4) for v in s16] == [32.0, 112.2332, 141.1726, 342.8691], method
         poses[method] = _pose_values(found)
-        if method == "exact":
-            assert solution.characteristic_polynomial.degree == 6
+        if method == "exact":  # certified: P1 = P5 (s1,5 = 0, the factor s1,5) cannot happen here
+            assert solution.characteristic_polynomial.degree == 6 and solution.certificate.complete
     assert poses["numeric"] == poses["exact"] == poses["msolve"]
+
+
+def _to_printed_digits(value, printed: str) -> bool:
+    """Whether ``value`` rounds to ``printed`` ("-293.1486", "-3.5587e6") at its last digit."""
+    mantissa, _, exponent = printed.partition("e")
+    decimals = len(mantissa.partition(".")[2])
+    return abs(value - float(printed)) <= 0.5 * 10.0 ** (int(exponent or 0) - decimals) * (1 + 1e-9)
+
+
+#: Thesis §5.2.2's characteristic polynomials in s1,6 (t1,6 for family IV), monic, as printed.
+GAMMA_S16 = {
+    "robot-I-3RPR": ["1", "-293.1486", "54084.9111", "-3.5587e6", "1.0004e8", "-1.2240e9", "5.3843e9"],
+    "robot-II-RPP-RPR-RPR": ["1", "-672.0638", "1.4983e5", "-1.4372e7", "6.1729e8", "-1.2023e10", "8.7934e10"],
+    "robot-IV-RPP-RPP-RPR": ["1", "-35.1765", "410.7778", "-1849.7255", "2821.7516"],
+}
+
+
+@pytest.mark.parametrize("name", GAMMA_S16)
+def test_thesis_characteristic_polynomials_in_s16(name):
+    """Thesis §5.2.2 derives every family's polynomial from the 3-RPR's Γ(s1,6): solved in
+    a plan with parameter P1,P6 (``parameter=("P1", "P6")``, `baranov robot --parameter
+    P1,P6`) the exact backend gives the printed coefficients to their last digit; for
+    family IV in t1,6 = −t (our sign of t, docs/sliders.md, Robots), odd coefficients
+    negated. The 3-RPR's has the double root 32 (T = 49 in §5.1.3.1)."""
+    robot, actuators = load_robot(REPO / "examples" / f"{name}.json")
+    solution, _ = robot_solution(robot, actuators, "exact", parameter=("P1", "P6"))
+    polynomial = solution.characteristic_polynomial
+    coefficients = [float(c) for c in polynomial.monic_coefficients()]
+    if polynomial.variable == "t1,6":
+        coefficients = [c * (-1) ** k for k, c in enumerate(coefficients)]
+    printed = GAMMA_S16[name]
+    assert len(coefficients) == len(printed)
+    assert all(_to_printed_digits(c, p) for c, p in zip(coefficients, printed, strict=True)), coefficients
+    assert solution.certificate.complete
+    if name == "robot-I-3RPR":
+        assert (flint.fmpz_poly([-32, 1]), 2) in polynomial.factors
 
 
 FAMILY_NAMES = ["I", "II", "III", "IV", "V", "VI", "VII", "VIII", "IX", "X"]
@@ -320,8 +399,9 @@ def test_thesis_examples_iv_and_viii(name, family, published):
     robot, actuators = load_robot(REPO / "examples" / f"{name}.json")
     assert robot_family(robot.legs).name == family
     for method in ("numeric", "exact", "msolve"):
-        poses = robot_solution(robot, actuators, method)[1]
+        solution, poses = robot_solution(robot, actuators, method)
         assert _distances_to_p6_axis(poses) == [-t for t in published[::-1]]
+        assert method != "exact" or solution.certificate.complete
         assert all(max(map(abs, pose_residuals(robot, actuators, pose))) < 1e-9 for pose in poses)
 
 

@@ -434,3 +434,23 @@ def test_a_slider_chain_with_two_unbounded_parameters_is_solved():
     scene = scene_from_dict(data)
     found = [mode.joints for mode in solve(scene).assembly_modes]
     assert compare_modes(found, list(msolve_modes(scene).configurations))[:2] == (0, 0)
+
+
+ROBOT_REGRESSIONS = sorted((Path(__file__).parent / "regressions" / "sliders").glob("robot-*.json"))
+
+
+@pytest.mark.parametrize("path", ROBOT_REGRESSIONS, ids=lambda p: p.stem)
+def test_degenerate_slider_plans_fall_back_to_msolve(path):
+    """Issue 18's random robots with small integer coordinates, locked: two joints of a
+    slider's link at one point, or two parallel axes fixed in one link, make the slider
+    plan divide by 0 (the exact backend raised ZeroDivisionError, the numeric one lost
+    modes in rounding noise); the plan's probe now says so and both backends list
+    msolve's modes, mode for mode."""
+    if find_msolve() is None:
+        pytest.skip("msolve binary not installed (make installs it)")
+    scene = load_scene(path)
+    oracle = list(msolve_modes(scene).configurations)
+    assert oracle
+    for method in ("numeric", "exact"):
+        found = [mode.joints for mode in solve(scene, method=method).assembly_modes]
+        assert compare_modes(found, oracle) == (0, 0, 0), method

@@ -44,7 +44,7 @@ from ..coincidence import (
     MSOLVE_NOTE,
     NoPlanError,
     coincidence_possible,
-    computed_base_pairs,
+    division_pairs,
     modes_without_plan,
     solvable_plan,
     unexamined_coincidences,
@@ -91,7 +91,6 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     polynomial: CharacteristicPolynomial | None = None
     gaps: tuple[str, ...] = ()
     notes: list[str] = []  # the Monte Carlo steps taken
-    coincidences = coincidences and not scene.sliders  # the other plans are not slider plans yet
     if plan.number_of_parameters == 0:
         modes = assembly_modes(scene, compile_scene(scene, plan), [(np.zeros(0), branch) for branch in branches])
     elif plan.number_of_parameters == 1:
@@ -108,14 +107,15 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     else:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
+    zero_settled = False  # the parameter's joints coinciding (s = 0) examined, or impossible
     if plan.number_of_parameters and coincidences:
-        modes, by_msolve, unsettled = with_modes_where_plan_divides_by_zero(
-            scene, plan, modes, lambda other: solve_exact(scene, other, coincidences=False))
+        solver = None if scene.sliders else (lambda other: solve_exact(scene, other, coincidences=False))
+        modes, by_msolve, unsettled = with_modes_where_plan_divides_by_zero(scene, plan, modes, solver)
         gaps += unsettled
         notes += [MSOLVE_NOTE] if by_msolve else []
-    elif plan.number_of_parameters and not scene.sliders:
-        gaps += unexamined_coincidences(computed_base_pairs(scene, plan, with_parameters=True) | {
-            frozenset(pair) for pair in plan.parameters if coincidence_possible(scene, frozenset(pair))})
+        zero_settled = not unsettled
+    elif plan.number_of_parameters:
+        gaps += unexamined_coincidences(set().union(*division_pairs(scene, plan)))
     if polynomial is not None and polynomial.vanishing:
         # issue 25's 9/N20 (msolve: positive-dimensional; numeric: the condition vanishes along
         # s8,10 in (0, 68)): the norm is 0 and only the contents divided out (powers of the
@@ -134,7 +134,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         gaps += ("the characteristic polynomial has no factor but powers of the parameter: a degenerate "
                  "instance (it may move) that this plan cannot decide",)
     if polynomial is not None:
-        gaps += _undecided_factors(plan, polynomial)
+        gaps += _undecided_factors(scene, plan, polynomial, zero_settled)
     return ExactSolution.of_plan("exact", plan, modes, [slider.joint for slider in scene.sliders],
                                  characteristic_polynomial=polynomial,
                                  certificate=Certificate(not gaps, "; ".join(notes) or None, gaps))
@@ -144,15 +144,24 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
 LIFTING_NOTE = "the polynomial is lifted from its images modulo random 62-bit primes"
 
 
-def _undecided_factors(plan: Plan, polynomial: CharacteristicPolynomial) -> tuple[str, ...]:
+def _undecided_factors(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
+                       zero_settled: bool) -> tuple[str, ...]:
     """The gaps left by the dropped factors that ``plan`` could not decide
     (``polynomial.degenerate``) with a positive real root and no coincident joint pair to
     blame: undecided at the highest precision. Those with a coincident pair are settled
     with every other coincidence the plan divides by
-    (:func:`~baranov.solvers.coincidence.with_modes_where_plan_divides_by_zero`)."""
+    (:func:`~baranov.solvers.coincidence.with_modes_where_plan_divides_by_zero`), and so is
+    the factor s itself where the parameter is a squared distance and its joints' meeting
+    was examined (``zero_settled``) or cannot happen: its one root, s = 0, is that meeting
+    (thesis §5.2.2's robots II and IV, where the slider plan could not decide s1,5 = 0)."""
     name = parameter_name(plan.parameters[0])
+    pair = frozenset(plan.parameters[0])
+    sliders = {slider.joint for slider in scene.sliders}
+    meeting_known = not pair & sliders and (zero_settled or not coincidence_possible(scene, pair))
     gaps = []
     for factor, coincident in polynomial.degenerate:
+        if meeting_known and factor.degree() == 1 and factor.coeffs()[0] == 0:
+            continue
         real = [float(root.real.mid()) for root, _ in factor.complex_roots() if root.imag == 0 and root.real >= 0]
         if real and not coincident:
             gaps.append(f"a factor of degree {factor.degree()} with real roots near "

@@ -672,10 +672,24 @@ def _scan(f, grid: np.ndarray, values: np.ndarray, sampled, near: list | None = 
         found = minimize_scalar(lambda s: abs(f(s)), bounds=(low, high), method="bounded",
                                 options={"xatol": 1e-14 * high})
         if found.success and abs(f(found.x)) < 1e-7:
-            roots.append(float(found.x))
+            roots.append(_crossing_beside(f, low, float(found.x), high))
         elif near is not None and found.success and abs(f(found.x)) < NEAR_ROOT:
             near.append(float(found.x))
     return roots
+
+
+def _crossing_beside(f, low: float, at: float, high: float) -> float:
+    """``at``, a minimum of |f| below 1e-7 in (low, high), or the simple root next to it
+    where f changes sign between it and an end of the cell (Brent): where f is shallow
+    |f| < 1e-7 holds far from the root (a family-I robot of issue 18: slope 6.7e-5 at
+    s1,5 = 1044, the minimum accepted at 1043.9999929, which the clustering then kept
+    over Brent's 1044.00000000002)."""
+    value = f(at)
+    for a, b in ((low, at), (at, high)):
+        fa, fb = (f(a), value) if b == at else (value, f(b))
+        if np.isfinite(fa) and np.isfinite(fb) and fa * fb < 0:
+            return float(brentq(f, a, b, xtol=1e-14 * b, rtol=1e-15, maxiter=200))
+    return at
 
 
 #: Offsets, in units of the parameter's resolution, at which a sample is re-evaluated
@@ -688,14 +702,25 @@ RESOLUTION = 2.0 ** -48
 
 def _may_reach_zero(grid: np.ndarray, values: np.ndarray, cell: tuple[float, float]) -> bool:
     """Whether the parabola through |f| at a local minimum's three samples of a fine
-    re-sampling has its vertex at most half the sampled minimum: |f| ≈ c (s − s0)² at a
-    tangential root (vertex ≈ 0), |f| ≈ m + c (s − s1)² at a minimum well above 0 (vertex ≈
-    m, skipped: issue 25's 9/N17 drawn with a double root spent 7.2 of 8.4 s in 632
-    bounded minimisations of such minima)."""
+    re-sampling has its vertex at most half the sampled minimum, or at most SHARP_VERTEX of
+    the lower neighbour: |f| ≈ c (s − s0)² at a tangential root (vertex ≈ 0), |f| ≈ m + c
+    (s − s1)² at a minimum well above 0 (vertex ≈ m, skipped: issue 25's 9/N17 drawn with a
+    double root spent 7.2 of 8.4 s in 632 bounded minimisations of such minima). The
+    second bound: with the middle sample close to a tangential root the parabola's vertex
+    is not 0 but the error of fitting a skewed |f| ≈ c (s − s0)² (1 + e (s − s0)), a sliver
+    of the neighbours (issue 25's 7/N2, seed 37: samples 4.4e-12, 2.0e-14, 3.7e-12 around
+    the double root s1,8 = 5, vertex 1.1e-14, which half the middle, 9.9e-15, had skipped:
+    a mode missed)."""
     i = int(np.searchsorted(grid, cell[0])) + 1
     x, y = grid[i - 1:i + 2], np.abs(values[i - 1:i + 2])
     vertex = _parabola_minimum(x, y)
-    return bool((y.min() if vertex is None else vertex) <= 0.5 * y[1])
+    vertex = y.min() if vertex is None else vertex
+    return bool(vertex <= 0.5 * y[1] or vertex <= SHARP_VERTEX * min(y[0], y[2]))
+
+
+#: A fine re-sampling's local minimum whose parabola's vertex is below this fraction of
+#: its lower neighbour is searched (:func:`_may_reach_zero`).
+SHARP_VERTEX = 1e-2
 
 
 def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tuple[float, float]],
