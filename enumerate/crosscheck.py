@@ -41,7 +41,8 @@ def find_geng() -> str | None:
     return None
 
 
-def _graph6_masks(line: bytes) -> tuple[int, ...]:
+def graph6_masks(line: bytes) -> tuple[int, ...]:
+    """A graph6 line (geng's output) as adjacency bit masks."""
     graph = nx.from_graph6_bytes(line)
     masks = [0] * graph.number_of_nodes()
     for u, v in graph.edges:
@@ -59,7 +60,7 @@ def _filter_part(job: tuple[str, int, int, int]) -> tuple[int, dict[bytes, tuple
     found: dict[bytes, tuple[int, ...]] = {}
     for line in output.split():
         candidates += 1
-        masks = _graph6_masks(line)
+        masks = graph6_masks(line)
         if is_baranov_link_graph(masks):
             found.setdefault(link_graph_certificate(masks), masks)
     return candidates, found

@@ -1,8 +1,17 @@
 """Bilateration plans: locate every joint of a rigid chain through the fewest unknown
-distances (the coupling degree), with ranked alternatives and user constraints."""
+distances (the coupling degree), with ranked alternatives and user constraints; and of a
+one-degree-of-freedom chain, whose configuration space they parametrise (thesis §6.4)."""
 
 from .plan import DistanceKind, Plan, Step, StepKind, parameter_name
-from .search import ALTERNATIVE_PLANS, best_plan, bilateration_plans, coupling_degree, plan_avoiding
+from .search import (
+    ALTERNATIVE_PLANS,
+    best_plan,
+    bilateration_plans,
+    coupling_degree,
+    one_dof_plans,
+    parametrising_distances,
+    plan_avoiding,
+)
 from .sliders import SliderPlanError, slider_plan, slider_plan_obstacle
 
 __all__ = [
@@ -15,7 +24,9 @@ __all__ = [
     "best_plan",
     "bilateration_plans",
     "coupling_degree",
+    "one_dof_plans",
     "parameter_name",
+    "parametrising_distances",
     "plan_avoiding",
     "slider_plan",
     "slider_plan_obstacle",

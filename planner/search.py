@@ -39,7 +39,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from itertools import combinations
 
-from baranov.topology import KinematicChain, TopologyError, require_rigid_chain
+from baranov.topology import KinematicChain, TopologyError, require_one_dof_chain, require_rigid_chain
 
 from .plan import DistanceKind, Plan, Step, StepKind
 
@@ -418,6 +418,41 @@ def coupling_degree(chain: KinematicChain) -> int:
     return degree
 
 
+def parametrising_distances(chain: KinematicChain) -> int:
+    """The fewest squared distances that parametrise the configuration space of a
+    one-degree-of-freedom chain (mobility 1): the parameters of its best plans, which
+    locate every joint from them with one closure condition fewer than parameters
+    (thesis §6.4, Table 6.2: 1 for the four-bar, the Watt and Stephenson six-bars and 12
+    of the 16 eight-bar Grübler chains, 2 for the other four, the double butterfly
+    among them). Same search as :func:`coupling_degree`.
+
+    >>> from baranov.topology import chain_from_link_graph
+    >>> parametrising_distances(chain_from_link_graph([(0, 1), (1, 2), (2, 3), (3, 0)]))  # four-bar
+    1
+    """
+    require_one_dof_chain(chain)
+    degree = _minimum_parameters(_Tables.of(chain), _Constraints(None, None), {})
+    if degree is None:
+        raise TopologyError("no bilateration plan locates every joint")
+    return degree
+
+
+def one_dof_plans(chain: KinematicChain, count: int = 1, reference: tuple[str, str] | None = None,
+                  parameters: Iterable[tuple[str, str]] | None = None) -> list[Plan]:
+    """The ``count`` best plans of a one-degree-of-freedom chain, as
+    :func:`bilateration_plans` for a rigid one: d parameters (:func:`parametrising_distances`)
+    and d − 1 closure conditions; its configuration space is a curve in the space of the
+    d parameters, split into pieces by the signs of the free-sign triangles (thesis §6.3).
+
+    >>> from baranov.topology import chain_from_link_graph
+    >>> plan = one_dof_plans(chain_from_link_graph([(0, 1), (1, 2), (2, 3), (3, 0)]))[0]
+    >>> len(plan.parameters), len(plan.closure_pairs)
+    (1, 0)
+    """
+    require_one_dof_chain(chain)
+    return _ranked_plans(chain, count, reference, parameters)
+
+
 def bilateration_plans(
     chain: KinematicChain,
     count: int = 1,
@@ -449,9 +484,13 @@ def bilateration_plans(
     P5: Z6,4,5 (link L1, fixed sign)
     closure s2,5
     """
+    return _ranked_plans(_checked(chain), count, reference, parameters)
+
+
+def _ranked_plans(chain: KinematicChain, count: int, reference, parameters) -> list[Plan]:
     if count < 1:
         raise ValueError(f"count={count}: ask for at least one plan")
-    constraints = _constraints(_checked(chain), reference, parameters)
+    constraints = _constraints(chain, reference, parameters)
     tables = _Tables.of(chain)
     cache: dict[int, int] = {}
     degree = _minimum_parameters(tables, constraints, cache)

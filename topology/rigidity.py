@@ -165,6 +165,23 @@ def require_rigid_chain(chain: KinematicChain) -> None:
     require_not_over_constrained(chain)
 
 
+def require_one_dof_chain(chain: KinematicChain) -> None:
+    """Raise :class:`TopologyError` unless ``chain`` moves with one degree of freedom for
+    generic dimensions: mobility 1 and no over-constrained set of links (thesis §6.1:
+    Grübler chains; rigid proper sub-chains are allowed).
+
+    >>> from baranov.topology import chain_from_link_graph
+    >>> require_one_dof_chain(chain_from_link_graph([(0, 1), (1, 2), (2, 3), (3, 0)]))  # four-bar
+    """
+    f = mobility(chain)
+    if f != 1:
+        raise TopologyError(
+            f"mobility F = 3(L-1) - 2J = {f} with L = {chain.number_of_links} links and "
+            f"J = {chain.number_of_joints} joints; a one-degree-of-freedom chain needs F = 1"
+        )
+    require_not_over_constrained(chain)
+
+
 def require_not_over_constrained(chain: KinematicChain) -> None:
     """Raise :class:`TopologyError` if some set of links S has 2·e(S) > 3|S| − 3 (more
     joints than rigidity needs: its dimensions could not be chosen freely), the whole
