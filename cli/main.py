@@ -15,6 +15,8 @@ import sys
 import textwrap
 from pathlib import Path
 
+from .trace import add_trace_parser, run_trace
+
 # the library is imported inside each command, so that --help and --version start fast
 
 #: ``--slider-modes`` goes up to this many links (the slider sets are tabulated over 2^J
@@ -110,6 +112,7 @@ def _parser() -> argparse.ArgumentParser:
                        "default: the best plan")
     robot.add_argument("--json", action="store_true", help="the solution as baranov solve --json, with the poses")
     robot.add_argument("--plot", type=Path, help="draw every pose (the locked robot's assembly modes) into this PNG file")
+    add_trace_parser(commands)
     robots = commands.add_parser("robots", help="the fully-parallel planar robots: their ten families (thesis §5.2)")
     robots.add_argument("--json", action="store_true", help="a list of families as JSON")
     return parser
@@ -300,6 +303,8 @@ def main(argv: list[str] | None = None) -> int:
             return run_robots(args)
         if args.command == "robot":
             return run_robot(args)
+        if args.command == "trace":
+            return run_trace(args)
         if args.command == "show":
             if args.plans < 1:
                 raise UsageError(f"--plans {args.plans}: must be at least 1")

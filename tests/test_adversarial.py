@@ -174,7 +174,9 @@ def test_flat_valley_is_one_undecided_mode():
     solution = solve(load_scene(REGRESSIONS / "9-N15-flat-valley.json"))
     values = sorted(mode.parameters["s8,10"] for mode in solution.assembly_modes if mode.signs == (-1, 1, -1, -1))
     assert len(values) == 1 and abs(values[0] - 32) < 1e-3
-    assert len(solution.undecided) == 1 and "s8,10 in [31.97" in solution.undecided[0]
+    # the stretch where |f| is within 100 times its rounding noise (seed 38: not a fixed 1e-12)
+    said = [sentence for sentence in solution.undecided if "on branch -+--" in sentence]
+    assert len(said) == 1 and "s8,10 in [31.98" in said[0] and "flat to rounding" in said[0]
 
 
 @needs_msolve

@@ -153,6 +153,12 @@ CASES = [
     Case("an output folder under a file", ("catalog", "--links", "3", "--out", "blocker/catalog"),
          (("blocker", "a file"),)),
     # the command line itself
+    # baranov trace (one-degree-of-freedom chains)
+    Case("a rigid chain given to trace", ("trace", "scene.json"), (("scene.json", json.dumps(TRIAD)),)),
+    Case("trace: an eta triangle of two joints", ("trace", "scene.json", "--eta", "P1,P2"),
+         (("scene.json", json.dumps(FOUR_BAR)),)),
+    Case("trace: an unknown tracer joint", ("trace", "scene.json", "--tracer", "P9"),
+         (("scene.json", json.dumps(FOUR_BAR)),)),
     Case("no command", ()),
     Case("an unknown command", ("draw", "7/B1")),
     Case("an unknown option", ("solve", "scene.json", "--exact"), (("scene.json", json.dumps(TRIAD)),)),

@@ -187,7 +187,7 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
         for low, high in _next_to_roots(points, roots) + _suspicious_minima(points, values)[:MAX_MINIMA]:
             fine = np.linspace(low, high, REFINEMENT)
             roots += _scan(f, fine, sampled(fine), sampled, near, noise, RESOLUTION * upper, refined=True)
-        roots, valleys = _merged_flat_valleys(sampled, roots)
+        roots, valleys = _merged_flat_valleys(sampled, roots, RESOLUTION * upper)
         name = parameter_name(compiled.parameters[0])
         undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition "
                       "is flat to rounding there; reported as one mode (a singular mode, or modes closer than "
@@ -225,7 +225,8 @@ def _merged_stretches(stretches: list[tuple[float, float, int]]) -> list[tuple[f
 VALLEY_SAMPLES = 64
 
 
-def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list[tuple[float, float]]]:
+def _merged_flat_valleys(sampled, roots: list[float], resolution: float = 0.0
+                         ) -> tuple[list[float], list[tuple[float, float]]]:
     """``roots`` with each run of neighbours between which |f| stays below FLAT_NOISE
     replaced by the middle of that flat stretch, and the stretches. Next to a singular
     mode of high multiplicity f ≈ c (s − s0)^m is flat to rounding over a whole stretch,
@@ -240,10 +241,11 @@ def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list
     roots = [r for n, r in enumerate(ordered) if n == 0 or r - ordered[n - 1] > 1e-12 * abs(r)]
     kept, valleys, start = [], [], 0
     for n in range(1, len(roots) + 1):
-        if n < len(roots) and _flat(sampled, roots[n - 1], roots[n]):
+        if n < len(roots) and _flat(sampled, roots[n - 1], roots[n], resolution):
             continue
         if n - start > 1:
-            (low, high), (low_cut, high_cut) = _flat_stretch(sampled, roots[start], roots[n - 1])
+            level = _flat_level(sampled, roots[start], roots[n - 1], resolution)
+            (low, high), (low_cut, high_cut) = _flat_stretch(sampled, roots[start], roots[n - 1], level)
             # cut off by the domain on one side: the mode is at that edge, not in the middle
             # (issue 25's 9/N19 drawn at a double root: flat on [8.9899, 9], the domain ends
             # at 9, where the mode is; the middle, 8.99495, was a spurious mode on 2 branches)
@@ -255,13 +257,33 @@ def _merged_flat_valleys(sampled, roots: list[float]) -> tuple[list[float], list
     return kept, valleys
 
 
-def _flat(sampled, low: float, high: float) -> bool:
+def _flat_level(sampled, low: float, high: float, resolution: float = 0.0) -> float:
+    """The |f| below which f counts as flat around [low, high]: FLAT_NOISE, or, given the
+    parameter's ``resolution``, VALLEY_NOISE times f's own rounding noise there (its spread
+    at offsets JITTER × resolution from the middle) if that is lower: a hump of 8e-13
+    between a double root at s2,7 = 5 and a simple one at 5.0016916 is no noise where that
+    spread is 1e-15 (issue 25, seed 38: 7/N1 collinear 324, the two modes reported as one
+    valley's middle)."""
+    if resolution <= 0:
+        return FLAT_NOISE
+    middle = (low + high) / 2
+    noise = float(np.ptp(sampled(middle + JITTER * min(resolution, abs(middle) / 8))))
+    return min(FLAT_NOISE, VALLEY_NOISE * noise)
+
+
+def _flat(sampled, low: float, high: float, resolution: float = 0.0) -> bool:
+    """Whether |f| stays below the flat level (:func:`_flat_level`) between two roots."""
     values = sampled(np.linspace(low, high, VALLEY_SAMPLES))
-    return bool(np.isfinite(values).all() and (np.abs(values) <= FLAT_NOISE).all())
+    return bool(np.isfinite(values).all() and (np.abs(values) <= _flat_level(sampled, low, high, resolution)).all())
 
 
-def _flat_stretch(sampled, low: float, high: float) -> tuple[tuple[float, float], tuple[bool, bool]]:
-    """The stretch around [low, high] (flat) where |f| stays below FLAT_NOISE, sampled
+#: Between two roots, |f| up to this many times its rounding noise is a flat valley.
+VALLEY_NOISE = 100
+
+
+def _flat_stretch(sampled, low: float, high: float, level: float = FLAT_NOISE
+                  ) -> tuple[tuple[float, float], tuple[bool, bool]]:
+    """The stretch around [low, high] (flat) where |f| stays below ``level``, sampled
     outwards over windows of growing width, then across the last sample step twice more
     (to VALLEY_SAMPLES⁻³ of the last window: the middle of the stretch is the mode's
     estimate, and a coarse end moved it by 2e-4 on 9/N15); and for each end, whether the
@@ -270,24 +292,25 @@ def _flat_stretch(sampled, low: float, high: float) -> tuple[tuple[float, float]
     for direction, end in ((-1, low), (1, high)):
         width = high - low
         for _ in range(8):
-            end, width, inside, undefined = _last_flat(sampled, end, direction, width)
+            end, width, inside, undefined = _last_flat(sampled, end, direction, width, level)
             if not inside:
                 break
         for _ in range(2):
-            end, width, inside, finer = _last_flat(sampled, end, direction, width / (VALLEY_SAMPLES - 1))
+            end, width, inside, finer = _last_flat(sampled, end, direction, width / (VALLEY_SAMPLES - 1), level)
             undefined = finer if not inside else undefined
         ends.append(end)
         cut.append(bool(undefined))
     return (ends[0], ends[1]), (cut[0], cut[1])
 
 
-def _last_flat(sampled, start: float, direction: int, width: float) -> tuple[float, float, bool]:
+def _last_flat(sampled, start: float, direction: int, width: float,
+               level: float = FLAT_NOISE) -> tuple[float, float, bool, bool]:
     """The last of VALLEY_SAMPLES samples from ``start`` over ``width`` in ``direction``
-    before |f| first exceeds FLAT_NOISE, whether none did (then the next window is 4
+    before |f| first exceeds ``level``, whether none did (then the next window is 4
     times wider), and whether the first sample that did is undefined (the domain's end)."""
     points = start + direction * np.linspace(0, width, VALLEY_SAMPLES)
     values = sampled(points)
-    flat = np.abs(np.nan_to_num(values, nan=np.inf)) <= FLAT_NOISE
+    flat = np.abs(np.nan_to_num(values, nan=np.inf)) <= level
     if flat.all():
         return float(points[-1]), width * 4, True, False
     first = int(np.argmin(flat))
@@ -558,6 +581,12 @@ def _merge(points: np.ndarray, values: np.ndarray, more_points: np.ndarray, more
 #: (issue 25's 7/N1 instance: 36 cells of 397 noise minima each, one bounded
 #: minimisation per minimum, over 60 s).
 MINIMUM_DEPTH = 1e-10
+#: The |f| below which MINIMUM_DEPTH no longer shrinks: the dip a minimum needs is at least
+#: 1e-10 × this. It was 1e-3 (a dip of 1e-13): issue 25's seed 38 (7/N1 collinear 324)
+#: has a double root at s2,7 = 5 where f ≈ 1.4e-5 (s − 5)², its fine samples 2e-14 beside
+#: it, and that minimum was skipped (a mode missed); noise minima are left to the jitter
+#: test (:func:`_above_noise`) and MAX_MINIMA.
+MINIMUM_FLOOR = 1e-6
 
 
 #: At most this many local minima of |f| are minimised per scan, and re-sampled per
@@ -595,7 +624,7 @@ def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float
     first."""
     finite = np.isfinite(values)
     magnitude = np.abs(values)
-    dip = MINIMUM_DEPTH * np.maximum(magnitude[1:-1], 1e-3)  # below rounding noise: not a minimum
+    dip = MINIMUM_DEPTH * np.maximum(magnitude[1:-1], MINIMUM_FLOOR)  # below rounding noise: not a minimum
     minima = (finite[:-2] & finite[1:-1] & finite[2:] & (magnitude[1:-1] <= magnitude[:-2] - dip)
               & (magnitude[1:-1] <= magnitude[2:] - dip) & (values[:-2] * values[2:] > 0))
     index = np.flatnonzero(minima) + 1
@@ -702,25 +731,25 @@ RESOLUTION = 2.0 ** -48
 
 def _may_reach_zero(grid: np.ndarray, values: np.ndarray, cell: tuple[float, float]) -> bool:
     """Whether the parabola through |f| at a local minimum's three samples of a fine
-    re-sampling has its vertex at most half the sampled minimum, or at most SHARP_VERTEX of
-    the lower neighbour: |f| ≈ c (s − s0)² at a tangential root (vertex ≈ 0), |f| ≈ m + c
-    (s − s1)² at a minimum well above 0 (vertex ≈ m, skipped: issue 25's 9/N17 drawn with a
-    double root spent 7.2 of 8.4 s in 632 bounded minimisations of such minima). The
-    second bound: with the middle sample close to a tangential root the parabola's vertex
-    is not 0 but the error of fitting a skewed |f| ≈ c (s − s0)² (1 + e (s − s0)), a sliver
-    of the neighbours (issue 25's 7/N2, seed 37: samples 4.4e-12, 2.0e-14, 3.7e-12 around
-    the double root s1,8 = 5, vertex 1.1e-14, which half the middle, 9.9e-15, had skipped:
-    a mode missed)."""
+    re-sampling has its vertex at most half the sampled minimum, or the minimum is a
+    sharp dip, at most SHARP_DIP of its lower neighbour: |f| ≈ c (s − s0)² at a tangential
+    root (vertex ≈ 0), |f| ≈ m + c (s − s1)² at a minimum well above 0 (vertex ≈ m, its
+    neighbours barely higher: skipped, issue 25's 9/N17 drawn with a double root spent 7.2
+    of 8.4 s in 632 bounded minimisations of such minima). The second test: with the
+    middle sample close to a tangential root the vertex is not 0 but the error of fitting a
+    skewed |f| (issue 25's seed 37, 7/N2: samples 4.4e-12, 2.0e-14, 3.7e-12 around the
+    double root s1,8 = 5, vertex 1.1e-14; seed 38, 7/N1: 3.0e-13, 1.1e-14, 3.5e-13 around
+    s2,7 = 5; each skipped, a mode missed)."""
     i = int(np.searchsorted(grid, cell[0])) + 1
     x, y = grid[i - 1:i + 2], np.abs(values[i - 1:i + 2])
     vertex = _parabola_minimum(x, y)
     vertex = y.min() if vertex is None else vertex
-    return bool(vertex <= 0.5 * y[1] or vertex <= SHARP_VERTEX * min(y[0], y[2]))
+    return bool(vertex <= 0.5 * y[1] or y[1] <= SHARP_DIP * min(y[0], y[2]))
 
 
-#: A fine re-sampling's local minimum whose parabola's vertex is below this fraction of
-#: its lower neighbour is searched (:func:`_may_reach_zero`).
-SHARP_VERTEX = 1e-2
+#: A fine re-sampling's local minimum at most this fraction of its lower neighbour is
+#: searched whatever its parabola says (:func:`_may_reach_zero`).
+SHARP_DIP = 0.1
 
 
 def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tuple[float, float]],

@@ -1,0 +1,343 @@
+"""Tracing a one-degree-of-freedom chain's configuration space in distance space (thesis
+§6.3): ordered pieces, one sign vector each, and the points where an oriented area
+vanishes and the linkage can pass from one piece to another.
+
+**Two parameters (d = 2).** On each sign vector the closure condition f(u, v) = 0 is a
+curve in the plane of the two parameters (scaled to their ranges). Starting points are
+the roots of coarse slices u = const (:func:`~.configuration_space.configurations_at`);
+from each not yet on a traced piece the curve is followed both ways by pseudo-arclength
+continuation: a step along the tangent (−f_v, f_u), then Newton back onto f = 0 along
+the gradient (central differences), the step halved where Newton does not converge in
+four iterations, f is undefined (the domain of the sign vector ends: a triangle is
+flat) or a joint would move more than ``jump`` of the linkage's size, and doubled up to
+``resolution`` of the ranges otherwise. A piece ends where the step falls below 1e-6 of
+the ranges (a domain edge) or closes on itself. Folds, where the curve turns back in u,
+need nothing special.
+
+**One parameter (d = 1).** A piece is a range of the parameter on one sign vector: the
+sign vector's feasible samples of a sweep of ``steps`` values, in order.
+
+**Branch points.** A piece ends where one of the plan's free-sign triangles becomes flat
+(a radicand vanishes): there the configuration is the same on the two sign vectors that
+differ in that triangle's sign, and the linkage can go on along the other one. Two piece
+ends on such sign vectors whose configurations are within ``join`` of the linkage's size
+(scaled by the step) are reported as a branch point joining them.
+
+Resolution: the step between slices; a feature of the curve narrower than a step (two
+folds between slices) is not resolved. Consecutive points of a piece are checked for
+jumps: a joint moving more than ``jump`` of the linkage's size between neighbours is
+reported (``Trace.jumps``), never silently joined.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from baranov.solvers.verification import distance_bound
+
+from .configuration_space import (
+    ConfigurationPoint,
+    OneDofSystem,
+    configurations_at,
+    oriented_area,
+    verified_configurations,
+)
+
+
+@dataclass(frozen=True)
+class Piece:
+    """One piece of the configuration space: its sign vector (the plan's free-sign
+    triangles) and its configurations in order along it; ``closed`` if it is a loop."""
+
+    signs: tuple[int, ...]
+    points: tuple[ConfigurationPoint, ...]
+    closed: bool = False
+
+
+@dataclass(frozen=True)
+class BranchPoint:
+    """Where a free-sign triangle is flat: the ends of two pieces (index, 0 for the first
+    point or -1 for the last) that meet there."""
+
+    pieces: tuple[tuple[int, int], tuple[int, int]]
+    parameters: dict[str, float]
+
+
+@dataclass(frozen=True)
+class Trace:
+    """A traced configuration space: the pieces, the branch points joining them, the
+    steps at which neighbouring points of a piece are farther apart than expected, and
+    (:attr:`loose_ends`) the piece ends that were not joined."""
+
+    pieces: tuple[Piece, ...]
+    branch_points: tuple[BranchPoint, ...]
+    jumps: tuple[str, ...] = field(default=())
+
+    @property
+    def loose_ends(self) -> tuple[tuple[int, int], ...]:
+        """Ends of open pieces (index, 0 or −1) at no branch point: where the tracer found
+        no piece to go on along (not resolved: the curve's continuation was not placed)."""
+        joined = {end for point in self.branch_points for end in point.pieces}
+        return tuple((n, end) for n, piece in enumerate(self.pieces) if not piece.closed for end in (0, -1)
+                     if (n, end) not in joined)
+
+
+def trace(system: OneDofSystem, steps: int = 400, jump: float = 0.02, join: float = 0.02,
+          resolution: float = 1 / 200) -> Trace:
+    """The configuration space of ``system`` traced (see the module docstring): d = 1 over
+    ``steps`` values of its parameter, d = 2 by continuation from ``steps // 8`` slices.
+    Cost: d = 1, one vectorised evaluation per value; d = 2, a few evaluations per point."""
+    size = distance_bound(system.scene)
+    if len(system.plan.parameters) == 1:
+        low, high = _range(system, steps)
+        slices = [configurations_at(system, u) for u in np.linspace(low, high, steps)]
+        pieces = []
+        for branch in sorted({point.signs for points in slices for point in points}):
+            on_branch = [[p for p in points if p.signs == branch] for points in slices]
+            pieces += [Piece(branch, tuple(points), closed) for points, closed in _pieces(on_branch)]
+    else:
+        pieces = _continued_pieces(system, max(steps // 8, 8), jump * size, resolution)
+    jumps = [f"piece {n}, between points {k} and {k + 1}: a joint moves {moved / size:.3g} of the linkage's size"
+             for n, piece in enumerate(pieces) for k, moved in _moves(piece) if moved > 2 * jump * size]
+    return Trace(tuple(pieces), tuple(_branch_points(pieces, join * size)), tuple(jumps))
+
+
+def _continued_pieces(system: OneDofSystem, slices: int, jump: float, resolution: float) -> list[Piece]:
+    """Pieces of a two-parameter configuration space by continuation from the roots of
+    ``slices`` slices, and on across every piece end where a free-sign triangle is flat,
+    on the sign vector with that sign flipped (module docstring)."""
+    low, high = _range(system, slices)
+    # inside the range: at its ends a triangle is flat and both its signs give one point
+    queue = [point for u in np.linspace(low, high, slices + 2)[1:-1] for point in configurations_at(system, u)]
+    pieces: list[Piece] = []
+    scale = np.array(system.upper, float)
+    while queue:
+        start = queue.pop(0)
+        here = _scaled(start, scale)
+        if any(_on_piece(here, piece, scale, resolution) for piece in pieces if piece.signs == start.signs):
+            continue
+        piece = _piece_from(system, start, jump, resolution)
+        pieces.append(piece)
+        if not piece.closed:
+            queue += [crossing for end in (0, -1) for crossing in _across(system, piece.points[end])]
+    return pieces
+
+
+def _piece_from(system: OneDofSystem, start: ConfigurationPoint, jump: float, resolution: float) -> Piece:
+    forward = _follow(system, start, +1, jump, resolution)
+    if forward[-1] is start and len(forward) > 2:  # closed on itself
+        return Piece(start.signs, tuple(forward[:-1]), True)
+    backward = _follow(system, start, -1, jump, resolution)
+    return Piece(start.signs, tuple(backward[:0:-1] + forward), False)
+
+
+def _across(system: OneDofSystem, end: ConfigurationPoint) -> list[ConfigurationPoint]:
+    """The configuration at a piece's ``end`` on the sign vector with its flattest
+    free-sign triangle's sign flipped, brought onto that sign vector's curve by Newton
+    steps and verified (none where it does not land): the linkage goes on there through
+    the flat triangle."""
+    areas = [abs(oriented_area(end, triangle)) for triangle in system.plan.free_sign_triangles]
+    flat = int(np.argmin(areas))
+    signs = tuple(-s if k == flat else s for k, s in enumerate(end.signs))
+    scale = np.array(system.upper, float)
+    landed = _corrected(_closure_with_gradient(system, signs), _scaled(end, scale))
+    if landed is None:
+        return []
+    return verified_configurations(system, (landed * scale)[None, :], np.array([signs]))
+
+
+def _scaled(point: ConfigurationPoint, scale: np.ndarray) -> np.ndarray:
+    return np.array(list(point.parameters.values())) / scale
+
+
+def _on_piece(here: np.ndarray, piece: Piece, scale: np.ndarray, resolution: float) -> bool:
+    """Whether ``here`` (scaled) lies within a step of the piece's polyline."""
+    points = np.array([_scaled(p, scale) for p in piece.points])
+    if len(points) == 1:
+        return bool(np.linalg.norm(points[0] - here) < resolution)
+    a, b = points[:-1], points[1:]
+    t = np.clip(np.einsum("ij,ij->i", here - a, b - a) / np.maximum(np.einsum("ij,ij->i", b - a, b - a), 1e-300), 0, 1)
+    return bool(np.min(np.linalg.norm(a + t[:, None] * (b - a) - here, axis=1)) < resolution)
+
+
+#: Newton corrections per continuation step, and the smallest step (scaled) before a
+#: piece is declared ended at a domain edge (where f has a square-root edge, Newton
+#: converges only ever closer to it: the piece's end is placed to about this).
+NEWTON_STEPS = 4
+SMALLEST_STEP = 1e-6
+#: At most this many points per piece.
+MAX_POINTS = 20000
+
+
+def _follow(system: OneDofSystem, start: ConfigurationPoint, direction: int, jump: float,
+            resolution: float) -> list[ConfigurationPoint]:
+    """Points along the curve of ``start``'s sign vector from ``start`` in ``direction``
+    (+1 or −1 along the tangent (−f_v, f_u)), until a domain edge, back at the start, or
+    MAX_POINTS."""
+    scale = np.array(system.upper, float)
+    value_and_gradient = _closure_with_gradient(system, start.signs)
+    points, x, step, tangent_sign = [start], _scaled(start, scale), resolution / 4, direction
+    origin, previous_tangent, travelled = x.copy(), None, 0.0
+    while len(points) < MAX_POINTS and step >= SMALLEST_STEP:
+        _, g = value_and_gradient(x)
+        if not np.isfinite(g).all() or not g.any():
+            break
+        tangent = np.array([-g[1], g[0]]) / np.linalg.norm(g) * tangent_sign
+        if previous_tangent is not None and tangent @ previous_tangent < 0:  # keep going the same way
+            tangent, tangent_sign = -tangent, -tangent_sign
+        corrected = _corrected(value_and_gradient, x + step * tangent)
+        point = None if corrected is None else _point_at(system, corrected * scale, start.signs)
+        if point is None or max(math.dist(point.joints[j], points[-1].joints[j]) for j in point.joints) > jump:
+            step /= 2
+            continue
+        points.append(point)
+        travelled += float(np.linalg.norm(corrected - x))
+        previous_tangent, x = tangent, corrected
+        step = min(step * 2, resolution)
+        if travelled > 8 * resolution and np.linalg.norm(x - origin) < resolution:
+            points.append(start)  # closed: back at the start
+            break
+    return points
+
+
+def _closure_with_gradient(system: OneDofSystem, signs: tuple[int, ...]):
+    """x (scaled parameters) ↦ (f(x), ∇f(x)) on sign vector ``signs``: one evaluation of 5
+    points (central differences, step 1e-7 of the ranges)."""
+    scale, branch, h = np.array(system.upper, float), np.array(signs)[None, :], 1e-7
+
+    def value_and_gradient(x: np.ndarray) -> tuple[float, np.ndarray]:
+        values = system.compiled.residuals(np.array([x, x + (h, 0), x - (h, 0), x + (0, h), x - (0, h)]) * scale,
+                                           branch)[0, :, 0]
+        return values[0], np.array([values[1] - values[2], values[3] - values[4]]) / (2 * h)
+
+    return value_and_gradient
+
+
+def _corrected(value_and_gradient, x: np.ndarray) -> np.ndarray | None:
+    """Newton steps along the gradient back onto f = 0, or None if they do not converge."""
+    for _ in range(NEWTON_STEPS):
+        value, g = value_and_gradient(x)
+        if not (np.isfinite(value) and np.isfinite(g).all()) or not g.any():
+            return None
+        if abs(value) < 1e-12:
+            return x
+        x = x - value * g / (g @ g)
+    value, _ = value_and_gradient(x)
+    return x if np.isfinite(value) and abs(value) < 1e-10 else None
+
+
+def _point_at(system: OneDofSystem, values: np.ndarray, signs: tuple[int, ...]) -> ConfigurationPoint | None:
+    found = verified_configurations(system, values[None, :], np.array(signs)[None, :])
+    return found[0] if found else None
+
+
+def _range(system: OneDofSystem, steps: int) -> tuple[float, float]:
+    """The stretch of the first parameter where configurations exist, found on a coarse
+    sweep of (0, upper] and widened by one coarse step each side (then clipped)."""
+    upper = system.upper[0]
+    coarse = np.linspace(0.0, upper, steps + 1)[1:]
+    found = [u for u in coarse if configurations_at(system, u, samples=400)]
+    if not found:
+        return float(coarse[0]), float(upper)
+    step = upper / steps
+    return max(found[0] - step, step * 1e-6), min(found[-1] + step, upper)
+
+
+def _pieces(slices: list[list[ConfigurationPoint]]) -> list[tuple[list[ConfigurationPoint], bool]]:
+    """Link the roots of consecutive slices (one sign vector) into ordered pieces."""
+    neighbours: dict[tuple[int, int], list[tuple[int, int]]] = {}
+
+    def link(a: tuple[int, int], b: tuple[int, int]) -> None:
+        neighbours.setdefault(a, []).append(b)
+        neighbours.setdefault(b, []).append(a)
+
+    for k, points in enumerate(slices):
+        for i in range(len(points)):
+            neighbours.setdefault((k, i), [])
+        if k == 0:
+            continue
+        pairs, folds = _pairs(slices[k - 1], points)
+        for i, j in pairs:
+            link((k - 1, i), (k, j))
+        for side, (i, j) in folds:  # the curve turned back in u between the slices
+            link((k - 1 + side, i), (k - 1 + side, j))
+    return [_ordered(component, neighbours, slices) for component in _components(neighbours)]
+
+
+def _pairs(first: list[ConfigurationPoint], second: list[ConfigurationPoint]
+           ) -> tuple[list[tuple[int, int]], list[tuple[int, tuple[int, int]]]]:
+    """Roots of two slices paired in order of the last parameter; where one side has more,
+    its adjacent pairs closest together are left out as folds: (side, (i, i + 1)), side 0
+    for the first slice, 1 for the second. An odd surplus leaves one root unpaired (an
+    end: the curve leaves the domain of its sign vector)."""
+    a, b = [_second(p) for p in first], [_second(p) for p in second]
+    longer, side = (a, 0) if len(a) > len(b) else (b, 1)
+    kept, folds = list(range(len(longer))), []
+    while len(kept) >= len(a) + len(b) - len(longer) + 2:
+        gaps = [longer[kept[n + 1]] - longer[kept[n]] for n in range(len(kept) - 1)]
+        n = int(np.argmin(gaps))
+        folds.append((side, (kept[n], kept[n + 1])))
+        del kept[n:n + 2]
+    shorter = min(len(a), len(b))
+    pairs = list(zip(kept[:shorter], range(shorter), strict=False))
+    return (pairs if side == 0 else [(i, j) for j, i in pairs]), folds
+
+
+def _second(point: ConfigurationPoint) -> float:
+    return list(point.parameters.values())[-1]
+
+
+def _components(neighbours: dict) -> list[list[tuple[int, int]]]:
+    seen, components = set(), []
+    for start in sorted(neighbours):
+        if start in seen:
+            continue
+        stack, component = [start], []
+        seen.add(start)
+        while stack:
+            node = stack.pop()
+            component.append(node)
+            for other in neighbours[node]:
+                if other not in seen:
+                    seen.add(other)
+                    stack.append(other)
+        components.append(component)
+    return components
+
+
+def _ordered(component, neighbours, slices) -> tuple[list[ConfigurationPoint], bool]:
+    """The points of a component in order along it (from an end, if it has one)."""
+    ends = [node for node in component if len(neighbours[node]) < 2]
+    start = min(ends) if ends else min(component)
+    order, previous, node = [start], None, start
+    while True:
+        following = [other for other in neighbours[node] if other != previous and other not in order[-2:]]
+        if not following or following[0] == start:
+            break
+        previous, node = node, following[0]
+        order.append(node)
+    return [slices[k][i] for k, i in order], not ends
+
+
+def _moves(piece: Piece) -> list[tuple[int, float]]:
+    """For each step along the piece, the largest distance a joint moves."""
+    return [(k, max(math.dist(a.joints[j], b.joints[j]) for j in a.joints))
+            for k, (a, b) in enumerate(zip(piece.points, piece.points[1:], strict=False))]
+
+
+def _branch_points(pieces: list[Piece], within: float) -> list[BranchPoint]:
+    """Piece ends on sign vectors differing in one sign whose configurations coincide to
+    ``within`` (a flat free-sign triangle: the linkage can go on along either)."""
+    ends = [(n, end, piece.points[end]) for n, piece in enumerate(pieces) if not piece.closed for end in (0, -1)]
+    found = []
+    for a, (n, end, point) in enumerate(ends):
+        for m, other_end, other in ends[a + 1:]:
+            if m == n or sum(x != y for x, y in zip(point.signs, other.signs, strict=True)) != 1:
+                continue
+            if max(math.dist(point.joints[j], other.joints[j]) for j in point.joints) <= within:
+                middle = {name: (point.parameters[name] + other.parameters[name]) / 2 for name in point.parameters}
+                found.append(BranchPoint(((n, end), (m, other_end)), middle))
+    return found

@@ -1,0 +1,94 @@
+"""Tracing one-degree-of-freedom chains (thesis ch. 6, issue 19): the double butterfly's
+published starting configurations, its traced configuration space checked against
+independent slices, and `baranov trace`."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from baranov.cli.main import main
+from baranov.motion import configurations_at, one_dof_system, sign_index, trace
+from baranov.motion.tracing import _on_piece, _scaled
+from baranov.scene import load_scene
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+#: The thesis's η: A2,4,10, A1,3,6, A1,6,5, A4,9,7, most significant first (§6.3).
+ETA = [("P2", "P4", "P10"), ("P1", "P3", "P6"), ("P1", "P6", "P5"), ("P4", "P9", "P7")]
+
+
+@pytest.fixture(scope="module")
+def butterfly():
+    scene = load_scene(EXAMPLES / "double-butterfly.json")
+    system = one_dof_system(scene, [("P2", "P4"), ("P1", "P6")])
+    return system, trace(system)
+
+
+def test_published_starting_configurations(butterfly):
+    """Thesis §6.3: (s2,4, s1,6, η) = (74, 188.68, 8), (74, 122, 14), (74, 98.92, 0) lie on
+    the configuration space, s2,4 within [62 − 4√130, 62 + 4√130]. Computed: s1,6 =
+    188.6855 (the thesis prints 188.68; rounded, 188.69), 122.0000 and 98.9158, each with
+    the published η; ten configurations in all at s2,4 = 74."""
+    system, _ = butterfly
+    assert system.upper[0] == pytest.approx(62 + 4 * math.sqrt(130), rel=1e-15)
+    at_74 = {(round(p.parameters["s1,6"], 4), sign_index(p, ETA)) for p in configurations_at(system, 74.0)}
+    assert {(188.6855, 8), (122.0, 14), (98.9158, 0)} <= at_74 and len(at_74) == 10
+
+
+def test_traced_pieces_verify_and_do_not_jump(butterfly):
+    """Every traced point satisfies every link constraint (relative residual < 1e-9); no
+    joint moves more than 4 % of the linkage's size between neighbours; the three
+    published starting configurations lie on pieces of their η."""
+    system, traced = butterfly
+    assert traced.pieces and not traced.jumps
+    assert max(point.max_residual for piece in traced.pieces for point in piece.points) < 1e-9
+    scale = np.array(system.upper)
+    for s16, eta in [(188.6855, 8), (122.0, 14), (98.9158, 0)]:
+        start = next(p for p in configurations_at(system, 74.0) if abs(p.parameters["s1,6"] - s16) < 1e-3)
+        assert any(_on_piece(_scaled(start, scale), piece, scale, 1 / 200) and sign_index(piece.points[0], ETA) == eta
+                   for piece in traced.pieces)
+
+
+def test_traced_pieces_hold_every_slice_configuration(butterfly):
+    """An independent check: at 40 random values of s2,4 every configuration that the
+    slice root finder lists lies on a traced piece of its sign vector."""
+    system, traced = butterfly
+    scale = np.array(system.upper)
+    rng = np.random.default_rng(19)
+    found = [point for u in rng.uniform(17, system.upper[0], 40) for point in configurations_at(system, u)]
+    assert len(found) > 200
+    assert all(any(_on_piece(_scaled(point, scale), piece, scale, 1 / 200)
+                   for piece in traced.pieces if piece.signs == point.signs) for point in found)
+
+
+def test_a_four_bar_is_ranges_of_one_distance():
+    """A Grashof four-bar (crank 1, coupler 3, rocker 3, frame 3.5): one distance, two
+    oriented areas; each piece a range of the diagonal on one sign vector, its joints'
+    coupler curve continuous."""
+    scene_data = {"ground": "frame", "links": [
+        {"name": "frame", "joints": {"P1": [0, 0], "P4": ["7/2", 0]}},
+        {"name": "crank", "joints": ["P1", "P2"], "squared_length": 1},
+        {"name": "coupler", "joints": ["P2", "P3"], "squared_length": 9},
+        {"name": "rocker", "joints": ["P3", "P4"], "squared_length": 9}]}
+    from baranov.scene import scene_from_dict
+
+    system = one_dof_system(scene_from_dict(scene_data))
+    traced = trace(system, steps=200)
+    assert len(system.plan.parameters) == 1 and len(system.plan.free_sign_triangles) == 2
+    assert traced.pieces and not traced.jumps
+    assert max(point.max_residual for piece in traced.pieces for point in piece.points) < 1e-9
+
+
+def test_trace_command(capsys, tmp_path):
+    example = str(EXAMPLES / "double-butterfly.json")
+    args = ["trace", example, "--parameter", "P2,P4", "--parameter", "P1,P6", "--eta", "P2,P4,P10;P1,P3,P6;P1,P6,P5;P4,P9,P7"]
+    assert main([*args, "--plot", str(tmp_path / "trace.png"), "--steps", "200"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith(f"{example}: ") and "pieces in (s2,4, s1,6)" in out
+    assert (tmp_path / "trace.png").read_bytes().startswith(b"\x89PNG")
+    for bad, message in [(["trace", str(EXAMPLES / "7-B1.json")], "a one-degree-of-freedom chain needs F = 1"),
+                         ([*args, "--eta", "P1,P2"], "--eta P1,P2: triangles of three joints"),
+                         ([*args[:2], "--tracer", "P99"], "--tracer P99: no such joint")]:
+        assert main(bad) == 2
+        assert message in capsys.readouterr().err
