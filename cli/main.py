@@ -144,9 +144,9 @@ def run_robot(args: argparse.Namespace) -> int:
     if args.plot is not None:
         from baranov.catalog.files import write_atomically
         from baranov.robots import locked_scene
-        from baranov.solvers.drawing import render_modes  # matplotlib only when drawing
+        from baranov.robots.drawing import render_robot  # matplotlib only when drawing
 
-        write_atomically(args.plot, render_modes(locked_scene(robot, actuators), solution))
+        write_atomically(args.plot, render_robot(robot, locked_scene(robot, actuators), solution))
     shown = [{"position": list(p.position), "angle": p.angle} for p in poses]
     if args.json:
         print(json.dumps({**solution.to_dict(), "family": family, "poses": shown}, indent=1))
