@@ -144,9 +144,20 @@ def _across(system: OneDofSystem, end: ConfigurationPoint) -> list[Configuration
     signs = tuple(-s if k == flat else s for k, s in enumerate(end.signs))
     scale = np.array(system.upper, float)
     landed = _corrected(_closure_with_gradient(system, signs), _scaled(end, scale))
-    if landed is None:
-        return []
-    return verified_configurations(system, (landed * scale)[None, :], np.array([signs]))
+    if landed is not None:
+        return verified_configurations(system, (landed * scale)[None, :], np.array([signs]))
+    # Newton left the domain (next to its edge the closure has a square-root edge): the
+    # slice through the end, on the flipped sign vector, its root nearest the end
+    names = system.parameter_names
+    u, v = end.parameters[names[0]], end.parameters[names[-1]]
+    near = [p for p in configurations_at(system, u) if p.signs == signs
+            and abs(p.parameters[names[-1]] - v) < CROSSING_GAP * system.upper[-1]]
+    return sorted(near, key=lambda p: abs(p.parameters[names[-1]] - v))[:1]
+
+
+#: A piece end's crossing found on the slice through it lies within this fraction of the
+#: second parameter's range of the end.
+CROSSING_GAP = 1e-3
 
 
 def _scaled(point: ConfigurationPoint, scale: np.ndarray) -> np.ndarray:
