@@ -15,7 +15,10 @@ the ranges (a domain edge) or closes on itself. Folds, where the curve turns bac
 need nothing special.
 
 **One parameter (d = 1).** A piece is a range of the parameter on one sign vector: the
-sign vector's feasible samples of a sweep of ``steps`` values, in order.
+runs of RANGE_SAMPLES samples (even in √s) on which the plan places every joint, each
+end bisected to 1e-13 of the range against its undefined neighbour, then sampled from
+end to end, midpoints inserted where a joint would move more than ``jump``. A range
+narrower than a sample step is missed.
 
 **Branch points.** A piece ends where one of the plan's free-sign triangles becomes flat
 (a radicand vanishes): there the configuration is the same on the two sign vectors that
@@ -36,6 +39,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from baranov.solvers.placement import placed_configurations
 from baranov.solvers.verification import distance_bound
 
 from .configuration_space import (
@@ -87,22 +91,79 @@ class Trace:
 
 def trace(system: OneDofSystem, steps: int = 400, jump: float = 0.02, join: float = 0.02,
           resolution: float = 1 / 200) -> Trace:
-    """The configuration space of ``system`` traced (see the module docstring): d = 1 over
-    ``steps`` values of its parameter, d = 2 by continuation from ``steps // 8`` slices.
-    Cost: d = 1, one vectorised evaluation per value; d = 2, a few evaluations per point."""
+    """The configuration space of ``system`` traced (see the module docstring): d = 1 as
+    ranges of its parameter, d = 2 by continuation from ``steps // 8`` slices. Cost: d = 1,
+    a vectorised placement of RANGE_SAMPLES values per sign vector, 60 per edge; d = 2, a
+    few evaluations per point."""
     size = distance_bound(system.scene)
     if len(system.plan.parameters) == 1:
-        low, high = _range(system, steps)
-        slices = [configurations_at(system, u) for u in np.linspace(low, high, steps)]
-        pieces = []
-        for branch in sorted({point.signs for points in slices for point in points}):
-            on_branch = [[p for p in points if p.signs == branch] for points in slices]
-            pieces += [Piece(branch, tuple(points), closed) for points, closed in _pieces(on_branch)]
+        pieces = [Piece(signs, tuple(points)) for signs, points in _ranges(system, jump * size)]
     else:
         pieces = _continued_pieces(system, max(steps // 8, 8), jump * size, resolution)
     jumps = [f"piece {n}, between points {k} and {k + 1}: a joint moves {moved / size:.3g} of the linkage's size"
              for n, piece in enumerate(pieces) for k, moved in _moves(piece) if moved > 2 * jump * size]
     return Trace(tuple(pieces), tuple(_branch_points(pieces, join * size)), tuple(jumps))
+
+
+#: Samples of the one parameter (even in its square root) that find its ranges.
+RANGE_SAMPLES = 4000
+
+
+def _ranges(system: OneDofSystem, jump: float) -> list[tuple[tuple[int, ...], list[ConfigurationPoint]]]:
+    """The ranges of a one-parameter configuration space, per sign vector (module docstring)."""
+    grid = np.linspace(0.0, math.sqrt(system.upper[0]), RANGE_SAMPLES + 1)[1:] ** 2
+    found = []
+    for branch in system.branches:
+        defined = _placed(system, grid, branch)
+        edges = np.flatnonzero(np.diff(defined.astype(int)))
+        starts = ([0] if defined[0] else []) + [e + 1 for e in edges if not defined[e]]
+        for start in starts:
+            stop = next((e for e in edges if e >= start and defined[e]), len(grid) - 1)
+            low = grid[0] if start == 0 else _edge(system, branch, grid[start - 1], grid[start])
+            high = grid[-1] if stop == len(grid) - 1 else _edge(system, branch, grid[stop + 1], grid[stop])
+            points = _sampled_range(system, branch, low, high, jump)
+            if points:
+                found.append((tuple(int(x) for x in branch), points))
+    return found
+
+
+def _placed(system: OneDofSystem, values: np.ndarray, branch: np.ndarray) -> np.ndarray:
+    """Whether the plan places every joint at each of ``values`` on ``branch``."""
+    _, points = placed_configurations(system.scene, system.compiled, values[:, None],
+                                      np.repeat(branch[None, :], len(values), axis=0))
+    return np.isfinite(points).all(axis=1)
+
+
+def _edge(system: OneDofSystem, branch: np.ndarray, outside: float, inside: float) -> float:
+    """The domain's edge between an undefined and a defined value, by bisection."""
+    for _ in range(60):
+        middle = (outside + inside) / 2
+        if _placed(system, np.array([middle]), branch)[0]:
+            inside = middle
+        else:
+            outside = middle
+        if abs(inside - outside) <= 1e-13 * system.upper[0]:
+            break
+    return inside
+
+
+def _sampled_range(system: OneDofSystem, branch: np.ndarray, low: float, high: float,
+                   jump: float) -> list[ConfigurationPoint]:
+    """Configurations from ``low`` to ``high`` on ``branch``: 64 values clustered at the
+    ends (where the joints move as √ of the distance to the edge), then midpoints where a
+    joint moves more than ``jump``, up to 12 rounds."""
+    values = low + (high - low) * (1 - np.cos(np.linspace(0, math.pi, 64))) / 2
+    for _ in range(12):
+        points = verified_configurations(system, values[:, None], np.repeat(branch[None, :], len(values), axis=0))
+        if len(points) < 2:
+            return points
+        moves = [move for _, move in _moves(Piece(tuple(branch), tuple(points)))]
+        if max(moves) <= jump:
+            return points
+        where = [k for k, move in enumerate(moves) if move > jump]
+        ordered = [p.parameters[system.parameter_names[0]] for p in points]
+        values = np.sort(np.concatenate([ordered, [(ordered[k] + ordered[k + 1]) / 2 for k in where]]))
+    return points
 
 
 def _continued_pieces(system: OneDofSystem, slices: int, jump: float, resolution: float) -> list[Piece]:
@@ -255,82 +316,6 @@ def _range(system: OneDofSystem, steps: int) -> tuple[float, float]:
         return float(coarse[0]), float(upper)
     step = upper / steps
     return max(found[0] - step, step * 1e-6), min(found[-1] + step, upper)
-
-
-def _pieces(slices: list[list[ConfigurationPoint]]) -> list[tuple[list[ConfigurationPoint], bool]]:
-    """Link the roots of consecutive slices (one sign vector) into ordered pieces."""
-    neighbours: dict[tuple[int, int], list[tuple[int, int]]] = {}
-
-    def link(a: tuple[int, int], b: tuple[int, int]) -> None:
-        neighbours.setdefault(a, []).append(b)
-        neighbours.setdefault(b, []).append(a)
-
-    for k, points in enumerate(slices):
-        for i in range(len(points)):
-            neighbours.setdefault((k, i), [])
-        if k == 0:
-            continue
-        pairs, folds = _pairs(slices[k - 1], points)
-        for i, j in pairs:
-            link((k - 1, i), (k, j))
-        for side, (i, j) in folds:  # the curve turned back in u between the slices
-            link((k - 1 + side, i), (k - 1 + side, j))
-    return [_ordered(component, neighbours, slices) for component in _components(neighbours)]
-
-
-def _pairs(first: list[ConfigurationPoint], second: list[ConfigurationPoint]
-           ) -> tuple[list[tuple[int, int]], list[tuple[int, tuple[int, int]]]]:
-    """Roots of two slices paired in order of the last parameter; where one side has more,
-    its adjacent pairs closest together are left out as folds: (side, (i, i + 1)), side 0
-    for the first slice, 1 for the second. An odd surplus leaves one root unpaired (an
-    end: the curve leaves the domain of its sign vector)."""
-    a, b = [_second(p) for p in first], [_second(p) for p in second]
-    longer, side = (a, 0) if len(a) > len(b) else (b, 1)
-    kept, folds = list(range(len(longer))), []
-    while len(kept) >= len(a) + len(b) - len(longer) + 2:
-        gaps = [longer[kept[n + 1]] - longer[kept[n]] for n in range(len(kept) - 1)]
-        n = int(np.argmin(gaps))
-        folds.append((side, (kept[n], kept[n + 1])))
-        del kept[n:n + 2]
-    shorter = min(len(a), len(b))
-    pairs = list(zip(kept[:shorter], range(shorter), strict=False))
-    return (pairs if side == 0 else [(i, j) for j, i in pairs]), folds
-
-
-def _second(point: ConfigurationPoint) -> float:
-    return list(point.parameters.values())[-1]
-
-
-def _components(neighbours: dict) -> list[list[tuple[int, int]]]:
-    seen, components = set(), []
-    for start in sorted(neighbours):
-        if start in seen:
-            continue
-        stack, component = [start], []
-        seen.add(start)
-        while stack:
-            node = stack.pop()
-            component.append(node)
-            for other in neighbours[node]:
-                if other not in seen:
-                    seen.add(other)
-                    stack.append(other)
-        components.append(component)
-    return components
-
-
-def _ordered(component, neighbours, slices) -> tuple[list[ConfigurationPoint], bool]:
-    """The points of a component in order along it (from an end, if it has one)."""
-    ends = [node for node in component if len(neighbours[node]) < 2]
-    start = min(ends) if ends else min(component)
-    order, previous, node = [start], None, start
-    while True:
-        following = [other for other in neighbours[node] if other != previous and other not in order[-2:]]
-        if not following or following[0] == start:
-            break
-        previous, node = node, following[0]
-        order.append(node)
-    return [slices[k][i] for k, i in order], not ends
 
 
 def _moves(piece: Piece) -> list[tuple[int, float]]:
