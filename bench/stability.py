@@ -360,8 +360,44 @@ free-sign triangle is flat, whose ±1 branches had been replaced by the flat one
 (c2da5af, seed 30): in 1800 nine-link instances one more miss, 9/N18 (coupling 2) drawn at a
 double root, whose two near-tangent modes 0.046 apart were merged as one singular valley and
 then dropped as a near miss (`9-N18-two-roots-one-valley.json`); fixed, and the count
-restarted again at that commit (1c67c01, seed 31). The issue-25 targets — 10⁴ instances with
-no miss, p99 ≤ 10 × median — are not met yet.
+restarted again at that commit (1c67c01, seed 31). The slider work then changed the
+solving code twice: a run at faf85ef (seed 32) gave 3634 nine-link instances without a miss
+in either backend, and one at 66d6af0 (seed 33, `adversarial-66d6af0` below) all 4200
+nine-link and 1254 seven-link instances with the exact backend 0 / 0 and one numeric miss:
+9/N27 drawn at a double root, where link L5 has its joints in line and the mode sits in a
+valley of the link dimensions flat to rounding 1.4e-2 wide, whose representative was
+2.4e-4 from msolve's mode (`9-N27-double-root-25.json`; fixed by refining valleys on the
+rigid-link model, docs/numeric.md). The count restarted at that fix (6a629ab, seed 34; 149
+nine-link instances, 0 / 0 in both backends) and, once the notation change of issue 26 had
+renamed the parameters, at 88e104a (seed 35): 3919 nine-link instances, the exact
+backend 0 / 0, the numeric one three misses, all coupling 2 and singular: 9/N2 drawn at a
+double root where one condition touches 0 inside the domain (`9-N2-touching-inside.json`),
+and 9/N27 and 9/N28 with modes on an edge line along which one condition vanishes
+(`9-N27-edge-double-root.json`, `9-N28-modes-on-edge-line.json`); fixed (docs/numeric.md),
+and the count restarted at that fix (d4f5a64, seed 36, `adversarial-d4f5a64` below): all
+4200 nine-link instances, 0 missed and 0 spurious in both backends; then, in the first 2374
+seven-link instances, **the exact backend certified 4 of 8 modes, twice, on 7/N2**
+(small-box 30 and double-root 107; the numeric backend found all 8). The 4 missed modes
+have P1 = P8 (s1,8 = 0): clearing the denominators of eq. 2.7 had removed the factor s1,8
+from the characteristic polynomial, and the exact backend only examined coincidences at
+its roots. Both backends now examine every joint pair the plan divides by, the
+parameter's own joints included (2ae9a11, docs/exact.md step 9;
+`7-N2-parameter-joints-coincide*.json`). Since that fix the exact backend has certified
+no incomplete list, and missed a mode only where it said so: all modes, certified, on 7093
+instances at 2ae9a11 (seed 37, `adversarial-2ae9a11` below), 7035 at 5ae6c72 (seed 38,
+`adversarial-5ae6c72`), and 7378 of 7379 at the current
+solving code (3eb446264259, seed 39, `adversarial-97681e7`: all 6000 seven-link and 1404
+nine-link instances), where the one other, 9/N21 double-root 6, is not certified: the norm
+of its closure condition vanishes identically and the exact backend lists no mode, where
+msolve lists one (`tests/regressions/open/9-N21-vanishing-norm-seed39.json`; the numeric
+backend finds it).
+Those runs found three numeric misses, all a tangential root beside a crossing one or a
+shallow root (seed 37, 7/N2; seed 38, 7/N1, two missed and one spurious; and a random
+robot's), each fixed with its instance saved (docs/numeric.md); at the current solving
+code the numeric backend is 0 / 0 on all 7379 instances. Solve times were measured beside
+other jobs on both cores. The issue-25 targets — 10⁴ instances with no miss at one
+commit, p99 ≤ 10 × median — are not met yet: coupling-2 outliers remain (numeric 92.8 s
+on 9/N18, exact 198.9 s on 9/N28, where msolve takes under 1 s).
 
 {adversarial}
 
