@@ -20,6 +20,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from baranov.closure import CompiledSystem, sign_branches
+from baranov.closure.evaluate import orientation_sign
 from baranov.planner import Plan, one_dof_plans
 from baranov.scene import Scene
 from baranov.solvers.modes import AssemblyMode
@@ -117,4 +118,4 @@ def sign_index(point: ConfigurationPoint, triangles: list[tuple[str, str, str]])
     """The thesis's η: the signs of the oriented areas of ``triangles`` as the bits of an
     integer, the first the most significant, 1 for a positive area (§6.3: η = 10 = (1010)₂
     for A2,4,10 > 0, A1,3,6 < 0, A1,6,5 > 0, A4,9,7 < 0)."""
-    return int("".join("1" if oriented_area(point, triangle) > 0 else "0" for triangle in triangles), 2)
+    return int("".join("1" if orientation_sign(point.joints, triangle) > 0 else "0" for triangle in triangles), 2)

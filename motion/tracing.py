@@ -261,7 +261,9 @@ def _follow(system: OneDofSystem, start: ConfigurationPoint, direction: int, jum
         if previous_tangent is not None and tangent @ previous_tangent < 0:  # keep going the same way
             tangent, tangent_sign = -tangent, -tangent_sign
         corrected = _corrected(value_and_gradient, x + step * tangent)
-        point = None if corrected is None else _point_at(system, corrected * scale, start.signs)
+        found = [] if corrected is None else verified_configurations(system, (corrected * scale)[None, :],
+                                                                     np.array([start.signs]))
+        point = found[0] if found else None
         if point is None or max(math.dist(point.joints[j], points[-1].joints[j]) for j in point.joints) > jump:
             step /= 2
             continue
@@ -299,11 +301,6 @@ def _corrected(value_and_gradient, x: np.ndarray) -> np.ndarray | None:
         x = x - value * g / (g @ g)
     value, _ = value_and_gradient(x)
     return x if np.isfinite(value) and abs(value) < 1e-10 else None
-
-
-def _point_at(system: OneDofSystem, values: np.ndarray, signs: tuple[int, ...]) -> ConfigurationPoint | None:
-    found = verified_configurations(system, values[None, :], np.array(signs)[None, :])
-    return found[0] if found else None
 
 
 def _range(system: OneDofSystem, steps: int) -> tuple[float, float]:

@@ -25,6 +25,8 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
+from baranov.scene.numbers import rational_sqrt
+
 from .legs import Leg, RobotInputError
 from .model import HomeJoint, Point, to_number
 
@@ -86,7 +88,9 @@ def joint_motion(joint: HomeJoint, kind: str, value) -> Motion:
         x, y = joint.at
         return Motion(c, s, (x - (c * x - s * y), y - (s * x + c * y)))
     dx, dy = joint.direction
-    length = _length(dx, dy)
+    squared = dx * dx + dy * dy
+    squared = Fraction(squared) if isinstance(squared, int) else squared
+    length = rational_sqrt(squared) or math.sqrt(squared)  # exact where the length is rational
     return Motion(1, 0, (value * dx / length, value * dy / length))
 
 
@@ -123,15 +127,3 @@ def _check_home(leg: Leg, home: tuple[HomeJoint, HomeJoint, HomeJoint]) -> None:
             raise RobotInputError(f"leg {leg}, joint {k + 1}: a prismatic joint needs a non-zero direction")
         if letter == "R" and joint.direction is not None:
             raise RobotInputError(f"leg {leg}, joint {k + 1}: a revolute joint has no direction")
-
-
-def _length(dx, dy):
-    """|(dx, dy)|, a Fraction where it is rational."""
-    squared = dx * dx + dy * dy
-    if isinstance(squared, (Fraction, int)):
-        squared = Fraction(squared)
-        top, bottom = math.isqrt(squared.numerator), math.isqrt(squared.denominator)
-        if top * top == squared.numerator and bottom * bottom == squared.denominator:
-            return Fraction(top, bottom)
-    return math.sqrt(squared)
-
