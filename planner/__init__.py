@@ -11,6 +11,7 @@ from .search import (
     one_dof_plans,
     parametrising_distances,
     plan_avoiding,
+    plans_avoiding,
 )
 from .sliders import SliderPlanError, slider_plan, slider_plan_obstacle
 
@@ -28,6 +29,7 @@ __all__ = [
     "parameter_name",
     "parametrising_distances",
     "plan_avoiding",
+    "plans_avoiding",
     "slider_plan",
     "slider_plan_obstacle",
 ]

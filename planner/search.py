@@ -511,26 +511,34 @@ def best_plan(chain: KinematicChain) -> Plan:
 ALTERNATIVE_PLANS = 50
 
 
-def plan_avoiding(chain: KinematicChain, pairs: Iterable[frozenset[str]], count: int = ALTERNATIVE_PLANS) -> Plan | None:
-    """The best plan, among the ``count`` best, with none of the joint pairs ``pairs`` as
-    its reference or as the base of a step; None if there is none. A bilateration
-    Z_{i,j,k} divides by s_{i,j} (thesis eq. 2.7): where P_i = P_j it is undefined, so
-    joints that coincide must never be a base (thesis §5.1.3.2–5.1.3.3). The best plan
-    itself when ``pairs`` is empty.
+def plans_avoiding(chain: KinematicChain, pairs: Iterable[frozenset[str]],
+                   count: int = ALTERNATIVE_PLANS) -> Iterator[Plan]:
+    """The plans, among the ``count`` best and best first, with none of the joint pairs
+    ``pairs`` as their reference or as the base of a step. A bilateration Z_{i,j,k}
+    divides by s_{i,j} (thesis eq. 2.7): where P_i = P_j it is undefined, so joints that
+    coincide must never be a base (thesis §5.1.3.2–5.1.3.3).
 
-    Cost: that of :func:`bilateration_plans` with ``count`` plans, when ``pairs`` is not
-    empty.
+    Cost: that of :func:`bilateration_plans` with ``count`` plans.
 
     >>> from baranov.literature.trusses import thesis_truss
     >>> pentad = thesis_truss("5/B1").chain()
-    >>> plan_avoiding(pentad, [frozenset(best_plan(pentad).reference)]).reference != best_plan(pentad).reference
+    >>> first = next(plans_avoiding(pentad, [frozenset(best_plan(pentad).reference)]))
+    >>> first.reference != best_plan(pentad).reference
     True
     """
     pairs = set(pairs)
+    for plan in bilateration_plans(chain, count):
+        if not pairs & ({frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps}):
+            yield plan
+
+
+def plan_avoiding(chain: KinematicChain, pairs: Iterable[frozenset[str]], count: int = ALTERNATIVE_PLANS) -> Plan | None:
+    """The best plan that :func:`plans_avoiding` yields, None if there is none; the best
+    plan itself (no search of ``count`` plans) when ``pairs`` is empty."""
+    pairs = set(pairs)
     if not pairs:
         return best_plan(chain)
-    return next((plan for plan in bilateration_plans(chain, count)
-                 if not pairs & ({frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps})), None)
+    return next(plans_avoiding(chain, pairs, count), None)
 
 
 def _checked(chain: KinematicChain) -> KinematicChain:

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from baranov.enumerate import baranov_trusses
-from baranov.planner import coupling_degree
+from baranov.planner import best_plan, coupling_degree
 from baranov.scene import load_scene
 from baranov.scene.adversarial import (
     ADVERSARIAL_KINDS,
@@ -24,6 +24,7 @@ from baranov.scene.adversarial import (
     is_infinitesimally_flexible,
 )
 from baranov.solvers import ExactSolution, MovableLinkageError, coincidence, solve
+from baranov.solvers.exact.backend import solve_exact
 from baranov.solvers.msolve import compare_modes, find_msolve, msolve_modes
 
 REGRESSIONS = Path(__file__).resolve().parent / "regressions"
@@ -226,6 +227,21 @@ def test_exact_backend_settles_the_parameter_joints_coinciding(name, with_msolve
     assert compare_modes([mode.joints for mode in solution.assembly_modes], oracle) == (0, 0, 0)
     coincident = [m for m in solution.assembly_modes if math.dist(m.joints["P1"], m.joints["P8"]) < 1e-9]
     assert len(coincident) == 4 and all(m.parameters["s1,8"] == 0 for m in coincident)
+
+
+@needs_msolve
+def test_exact_backend_takes_other_parameters_where_the_norm_vanishes():
+    """tests/regressions/9-N21-vanishing-norm-seed39.json (seed 39 at 3eb446264259): P6 on
+    P12 and six joints on the line y = x; the norm of the best plan's closure condition in
+    s8,10 vanishes identically (a complex curve of solutions through the one real mode),
+    so the exact backend listed no mode, uncertified. Other parameters (s7,12) give a
+    certified polynomial with msolve's mode; the best plan alone still says why it cannot."""
+    scene = load_scene(REGRESSIONS / "9-N21-vanishing-norm-seed39.json")
+    solution = solve(scene, method="exact")
+    assert solution.certificate.complete and solution.parameters != ("s8,10",)
+    assert compare_modes([m.joints for m in solution.assembly_modes], list(msolve_modes(scene).configurations)) == (0, 0, 0)
+    alone = solve_exact(scene, best_plan(scene.chain))
+    assert not alone.assembly_modes and any("vanishes identically" in gap for gap in alone.certificate.gaps)
 
 
 def test_exact_certificate_names_a_coincidence_nothing_settles(monkeypatch):

@@ -36,7 +36,7 @@ import flint
 import numpy as np
 
 from baranov.closure import sign_branches
-from baranov.planner import Plan, parameter_name
+from baranov.planner import Plan, parameter_name, plans_avoiding
 from baranov.scene import Scene
 
 from ..candidates import assembly_modes
@@ -50,7 +50,7 @@ from ..coincidence import (
     unexamined_coincidences,
     with_modes_where_plan_divides_by_zero,
 )
-from ..modes import AssemblyMode, Certificate, ExactSolution
+from ..modes import AssemblyMode, Certificate, ExactSolution, SolverError
 from ..placement import compile_scene, placed_from_ground
 from ..progress import report_stage
 from ..verification import RESIDUAL_TOLERANCE, joint_residual, same_mode, sorted_modes
@@ -81,7 +81,10 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     """All assembly modes of ``scene`` (coupling degree 0, 1 or 2) by the exact method;
     the result (:class:`~baranov.solvers.modes.ExactSolution`) carries the characteristic
     polynomial (in the first parameter) and the certificate.
-    ``coincidences=False`` skips step 4 (used by step 4 itself)."""
+    ``coincidences=False`` skips step 4 (used by step 4 itself). Where the plan is chosen
+    here and the norm of its closure condition vanishes identically, other parameters are
+    tried (:func:`by_other_parameters`)."""
+    chosen = plan is None
     try:
         plan = plan or solvable_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
@@ -135,9 +138,47 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
                  "instance (it may move) that this plan cannot decide",)
     if polynomial is not None:
         gaps += _undecided_factors(scene, plan, polynomial, zero_settled)
-    return ExactSolution.of_plan("exact", plan, modes, [slider.joint for slider in scene.sliders],
-                                 characteristic_polynomial=polynomial,
-                                 certificate=Certificate(not gaps, "; ".join(notes) or None, gaps))
+    solution = ExactSolution.of_plan("exact", plan, modes, [slider.joint for slider in scene.sliders],
+                                     characteristic_polynomial=polynomial,
+                                     certificate=Certificate(not gaps, "; ".join(notes) or None, gaps))
+    if chosen and coincidences and polynomial is not None and polynomial.vanishing and not scene.sliders:
+        return by_other_parameters(scene, plan) or solution
+    return solution
+
+
+#: How many other choices of parameters :func:`by_other_parameters` tries.
+OTHER_PARAMETERS = 3
+
+
+def by_other_parameters(scene: Scene, plan: Plan) -> ExactSolution | None:
+    """The certified solution of the best plan, among the ALTERNATIVE_PLANS best that
+    avoid the scene's coincident joints, whose parameters differ from ``plan``'s and whose
+    solve leaves no gap; the first OTHER_PARAMETERS such choices are tried; None if none
+    certifies.
+
+    Where ``plan``'s closure condition has a norm identically 0, the characteristic
+    polynomial is lost for that parametrisation only, not always for the linkage: a
+    complex curve of solutions can project onto the whole axis of one distance and onto a
+    point of another. Issue 25's 9/N21 (seed 39: P6 on P12, six joints on one line) has a
+    norm 0 in s8,10 and a certified polynomial with its one mode in s7,12; a linkage that
+    moves leaves gaps with every plan (its norms vanish too, or the solve says it moves).
+
+    Cost: up to OTHER_PARAMETERS exact solves."""
+    tried = {frozenset(map(frozenset, plan.parameters))}
+    for other in plans_avoiding(scene.chain, scene.coincident_pairs):
+        parameters = frozenset(map(frozenset, other.parameters))
+        if parameters in tried:
+            continue
+        if len(tried) > OTHER_PARAMETERS:
+            return None
+        tried.add(parameters)
+        try:
+            solution = solve_exact(scene, other)
+        except SolverError:
+            continue
+        if solution.certificate.complete:
+            return solution
+    return None
 
 
 #: What the coupling-2 certificate says of its one Monte Carlo step.
