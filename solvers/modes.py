@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Collection
 from dataclasses import dataclass
 from typing import Any
 
@@ -86,11 +85,12 @@ class Solution:
     undecided: tuple[str, ...] = ()
 
     @classmethod
-    def of_plan(cls, method: str, plan, modes: tuple[AssemblyMode, ...], sliders: Collection[str] = (),
-                **extra) -> Solution:
+    def of_plan(cls, method: str, scene, plan, modes: tuple[AssemblyMode, ...], **extra) -> Solution:
         """The solution of ``method`` in the terms of ``plan`` (its coupling degree,
-        parameter names — t for a pair with one of the slider joints ``sliders`` — and
-        free-sign triangles), with the fields only ``cls`` has in ``extra``."""
+        parameter names — t for a pair with one of ``scene``'s slider joints, as the
+        modes' parameters are named — and free-sign triangles), with the fields only
+        ``cls`` has in ``extra``."""
+        sliders = [slider.joint for slider in scene.sliders]
         names = tuple(parameter_name(pair, sliders) for pair in plan.parameters)
         return cls(method, plan.number_of_parameters, names, plan.free_sign_triangles, modes, **extra)
 

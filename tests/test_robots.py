@@ -78,7 +78,7 @@ from hypothesis import strategies as st  # noqa: E402
 from baranov.robots import LegGeometry, Robot, forward_kinematics, locked_scene  # noqa: E402
 from baranov.scene import load_scene  # noqa: E402
 from baranov.solvers import solve  # noqa: E402
-from baranov.solvers.msolve import compare_modes  # noqa: E402
+from baranov.solvers.msolve import compare_modes, find_msolve  # noqa: E402
 
 RR_LEGS = [leg for leg in LEGS if leg.passive == "RR"]
 
@@ -215,6 +215,22 @@ def test_robot_command(capsys, tmp_path):
                                             "these actuator values (the locked robot has no real assembly mode)\n")
     assert main(["robot", example, "--actuators", "1,x,2"]) == 2
     assert capsys.readouterr().err == "baranov: error: actuator: 'x' is not a number\n"
+
+
+@pytest.mark.parametrize("method", ["numeric", "exact", "msolve"])
+@pytest.mark.parametrize("name", sorted(path.name for path in (REPO / "examples").glob("robot-*.json")))
+def test_robot_command_on_every_example(name, method, capsys):
+    """Every example robot through `baranov robot` by every method: the same poses, each
+    row's parameter under the header's name (3-RPP, where msolve lists the modes: the
+    header said s1,5 above modes in t1,5, and the command failed with a KeyError)."""
+    if method == "msolve" and find_msolve() is None:
+        pytest.skip("msolve binary not installed")
+    assert main(["robot", str(REPO / "examples" / name), "--method", method]) == 0
+    out = capsys.readouterr().out.splitlines()
+    family = name.split("-")[1]
+    assert f"family {family}," in out[0]
+    parameter = out[1].split()[-1]
+    assert parameter in {"s1,5", "t1,5"} and len(out) - 2 == int(out[0].split(", ")[2].split()[0])
 
 
 def test_example_vi_is_analytic_its_sextic_solvable():

@@ -89,7 +89,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         plan = plan or solvable_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
         described, modes, note = modes_without_plan(scene, error)
-        return ExactSolution.of_plan("exact", described, modes, certificate=Certificate(True, note, ()))
+        return ExactSolution.of_plan("exact", scene, described, modes, certificate=Certificate(True, note, ()))
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None
     gaps: tuple[str, ...] = ()
@@ -138,8 +138,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
                  "instance (it may move) that this plan cannot decide",)
     if polynomial is not None:
         gaps += _undecided_factors(scene, plan, polynomial, zero_settled)
-    solution = ExactSolution.of_plan("exact", plan, modes, [slider.joint for slider in scene.sliders],
-                                     characteristic_polynomial=polynomial,
+    solution = ExactSolution.of_plan("exact", scene, plan, modes, characteristic_polynomial=polynomial,
                                      certificate=Certificate(not gaps, "; ".join(notes) or None, gaps))
     if chosen and coincidences and polynomial is not None and polynomial.vanishing and not scene.sliders:
         return by_other_parameters(scene, plan) or solution

@@ -52,7 +52,7 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         plan = plan or solvable_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
         described, modes, note = modes_without_plan(scene, error)
-        return Solution.of_plan("numeric", described, modes, undecided=(note,))
+        return Solution.of_plan("numeric", scene, described, modes, undecided=(note,))
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
@@ -80,13 +80,12 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
     modes = assembly_modes(scene, compiled, candidates, polished)
     if scene.sliders:  # no polishing on slider constraints yet (docs/sliders.md)
-        return Solution.of_plan("numeric", plan, modes, [slider.joint for slider in scene.sliders],
-                                undecided=tuple(undecided))
+        return Solution.of_plan("numeric", scene, plan, modes, undecided=tuple(undecided))
     if degree > 0 and coincidences:
         modes = _modes_of_coincident_joints(scene, plan, samples, modes)
     modes, valleys = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
     modes, near_misses = _without_near_misses(scene, compiled, modes)
-    return Solution.of_plan("numeric", plan, modes, undecided=tuple(undecided) + valleys + near_misses)
+    return Solution.of_plan("numeric", scene, plan, modes, undecided=tuple(undecided) + valleys + near_misses)
 
 
 def _upper_bounds(scene: Scene, plan: Plan, compiled: CompiledSystem) -> tuple[float, ...]:
