@@ -13,6 +13,8 @@ The thesis counts 3 chains for the triad and 10 for the pentad.
 
 from __future__ import annotations
 
+from collections.abc import Collection
+
 import networkx as nx
 import numpy as np
 
@@ -86,6 +88,23 @@ def slider_chains(chain: KinematicChain, group: AutomorphismGroup | None = None)
     sizes = [bin(int(mask)).count("1") for mask in chosen]
     return [tuple(joint.name for k, joint in enumerate(chain.joints) if int(mask) >> k & 1)
             for _, mask in sorted(zip(sizes, chosen, strict=True))]
+
+
+def canonical_slider_set(chain: KinematicChain, sliders: Collection[str],
+                         group: AutomorphismGroup | None = None) -> tuple[str, ...]:
+    """The representative of the orbit of the slider set ``sliders`` under the
+    automorphisms of ``chain``, the one :func:`slider_chains` lists: the image whose bit
+    mask over the joints (P1 = bit 0) is smallest, in joint order. O(|G| · J).
+
+    >>> from baranov.topology import chain_from_link_graph
+    >>> canonical_slider_set(chain_from_link_graph("Bw"), ["P3"])
+    ('P1',)
+    """
+    group = group or automorphism_group(chain)
+    position = {joint.name: k for k, joint in enumerate(chain.joints)}
+    mask = np.array([sum(1 << position[name] for name in sliders)], dtype=np.int64)
+    smallest = min(int(image[0]) for image in _subset_images(chain, group, mask))
+    return tuple(joint.name for k, joint in enumerate(chain.joints) if smallest >> k & 1)
 
 
 def _subset_images(chain: KinematicChain, group: AutomorphismGroup, subsets: np.ndarray):

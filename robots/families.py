@@ -19,8 +19,9 @@ from functools import cache
 from itertools import combinations_with_replacement
 
 from baranov.enumerate import baranov_trusses
+from baranov.enumerate.sliders import canonical_slider_set
 from baranov.literature.robots import THESIS_ROBOT_FAMILIES
-from baranov.topology import KinematicChain, automorphism_group
+from baranov.topology import KinematicChain
 
 from .legs import LEGS, Leg
 
@@ -65,16 +66,9 @@ def locked_sliders(legs: Sequence[Leg]) -> tuple[str, ...]:
 
 
 def canonical_sliders(sliders: Sequence[str]) -> tuple[str, ...]:
-    """The representative of the orbit of ``sliders`` under the pentad's automorphisms:
-    the image whose bit mask over the joints (P1 = bit 0) is smallest, as
-    :func:`baranov.enumerate.sliders.slider_chains` chooses it. O(|G|) = 12 images."""
-    chain = pentad()[0]
-    position = {joint.name: k for k, joint in enumerate(chain.joints)}
-    images = []
-    for element in automorphism_group(chain).elements():
-        image = {element.joints[position[name]] for name in sliders}
-        images.append((sum(1 << position[name] for name in image), tuple(sorted(image, key=position.get))))
-    return min(images)[1]
+    """The representative of the orbit of ``sliders`` under the pentad's automorphisms,
+    as :func:`baranov.enumerate.sliders.slider_chains` lists it. O(|G|) = 12 images."""
+    return canonical_slider_set(pentad()[0], sliders)
 
 
 def all_robots() -> list[tuple[Leg, Leg, Leg]]:
