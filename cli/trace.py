@@ -19,6 +19,9 @@ def add_trace_parser(commands) -> None:
                             "P2,P4,P10;P1,P3,P6;P1,P6,P5;P4,P9,P7 (default: the plan's free-sign triangles)")
     trace.add_argument("--tracer", action="append", metavar="JOINT", help="a joint whose path to draw (repeatable)")
     trace.add_argument("--steps", type=int, default=400, help="resolution: slices of the first parameter (default 400)")
+    trace.add_argument("--degree", action="store_true",
+                       help="also the algebraic degree of each tracer's coupler curve and of a generic point's on "
+                            "each moving link (exact dimensions and msolve needed; seconds to a minute per curve)")
     trace.add_argument("--json", action="store_true", help="the pieces and branch points as JSON")
     trace.add_argument("--plot", type=Path, help="draw the configuration space and the coupler curves into this PNG")
 
@@ -61,6 +64,7 @@ def run_trace(args: argparse.Namespace) -> int:
     tracers = args.tracer or [sorted(joints - set(scene.world), key=lambda n: int(n[1:]) if n[1:].isdigit() else 0)[-1]]
     if set(tracers) - joints:
         raise UsageError(f"--tracer {sorted(set(tracers) - joints)[0]}: no such joint in this chain")
+    degrees = _degrees(scene, tracers) if args.degree else {}
     traced = trace(system, steps=args.steps)
     if args.plot is not None:
         from baranov.motion.drawing import render_trace
@@ -77,7 +81,8 @@ def run_trace(args: argparse.Namespace) -> int:
             "branch_points": [{"pieces": [list(end) for end in bp.pieces], **bp.parameters}
                               for bp in traced.branch_points],
             "loose_ends": [list(end) for end in traced.loose_ends],
-            "jumps": list(traced.jumps)}, indent=1))
+            "jumps": list(traced.jumps),
+            **({"coupler_curve_degrees": degrees} if args.degree else {})}, indent=1))
         return 0
     print(f"{args.scene}: {len(traced.pieces)} pieces in ({', '.join(system.parameter_names)}), "
           f"{len(traced.branch_points)} branch points, {len(traced.loose_ends)} piece ends not joined")
@@ -90,4 +95,28 @@ def run_trace(args: argparse.Namespace) -> int:
               f"{' (closed)' if piece.closed else ''}  {ranges}")
     for sentence in traced.jumps:
         print(f"jump: {sentence}")
+    if degrees:
+        print("coupler-curve degrees: " + ", ".join(f"{where} {degree}" for where, degree in degrees.items()))
     return 0
+
+
+def _degrees(scene, tracers: list[str]) -> dict[str, int | str]:
+    """The coupler-curve degree of each tracer joint ("fixed" on the ground) and of a
+    generic point of each moving link (:func:`baranov.motion.coupler_curve_degree`)."""
+    from baranov.motion import coupler_curve_degree
+    from baranov.solvers.msolve import MsolveUnavailable
+
+    from .main import UsageError
+
+    moving = [link for link in scene.links if link.name != scene.ground]
+    try:
+        degrees: dict[str, int | str] = {}
+        for joint in tracers:
+            link = next((link.name for link in moving if joint in link.joints), None)
+            fixed = link is None or joint in scene.world
+            degrees[joint] = "fixed" if fixed else coupler_curve_degree(scene, link, joint=joint)
+        for link in moving:
+            degrees[f"{link.name} (generic point)"] = coupler_curve_degree(scene, link.name, seed=0)
+    except MsolveUnavailable as error:
+        raise UsageError(f"--degree: {error}") from None
+    return degrees

@@ -141,3 +141,118 @@ def test_traced_pieces_hold_random_configurations(chain, seed):
     assert at_drawn and all(on_trace(p) for p in at_drawn)
     for u in rng.uniform(0, system.upper[0], 12):
         assert all(on_trace(p) for p in configurations_at(system, u))
+
+
+# --- coupler-curve degrees (beyond the thesis; motion/coupler_curves.py) ---------------
+
+needs_msolve = pytest.mark.skipif(__import__("baranov.solvers.msolve", fromlist=["find_msolve"]).find_msolve() is None,
+                                  reason="msolve binary not installed (make installs it)")
+FOUR_BAR = {"ground": "frame", "links": [
+    {"name": "frame", "joints": {"P1": [0, 0], "P4": [7, 0]}},
+    {"name": "crank", "joints": ["P1", "P2"], "squared_length": 4},
+    {"name": "coupler", "joints": ["P2", "P3"], "squared_length": 36},
+    {"name": "rocker", "joints": ["P3", "P4"], "squared_length": 25}]}
+
+
+@needs_msolve
+def test_four_bar_coupler_curves_are_sextics():
+    """Thesis §6.1: a point of the four-bar's coupler draws a sextic, the coupler's joints
+    circles; over two primes alike. The ground link's points and a fixed joint draw
+    nothing, and say so."""
+    from fractions import Fraction
+
+    from baranov.motion import CouplerCurveError, coupler_curve_degree
+    from baranov.scene import scene_from_dict
+
+    scene = scene_from_dict(FOUR_BAR)
+    for prime in (2147483629, 2147483587):
+        assert coupler_curve_degree(scene, "coupler", (Fraction(1, 3), Fraction(2, 5)), prime=prime) == 6
+    assert coupler_curve_degree(scene, "coupler", seed=4) == 6
+    assert [coupler_curve_degree(scene, "coupler", joint=j) for j in ("P2", "P3")] == [2, 2]
+    with pytest.raises(CouplerCurveError, match="link frame: the ground link"):
+        coupler_curve_degree(scene, "frame")
+    with pytest.raises(CouplerCurveError, match="does not move along a curve"):
+        coupler_curve_degree(scene, "crank", joint="P1")
+    with pytest.raises(CouplerCurveError, match="joint P4: not a joint of link coupler"):
+        coupler_curve_degree(scene, "coupler", joint="P4")
+
+
+#: Computed (motion/coupler_curves.py, random integer configurations drawn with seed
+#: [19, 6, n], two primes alike): the degrees of a generic point's coupler curve on each
+#: moving link, for each fixed link, sorted; six-bar chain 0 (ternary links apart:
+#: Stephenson) and 1 (ternary links adjacent: Watt).
+SIX_BAR_DEGREES = {
+    0: [[2, 2, 2, 6, 18], [2, 2, 2, 6, 18], [2, 2, 6, 16, 16], [2, 2, 6, 16, 16], [2, 2, 16, 16, 18],
+        [2, 2, 16, 16, 18]],
+    1: [[2, 2, 2, 6, 6], [2, 2, 2, 6, 6], [2, 2, 6, 14, 16], [2, 2, 6, 14, 16], [2, 2, 6, 14, 16],
+        [2, 2, 6, 14, 16]],
+}
+
+
+@needs_msolve
+@pytest.mark.parametrize("index", [0, 1], ids=["stephenson", "watt"])
+def test_six_bar_coupler_curve_degrees(index):
+    """Every kinematic inversion of both six-bar chains: the degree of a generic point's
+    curve on each moving link (a Stephenson six-bar reaches 18, a Watt six-bar 16; a
+    ternary fixed link of the Watt chain leaves two stacked four-bars: sextics)."""
+    from baranov.enumerate.crosscheck import find_geng
+    from baranov.enumerate.grubler import grubler_chains
+    from baranov.motion import coupler_curve_degree
+    from baranov.scene.instances import generic_integer_configuration, scene_of
+
+    if find_geng() is None:
+        pytest.skip("geng not installed")
+    chain = grubler_chains(6)[index]
+    drawn = generic_integer_configuration(chain, np.random.default_rng([19, 6, index]))
+    found = []
+    for ground in range(6):
+        scene = scene_of(chain, drawn, ground=ground)
+        found.append(sorted(coupler_curve_degree(scene, link.name, seed=2) for link in scene.links
+                            if link.name != scene.ground))
+    assert sorted(found) == SIX_BAR_DEGREES[index]
+
+
+@needs_msolve
+def test_double_butterfly_coupler_curves():
+    """Thesis §6.1 cites degree up to 48 for the double butterfly's coupler curves: a
+    generic point of the coupler triangle P6 P5 P9 draws a curve of degree 48 with the
+    thesis's dimensions; its joint P9 one of degree 40 (the slow test: the floating
+    binary links' points reach 52)."""
+    from baranov.motion import coupler_curve_degree
+
+    scene = load_scene(EXAMPLES / "double-butterfly.json")
+    assert coupler_curve_degree(scene, "t6-5-9", seed=1) == 48
+    assert coupler_curve_degree(scene, "t6-5-9", joint="P9") == 40
+
+
+@needs_msolve
+@pytest.mark.slow
+def test_double_butterfly_binary_links_reach_52():
+    """A generic point of the floating binary link P3 P6 (or P4 P7) of the double
+    butterfly draws a curve of degree 52, above the 48 the thesis cites; with the
+    thesis's dimensions and with a random integer configuration, over two primes."""
+    from baranov.motion import coupler_curve_degree
+    from baranov.scene.instances import generic_integer_configuration, scene_of
+    from baranov.topology import joints_of_links
+
+    example = load_scene(EXAMPLES / "double-butterfly.json")
+    assert coupler_curve_degree(example, "b36", seed=1) == 52
+    chain = example.chain
+    ground = next(k for k, joints in enumerate(joints_of_links(chain)) if set(joints) == {"P1", "P2", "P10"})
+    scene = scene_of(chain, generic_integer_configuration(chain, np.random.default_rng(5)), ground=ground)
+    binary = next(link.name for link in scene.links if set(link.joints) == {"P3", "P6"})
+    for prime in (2147483629, 2147483587):
+        assert coupler_curve_degree(scene, binary, seed=3, prime=prime) == 52
+
+
+@needs_msolve
+def test_trace_command_prints_coupler_curve_degrees(capsys, tmp_path):
+    import json
+
+    path = tmp_path / "four-bar.json"
+    path.write_text(json.dumps(FOUR_BAR))
+    assert main(["trace", str(path), "--tracer", "P3", "--degree", "--steps", "50"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == ("coupler-curve degrees: P3 2, crank (generic point) 2, "
+                                                        "coupler (generic point) 6, rocker (generic point) 2")
+    assert main(["trace", str(path), "--tracer", "P1", "--degree", "--steps", "50", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["coupler_curve_degrees"]["P1"] == "fixed"
