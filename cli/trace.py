@@ -19,6 +19,9 @@ def add_trace_parser(commands) -> None:
                             "P2,P4,P10;P1,P3,P6;P1,P6,P5;P4,P9,P7 (default: the plan's free-sign triangles)")
     trace.add_argument("--tracer", action="append", metavar="JOINT", help="a joint whose path to draw (repeatable)")
     trace.add_argument("--steps", type=int, default=400, help="resolution: slices of the first parameter (default 400)")
+    trace.add_argument("--fixed", metavar="LINK",
+                       help="kinematic inversion: draw and list the configurations with this link fixed (its first "
+                            "joint at the origin, its second on the x axis) instead of the scene's ground")
     trace.add_argument("--degree", action="store_true",
                        help="also the algebraic degree of each tracer's coupler curve and of a generic point's on "
                             "each moving link (exact dimensions and msolve needed; seconds to a minute per curve)")
@@ -65,14 +68,26 @@ def run_trace(args: argparse.Namespace) -> int:
     if set(tracers) - joints:
         raise UsageError(f"--tracer {sorted(set(tracers) - joints)[0]}: no such joint in this chain")
     degrees = _degrees(scene, tracers) if args.degree else {}
+    if args.fixed is not None:
+        from baranov.motion.inversion import fixed_frame_joints
+
+        fixed_frame_joints(scene, args.fixed)  # refused before tracing
     traced = trace(system, steps=args.steps)
+    fixed = None
+    if args.fixed is not None and traced.pieces:
+        from baranov.motion.inversion import inverted
+
+        traced = inverted(traced, scene, args.fixed)
+        first = traced.pieces[0].points[0]
+        fixed = {joint: first.joints[joint] for joint in scene.link_of(args.fixed).joints}
     if args.plot is not None:
         from baranov.motion.drawing import render_trace
 
-        write_atomically(args.plot, render_trace(system, traced, tracers, triangles))
+        write_atomically(args.plot, render_trace(system, traced, tracers, triangles, fixed))
     if args.json:
         print(json.dumps({
             "parameters": list(system.parameter_names),
+            "fixed_link": args.fixed or scene.ground,
             "eta_triangles": [list(t) for t in triangles],
             "pieces": [{"eta": sign_index(piece.points[0], triangles), "signs": list(piece.signs),
                         "closed": piece.closed,

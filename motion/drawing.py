@@ -11,10 +11,13 @@ from .tracing import Trace
 
 
 def render_trace(system: OneDofSystem, traced: Trace, tracers: list[str],
-                 eta_triangles: list[tuple[str, str, str]] | None = None) -> bytes:
+                 eta_triangles: list[tuple[str, str, str]] | None = None,
+                 fixed: dict[str, tuple[float, float]] | None = None) -> bytes:
     """A PNG: the configuration space (two parameters: a curve; one: ranges per sign
     vector, drawn at the sign vector's index) and the paths of ``tracers`` in the plane;
-    pieces labelled by η over ``eta_triangles`` (default: the plan's free-sign triangles)."""
+    pieces labelled by η over ``eta_triangles`` (default: the plan's free-sign triangles);
+    ``fixed``: the fixed joints' places (default: the scene's ground; another link's in a
+    kinematic inversion, :mod:`baranov.motion.inversion`)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -48,7 +51,7 @@ def render_trace(system: OneDofSystem, traced: Trace, tracers: list[str],
     space.set_xlabel(names[0])
     space.set_ylabel(names[-1] if len(names) > 1 else "sign vector")
     space.set_title(f"configuration space: {len(traced.pieces)} pieces, {len(traced.branch_points)} branch points")
-    fixed = system.scene.world
+    fixed = fixed or system.scene.world
     paths.plot([p[0] for p in fixed.values()], [p[1] for p in fixed.values()], "k^", ms=7)
     paths.set_aspect("equal")
     paths.set_title(f"coupler curves of {', '.join(tracers)} (fixed joints ▲)")

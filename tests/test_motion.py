@@ -89,7 +89,8 @@ def test_trace_command(capsys, tmp_path):
     assert (tmp_path / "trace.png").read_bytes().startswith(b"\x89PNG")
     for bad, message in [(["trace", str(EXAMPLES / "7-B1.json")], "a one-degree-of-freedom chain needs F = 1"),
                          ([*args, "--eta", "P1,P2"], "--eta P1,P2: triangles of three joints"),
-                         ([*args[:2], "--tracer", "P99"], "--tracer P99: no such joint")]:
+                         ([*args[:2], "--tracer", "P99"], "--tracer P99: no such joint"),
+                         ([*args[:2], "--fixed", "nope"], "link nope: no such link to fix")]:
         assert main(bad) == 2
         assert message in capsys.readouterr().err
 
@@ -256,3 +257,24 @@ def test_trace_command_prints_coupler_curve_degrees(capsys, tmp_path):
                                                         "coupler (generic point) 6, rocker (generic point) 2")
     assert main(["trace", str(path), "--tracer", "P1", "--degree", "--steps", "50", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["coupler_curve_degrees"]["P1"] == "fixed"
+
+
+def test_kinematic_inversion_fixes_another_link(butterfly):
+    """Thesis §6.3.1: with the coupler triangle P6 P5 P9 fixed, every traced configuration
+    is moved rigidly into its frame (P6 at the origin, P5 on the x axis): its joints stay
+    put, every link dimension is kept, and P1, pinned to P5 by the binary link P1 P5,
+    draws arcs of the circle of radius √145 about P5."""
+    from baranov.motion.inversion import InversionError, inverted
+
+    system, traced = butterfly
+    turned = inverted(traced, system.scene, "t6-5-9")
+    points = [point for piece in turned.pieces for point in piece.points]
+    first = points[0].joints
+    assert first["P6"] == (0.0, 0.0) and abs(first["P5"][1]) < 1e-12 and first["P5"][0] > 0
+    assert all(math.dist(p.joints[j], first[j]) < 1e-9 for p in points for j in ("P6", "P5", "P9"))
+    originals = [point for piece in traced.pieces for point in piece.points]
+    assert all(abs(math.dist(p.joints[a], p.joints[b]) - math.dist(q.joints[a], q.joints[b])) < 1e-9
+               for p, q in zip(points[::50], originals[::50], strict=True) for a in p.joints for b in p.joints)
+    assert all(abs(math.dist(p.joints["P1"], first["P5"]) - math.sqrt(145)) < 1e-9 for p in points)
+    with pytest.raises(InversionError, match="link nope: no such link to fix"):
+        inverted(traced, system.scene, "nope")
