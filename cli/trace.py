@@ -19,6 +19,13 @@ def add_trace_parser(commands) -> None:
                             "P2,P4,P10;P1,P3,P6;P1,P6,P5;P4,P9,P7 (default: the plan's free-sign triangles)")
     trace.add_argument("--tracer", action="append", metavar="JOINT", help="a joint whose path to draw (repeatable)")
     trace.add_argument("--steps", type=int, default=400, help="resolution: slices of the first parameter (default 400)")
+    trace.add_argument("--input", metavar="INPUT",
+                       help="drive the linkage: a scene input's name, an angle 'P1,P4,P2' (at P1 from P4 to P2, "
+                            "degrees) or a distance 'P2,P5' (squared); lists every configuration at each value of "
+                            "--grid, per traced piece, in order along it")
+    trace.add_argument("--grid", type=int, default=36, metavar="N",
+                       help="input values: N angles evenly round the circle, or N distances evenly over the "
+                            "traced range (default 36)")
     trace.add_argument("--fixed", metavar="LINK",
                        help="kinematic inversion: draw and list the configurations with this link fixed (its first "
                             "joint at the origin, its second on the x axis) instead of the scene's ground")
@@ -72,7 +79,11 @@ def run_trace(args: argparse.Namespace) -> int:
         from baranov.motion.inversion import fixed_frame_joints
 
         fixed_frame_joints(scene, args.fixed)  # refused before tracing
+    driver = _driver(scene, args.input) if args.input is not None else None
+    if args.grid < 1:
+        raise UsageError(f"--grid {args.grid}: at least 1")
     traced = trace(system, steps=args.steps)
+    driven = _driven(system, traced, driver, args.grid) if driver is not None else []
     fixed = None
     if args.fixed is not None and traced.pieces:
         from baranov.motion.inversion import inverted
@@ -97,7 +108,11 @@ def run_trace(args: argparse.Namespace) -> int:
                               for bp in traced.branch_points],
             "loose_ends": [list(end) for end in traced.loose_ends],
             "jumps": list(traced.jumps),
-            **({"coupler_curve_degrees": degrees} if args.degree else {})}, indent=1))
+            **({"coupler_curve_degrees": degrees} if args.degree else {}),
+            **({"driven": [{"piece": branch.piece, "input": driver.name, "values": list(branch.values),
+                            "points": [{**point.parameters, "joints": {j: list(p) for j, p in point.joints.items()}}
+                                       for point in branch.points]} for branch in driven]} if driver else {})},
+                         indent=1))
         return 0
     print(f"{args.scene}: {len(traced.pieces)} pieces in ({', '.join(system.parameter_names)}), "
           f"{len(traced.branch_points)} branch points, {len(traced.loose_ends)} piece ends not joined")
@@ -110,9 +125,52 @@ def run_trace(args: argparse.Namespace) -> int:
               f"{' (closed)' if piece.closed else ''}  {ranges}")
     for sentence in traced.jumps:
         print(f"jump: {sentence}")
+    if driver is not None:
+        unit = "°" if driver.kind == "angle" else ""
+        print(f"driven by {driver.name} ({driver.kind} {','.join(driver.joints)}), {args.grid} values: "
+              f"{sum(len(b.points) for b in driven)} configurations on {len(driven)} pieces")
+        for branch in driven:
+            noun = "configuration" if len(branch.points) == 1 else "configurations"
+            print(f"  piece {branch.piece:3d}: {len(branch.points):4d} {noun}, from {branch.values[0]:.6g}{unit} "
+                  f"to {branch.values[-1]:.6g}{unit}")
     if degrees:
         print("coupler-curve degrees: " + ", ".join(f"{where} {degree}" for where, degree in degrees.items()))
     return 0
+
+
+def _driver(scene, text: str):
+    """The input named ``text`` in the scene, or the angle (three joints) or distance (two
+    joints) it lists."""
+    from baranov.scene import SceneInput
+
+    from .main import UsageError
+
+    named = {entry.name: entry for entry in scene.inputs}
+    if text in named:
+        return named[text]
+    joints = [name.strip() for name in text.split(",")]
+    known = {joint.name for joint in scene.chain.joints}
+    if len(joints) not in (2, 3) or not all(joints):
+        raise UsageError(f"--input {text}: a scene input's name, three joints (an angle) or two (a distance)")
+    unknown = [joint for joint in joints if joint not in known]
+    if unknown:
+        raise UsageError(f"--input {text}: joint {unknown[0]}: no such joint in this chain")
+    return SceneInput(text, "angle" if len(joints) == 3 else "distance", tuple(joints))
+
+
+def _driven(system, traced, driver, count: int):
+    """The driven motion at ``count`` values: angles evenly round the circle, distances
+    evenly over the traced range."""
+    import numpy as np
+
+    from baranov.motion.driving import driven_motion, input_value
+
+    if driver.kind == "angle":
+        grid = -180.0 + 360.0 * np.arange(count) / count
+    else:
+        reached = [input_value(driver, point) for piece in traced.pieces for point in piece.points]
+        grid = np.linspace(min(reached), max(reached), count) if reached else np.zeros(0)
+    return driven_motion(system, traced, driver, grid)
 
 
 def _degrees(scene, tracers: list[str]) -> dict[str, int | str]:

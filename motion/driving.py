@@ -1,0 +1,181 @@
+"""The motion driven by an input (issue 19): for each value of an input on a grid — an
+angle between two links at their joint (a crank against the ground), or the squared
+distance between two joints (a linear actuator): a :class:`~baranov.scene.SceneInput` —
+every configuration of the linkage, grouped by the traced
+piece it lies on and ordered along it, so that following one branch never jumps to
+another (the failure of predictor–corrector tracing in the workspace that thesis ch. 6
+removes: the branches are the pieces of the configuration space, split by the signs of
+the free-sign triangles).
+
+A configuration at an input value is located between two neighbouring traced points
+where the input crosses the value, then refined: d = 1 by Brent's method on the one
+parameter (the plan places the configuration exactly at each value), d = 2 by Newton's
+method on the closure condition and the input together, started from the linear
+interpolation of the two points' parameters. Every configuration is verified on the link
+dimensions (1e-8, relative) as the traced ones are.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from baranov.scene import SceneInput
+from baranov.solvers.placement import placed_configurations
+
+from .configuration_space import ConfigurationPoint, OneDofSystem, verified_configurations
+from .tracing import Piece, Trace
+
+
+def input_value(driver: SceneInput, point: ConfigurationPoint) -> float:
+    """The value of the input ``driver`` at a configuration, in the scene's units: for an
+    angle at P_a from P_f to P_t, degrees counter-clockwise in (−180, 180]; for a distance,
+    the squared distance of its two joints."""
+    if driver.kind == "angle":
+        (ax, ay), (fx, fy), (tx, ty) = (point.joints[name] for name in driver.joints)
+        cross = (fx - ax) * (ty - ay) - (fy - ay) * (tx - ax)
+        dot = (fx - ax) * (tx - ax) + (fy - ay) * (ty - ay)
+        return math.degrees(math.atan2(cross, dot))
+    (ux, uy), (vx, vy) = (point.joints[name] for name in driver.joints)
+    return (vx - ux) ** 2 + (vy - uy) ** 2
+
+
+def _turned(driver: SceneInput, value: float) -> float:
+    """An angle's difference brought into [−180, 180); a distance's as it is."""
+    return (value + 180.0) % 360.0 - 180.0 if driver.kind == "angle" else value
+
+
+@dataclass(frozen=True)
+class DrivenBranch:
+    """The configurations of one traced piece at the input values it reaches, in order
+    along the piece (:attr:`values` the input's, unwrapped for an angle)."""
+
+    piece: int
+    signs: tuple[int, ...]
+    values: tuple[float, ...]
+    points: tuple[ConfigurationPoint, ...]
+
+
+def driven_motion(system: OneDofSystem, traced: Trace, driver: SceneInput, grid) -> list[DrivenBranch]:
+    """For every traced piece, its configurations at the input values of ``grid`` (the
+    input's units; for an angle, every value plus any multiple of 360°), located and
+    refined as the module docstring says; pieces that reach no value are left out.
+
+    Cost: per crossing, a Brent search (d = 1, about 40 placements) or a few Newton steps
+    (d = 2)."""
+    branches = []
+    for index, piece in enumerate(traced.pieces):
+        values, points = [], []
+        for before, after in _segments(piece):
+            for target in _crossed(driver, before, after, grid):
+                refined = _refined(system, driver, before, after, target)
+                if refined is not None and not any(value == target and _same(refined, point)
+                                                   for value, point in zip(values, points, strict=True)):
+                    values.append(target)
+                    points.append(refined)
+        if points:
+            branches.append(DrivenBranch(index, piece.signs, tuple(values), tuple(points)))
+    return branches
+
+
+def _same(first: ConfigurationPoint, second: ConfigurationPoint) -> bool:
+    """One configuration found twice on a piece: every joint within 1e-7 of the joints'
+    spread (a piece that goes out and back over a stretch, as a trace can where its sign
+    vector's curve ends without a flat triangle, meets a value twice at one configuration)."""
+    spread = max(max(abs(x) + abs(y) for x, y in first.joints.values()), 1.0)
+    return all(math.dist(first.joints[name], second.joints[name]) < 1e-7 * spread for name in first.joints)
+
+
+def _segments(piece: Piece) -> list[tuple[ConfigurationPoint, ConfigurationPoint]]:
+    points = list(piece.points) + ([piece.points[0]] if piece.closed else [])
+    return list(zip(points[:-1], points[1:], strict=True))
+
+
+def _crossed(driver: SceneInput, before: ConfigurationPoint, after: ConfigurationPoint, grid: np.ndarray) -> list[float]:
+    """The grid values the input passes between two neighbouring points (an angle takes
+    the short way round, unwrapped from ``before``'s value), in the order passed."""
+    start = input_value(driver, before)
+    end = start + _turned(driver, input_value(driver, after) - start)
+    low, high = min(start, end), max(start, end)
+    found = []
+    for value in np.asarray(grid, dtype=float):
+        if driver.kind == "angle":
+            turns = range(math.ceil((low - value) / 360), math.floor((high - value) / 360) + 1)
+            found += [value + 360.0 * n for n in turns]
+        elif low <= value <= high:
+            found.append(float(value))
+    found = [value for value in found if value != end]  # an end value belongs to the next segment
+    return sorted(found, reverse=end < start)
+
+
+def _refined(system: OneDofSystem, driver: SceneInput, before: ConfigurationPoint, after: ConfigurationPoint,
+             target: float) -> ConfigurationPoint | None:
+    names = system.parameter_names
+    branch = np.array(before.signs)[None, :]
+    start = np.array([before.parameters[name] for name in names])
+    end = np.array([after.parameters[name] for name in names])
+
+    def placed(values: np.ndarray) -> ConfigurationPoint | None:
+        found = verified_configurations(system, values[None, :], branch)
+        return found[0] if found else None
+
+    def offset(point: ConfigurationPoint) -> float:
+        return _turned(driver, input_value(driver, point) - target)
+
+    if len(names) == 1:
+        try:
+            root = brentq(lambda s: offset(placed(np.array([s]))), start[0], end[0], xtol=1e-13 * system.upper[0])
+        except (ValueError, TypeError):  # the ends place no configuration or do not bracket
+            return None
+        return placed(np.array([root]))
+    def placed_anyway(values: np.ndarray) -> float | None:  # off the curve too: Newton's iterates
+        joints, points = placed_configurations(system.scene, system.compiled, values[None, :], branch)
+        if not np.isfinite(points).all():
+            return None
+        where = {name: (point.real, point.imag) for name, point in zip(joints, points[0], strict=True)}
+        return offset(ConfigurationPoint({}, (), where, math.inf))
+
+    return _newton(system, branch, start, end, placed_anyway)
+
+
+def _newton(system: OneDofSystem, branch: np.ndarray, start: np.ndarray, end: np.ndarray,
+            offset) -> ConfigurationPoint | None:
+    """d = 2: the closure condition and the input's offset both 0, by Newton's method
+    with a forward-difference Jacobian from the interpolation of ``start`` and ``end``
+    where the input's offset is linear between them."""
+    first, last = offset(start), offset(end)
+    if first is None or last is None or first == last:
+        return None
+    values = start + (end - start) * first / (first - last)
+    scale = np.array(system.upper)
+    for _ in range(20):
+        residual = _equations(system, branch, values, offset)
+        if residual is None:
+            return None
+        if np.max(np.abs(residual)) < 1e-12:
+            break
+        jacobian = np.empty((2, 2))
+        for column in range(2):
+            step = np.zeros(2)
+            step[column] = 1e-7 * scale[column]
+            moved = _equations(system, branch, values + step, offset)
+            if moved is None:
+                return None
+            jacobian[:, column] = (moved - residual) / step[column]
+        try:
+            values = values - np.linalg.solve(jacobian, residual)
+        except np.linalg.LinAlgError:
+            return None
+    found = verified_configurations(system, values[None, :], branch)
+    return found[0] if found else None
+
+
+def _equations(system: OneDofSystem, branch: np.ndarray, values: np.ndarray, offset) -> np.ndarray | None:
+    closure = system.compiled.residuals(values[None, :], branch)[0, 0, 0]
+    moved = offset(values)
+    if moved is None or not np.isfinite(closure):
+        return None
+    return np.array([closure, moved])
