@@ -26,6 +26,9 @@ def add_trace_parser(commands) -> None:
     trace.add_argument("--grid", type=int, default=36, metavar="N",
                        help="input values: N angles evenly round the circle, or N distances evenly over the "
                             "traced range (default 36)")
+    trace.add_argument("--animate", type=Path, metavar="GIF",
+                       help="with --input: an animation of the linkage moving from the piece with the most "
+                            "driven configurations on through its branch points, the tracers' paths behind it")
     trace.add_argument("--fixed", metavar="LINK",
                        help="kinematic inversion: draw and list the configurations with this link fixed (its first "
                             "joint at the origin, its second on the x axis) instead of the scene's ground")
@@ -82,6 +85,10 @@ def run_trace(args: argparse.Namespace) -> int:
     driver = _driver(scene, args.input) if args.input is not None else None
     if args.grid < 1:
         raise UsageError(f"--grid {args.grid}: at least 1")
+    if args.animate is not None and (driver is None or not args.animate.parent.is_dir()):
+        raise UsageError(f"--animate {args.animate}: " + ("give --input too: the animation follows the driven motion"
+                                                         if driver is None else
+                                                         f"folder {args.animate.parent} does not exist"))
     traced = trace(system, steps=args.steps)
     driven = _driven(system, traced, driver, args.grid) if driver is not None else []
     fixed = None
@@ -95,6 +102,8 @@ def run_trace(args: argparse.Namespace) -> int:
         from baranov.motion.drawing import render_trace
 
         write_atomically(args.plot, render_trace(system, traced, tracers, triangles, fixed))
+    if args.animate is not None:
+        _animate(args.animate, scene, traced, driven, tracers, driver)
     if args.json:
         print(json.dumps({
             "parameters": list(system.parameter_names),
@@ -171,6 +180,22 @@ def _driven(system, traced, driver, count: int):
         reached = [input_value(driver, point) for piece in traced.pieces for point in piece.points]
         grid = np.linspace(min(reached), max(reached), count) if reached else np.zeros(0)
     return driven_motion(system, traced, driver, grid)
+
+
+def _animate(path: Path, scene, traced, driven, tracers: list[str], driver) -> None:
+    """The GIF of the motion from the longest driven piece on through its branch points
+    (:func:`baranov.motion.driving.followed`), written atomically."""
+    from baranov.catalog.files import write_atomically
+    from baranov.motion.animation import render_animation
+    from baranov.motion.driving import followed
+
+    from .main import UsageError
+
+    if not driven:
+        raise UsageError(f"--animate {path}: the input reaches none of its --grid values on the traced pieces")
+    longest = max(driven, key=lambda branch: len(branch.points))
+    motion = followed(traced, driven, longest.piece)
+    write_atomically(path, render_animation(scene, motion, tracers, driver.name, "°" if driver.kind == "angle" else ""))
 
 
 def _degrees(scene, tracers: list[str]) -> dict[str, int | str]:

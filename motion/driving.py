@@ -179,3 +179,31 @@ def _equations(system: OneDofSystem, branch: np.ndarray, values: np.ndarray, off
     if moved is None or not np.isfinite(closure):
         return None
     return np.array([closure, moved])
+
+
+def followed(traced: Trace, driven: list[DrivenBranch], start: int) -> DrivenBranch:
+    """The driven configurations met when the linkage moves on from piece ``start``
+    through the branch points at its ends, piece after piece, until it is back at a piece
+    already met or at an end joined to none: one motion of the linkage, as a crank turning
+    round, whose pieces the flat triangles of the branch points split (thesis §6.3). At a
+    branch point the motion goes on to the other piece that meets there. The result is
+    labelled with ``start``. O(pieces × branch points)."""
+    by_piece = {branch.piece: branch for branch in driven}
+    values: list[float] = []
+    points: list[ConfigurationPoint] = []
+    piece, entered, seen = start, 0, set()
+    while piece not in seen:
+        seen.add(piece)
+        branch = by_piece.get(piece)
+        if branch is not None:
+            order = range(len(branch.points)) if entered == 0 else range(len(branch.points) - 1, -1, -1)
+            values += [branch.values[k] for k in order]
+            points += [branch.points[k] for k in order]
+        leaving = (piece, -1 if entered == 0 else 0)
+        onward = [other for point in traced.branch_points for end, other in (point.pieces, point.pieces[::-1])
+                  if end == leaving and other[0] not in seen]
+        if not onward:
+            break
+        piece, entered = onward[0]
+    signs = traced.pieces[start].signs
+    return DrivenBranch(start, signs, tuple(values), tuple(points))

@@ -13,9 +13,10 @@ from baranov.solvers.drawing import modes_figure, render_modes
 from baranov.solvers.msolve import find_msolve
 
 #: The scene examples of rigid linkages (``robot-*.json`` are robot files, drawn through
-#: ``baranov robot --plot``; the double butterfly moves, drawn by ``baranov trace --plot``).
+#: ``baranov robot --plot``; linkages that move, the double butterfly and the six-bar, are
+#: drawn by ``baranov trace --plot``).
 EXAMPLES = sorted(p.stem for p in (Path(__file__).resolve().parents[1] / "examples").glob("*.json")
-                  if not p.stem.startswith("robot-") and p.stem != "double-butterfly")
+                  if not p.stem.startswith("robot-") and load_scene(p).mobility == 0)
 #: At most this fraction of an example's joint labels may cross a link, bar or slider axis
 #: (measured with this layout: 38 of the 568 labels of the all-revolute examples, where 107
 #: crossed with labels pushed straight away from the centre; 44 of 671 with the slider

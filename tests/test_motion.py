@@ -435,3 +435,31 @@ def test_driven_eight_bars_equal_the_rigidified_chains(index):
         pytest.skip("geng not installed")
     rng = np.random.default_rng([19, 8, index])
     _driven_equals_rigid_solves(_with_a_crank(grubler_chains(8)[index], rng), rng)
+
+
+def test_a_crank_turns_round_through_the_branch_points(capsys, tmp_path):
+    """examples/stephenson-six-bar.json: its crank-rocker's crank turns fully, so the
+    motion followed from one piece on through the branch points meets each of 36 crank
+    angles once and comes back, no joint moving more than a crank's swing of 10° allows
+    between frames; `--animate` draws it (36 frames), and asks for --input."""
+    from PIL import Image
+
+    from baranov.motion.driving import driven_motion, followed
+
+    scene = load_scene(EXAMPLES / "stephenson-six-bar.json")
+    system = one_dof_system(scene)
+    traced = trace(system)
+    (crank,) = scene.inputs
+    driven = driven_motion(system, traced, crank, -180 + 10 * np.arange(36))
+    motion = followed(traced, driven, max(driven, key=lambda branch: len(branch.points)).piece)
+    assert sorted(round((v + 180) % 360 - 180) for v in motion.values) == list(range(-180, 180, 10))
+    frames = list(motion.points) + [motion.points[0]]
+    assert max(math.dist(a.joints[j], b.joints[j]) for a, b in zip(frames[:-1], frames[1:], strict=True)
+               for j in a.joints) < 1.5
+    path = tmp_path / "motion.gif"
+    args = ["trace", str(EXAMPLES / "stephenson-six-bar.json"), "--tracer", "P5"]
+    assert main([*args, "--input", "crank", "--animate", str(path)]) == 0
+    assert Image.open(path).n_frames == 36
+    capsys.readouterr()
+    assert main([*args, "--animate", str(path)]) == 2
+    assert "give --input too" in capsys.readouterr().err
