@@ -21,7 +21,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from baranov.scene import SceneInput
 from baranov.solvers.placement import placed_configurations
@@ -69,6 +69,8 @@ def driven_motion(system: OneDofSystem, traced: Trace, driver: SceneInput, grid)
     branches = []
     for index, piece in enumerate(traced.pieces):
         values, points = [], []
+        if len(system.parameter_names) == 1:
+            piece = _with_extrema(system, driver, piece)
         for before, after in _segments(piece):
             for target in _crossed(driver, before, after, grid):
                 refined = _refined(system, driver, before, after, target)
@@ -79,6 +81,41 @@ def driven_motion(system: OneDofSystem, traced: Trace, driver: SceneInput, grid)
         if points:
             branches.append(DrivenBranch(index, piece.signs, tuple(values), tuple(points)))
     return branches
+
+
+def _with_extrema(system: OneDofSystem, driver: SceneInput, piece: Piece) -> Piece:
+    """d = 1: ``piece`` with the configuration at each local extremum of the input along
+    it added, located to 1e-13 of the parameter's range (a bounded scalar search between
+    the samples around it): a dead point of the input (a four-bar rocker's extreme angle)
+    lies between two samples, and the values between the higher sample and the extremum
+    would be missed (a double-rocker's crank: 109.4633° traced, 109.4712° = arccos(−1/3)
+    reached)."""
+    name = system.parameter_names[0]
+    points = list(piece.points)
+    inputs = [input_value(driver, point) for point in points]
+    steps = [_turned(driver, after - before) for before, after in zip(inputs, inputs[1:], strict=False)]
+    added = []
+    for k in range(1, len(points) - 1):
+        if steps[k - 1] * steps[k] >= 0:
+            continue
+        sign = 1.0 if steps[k - 1] > 0 else -1.0  # a maximum: minimise −input
+        low, high = sorted((points[k - 1].parameters[name], points[k + 1].parameters[name]))
+
+        def negated(value: float, sign=sign, reference=inputs[k]) -> float:
+            found = verified_configurations(system, np.array([[value]]), np.array(piece.signs)[None, :])
+            return -sign * _turned(driver, input_value(driver, found[0]) - reference) if found else math.inf
+
+        best = minimize_scalar(negated, bounds=(low, high), method="bounded",
+                               options={"xatol": 1e-13 * system.upper[0]})
+        found = verified_configurations(system, np.array([[best.x]]), np.array(piece.signs)[None, :])
+        if found and abs(best.x - points[k].parameters[name]) > 0:
+            added.append((k, found[0]))
+    for k, point in reversed(added):  # in order of the parameter, next to the sample it refines
+        at = points[k].parameters[name]
+        forward = points[-1].parameters[name] >= points[0].parameters[name]
+        later = (point.parameters[name] > at) == forward
+        points.insert(k + 1 if later else k, point)
+    return Piece(piece.signs, tuple(points), piece.closed)
 
 
 def _same(first: ConfigurationPoint, second: ConfigurationPoint) -> bool:

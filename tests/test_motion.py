@@ -463,3 +463,57 @@ def test_a_crank_turns_round_through_the_branch_points(capsys, tmp_path):
     capsys.readouterr()
     assert main([*args, "--animate", str(path)]) == 2
     assert "give --input too" in capsys.readouterr().err
+
+
+def _configurations_at(entries: dict, angle: float) -> tuple[list[dict], list[dict]]:
+    """The driven motion's configurations of a four-bar (crank at P1 from P4 to P2) at
+    ``angle``, each once (a branch point's belongs to every piece meeting there), and the
+    numeric backend's modes of the four-bar rigidified there."""
+    from baranov.motion.driving import driven_motion
+    from baranov.scene import SceneInput, scene_from_dict
+    from baranov.solvers import solve
+
+    scene = scene_from_dict(entries)
+    system = one_dof_system(scene)
+    driver = SceneInput("crank", "angle", ("P1", "P4", "P2"))
+    found: list[dict] = []
+    for branch in driven_motion(system, trace(system), driver, [angle]):
+        for point in branch.points:
+            if not any(max(math.dist(point.joints[j], other[j]) for j in other) < 1e-9 for other in found):
+                found.append(point.joints)
+    rigid = scene_from_dict(_rigidified(entries, scene, "crank", "P1", "P4", "P2", angle))
+    return found, [mode.joints for mode in solve(rigid, method="numeric").assembly_modes]
+
+
+def test_a_dead_point_is_reached_to_rounding():
+    """Stability (issue 19): a double-rocker four-bar's crank swings to arccos(−1/3) =
+    109.4712206° (coupler and rocker in line), a local extremum of the input inside a
+    piece, between two samples (109.4633° was the highest sampled). The driven motion
+    refines it: the extreme listed is arccos(−1/3) to 1e-9°; 1e-5° below it both
+    configurations are there (the numeric backend's two), 1e-5° above none."""
+    from baranov.motion.driving import _with_extrema, input_value
+    from baranov.scene import SceneInput, scene_from_dict
+    from baranov.solvers.msolve import compare_modes
+
+    entries = _four_bar(*GRASHOF["double-rocker"])
+    system = one_dof_system(scene_from_dict(entries))
+    driver = SceneInput("crank", "angle", ("P1", "P4", "P2"))
+    pieces = [_with_extrema(system, driver, piece) for piece in trace(system).pieces]
+    dead = math.degrees(math.acos(-1 / 3))
+    assert abs(max(input_value(driver, p) for piece in pieces for p in piece.points) - dead) < 1e-9
+    below, above = _configurations_at(entries, dead - 1e-5), _configurations_at(entries, dead + 1e-5)
+    assert len(below[0]) == 2 and compare_modes(*below) == (0, 0, 0)
+    assert above == ([], [])
+
+
+def test_a_change_point_four_bar_through_its_singular_configuration():
+    """Stability (issue 19): the change-point four-bar (2 + 5 = 4 + 3) passes through a
+    configuration with every joint in line at a crank angle of 180°, where two branches
+    cross: one configuration there, listed once, as the numeric backend lists it; two at
+    179° and at −179°."""
+    from baranov.solvers.msolve import compare_modes
+
+    entries = _four_bar(*GRASHOF["change-point"])
+    for angle, count in ((180.0, 1), (179.0, 2), (-179.0, 2)):
+        found, modes = _configurations_at(entries, angle)
+        assert len(found) == count and compare_modes(found, modes) == (0, 0, 0), angle
