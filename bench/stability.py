@@ -144,13 +144,83 @@ def conditioning(limit: float) -> list[str]:
     return lines
 
 
+def one_dof() -> list[str]:
+    """Issue 19's stability cases of the driven motion against the numeric backend on the
+    linkage rigidified at the input (:func:`baranov.motion.driving.rigidified`): a
+    double-rocker's dead point, a change-point four-bar through its in-line
+    configuration, and one random configuration of each eight-bar."""
+    from baranov.enumerate.grubler import grubler_chains
+    from baranov.motion import one_dof_system, trace
+    from baranov.motion.driving import (
+        _with_extrema,
+        crank_of,
+        distinct_configurations,
+        driven_motion,
+        input_value,
+        rigidified,
+    )
+    from baranov.scene import SceneInput, scene_from_dict
+    from baranov.scene.instances import instance_dict
+    from baranov.solvers import solve
+    from baranov.solvers.msolve import compare_modes
+
+    def four_bar(ground, crank, coupler, rocker):
+        return scene_from_dict({"ground": "frame", "links": [
+            {"name": "frame", "joints": {"P1": [0, 0], "P4": [ground, 0]}},
+            {"name": "crank", "joints": ["P1", "P2"], "squared_length": crank ** 2},
+            {"name": "coupler", "joints": ["P2", "P3"], "squared_length": coupler ** 2},
+            {"name": "rocker", "joints": ["P3", "P4"], "squared_length": rocker ** 2}]})
+
+    def compared(scene, driver, angle):
+        system = one_dof_system(scene)
+        found = [p.joints for p in distinct_configurations(driven_motion(system, trace(system), driver, [angle]),
+                                                           angle, 360)]
+        modes = [m.joints for m in solve(rigidified(scene, driver, angle), method="numeric").assembly_modes]
+        missed, spurious, _ = compare_modes(found, modes)
+        return f"{len(found)} / {len(modes)} / {missed} / {spurious}"
+
+    crank = SceneInput("crank", "angle", ("P1", "P4", "P2"))
+    rocker = four_bar(6, 5, 2, 7)
+    system = one_dof_system(rocker)
+    sampled = max(input_value(crank, p) for piece in trace(system).pieces for p in piece.points)
+    refined = max(input_value(crank, p) for piece in trace(system).pieces
+                  for p in _with_extrema(system, crank, piece).points)
+    dead = math.degrees(math.acos(-1 / 3))
+    lines = ["| case | crank angle | driven / numeric / missed / spurious |", "|---|---|---|"]
+    lines += [f"| double-rocker (6, 5, 2, 7), dead point arccos(−1/3) = {dead:.7f}° | dead point {offset:+g}° | "
+              f"{compared(rocker, crank, dead + offset)} |" for offset in (-1e-2, -1e-5, 1e-5)]
+    change = four_bar(5, 2, 4, 3)
+    lines += [f"| change-point (5, 2, 4, 3), every joint in line at 180° | {angle:g}° | "
+              f"{compared(change, crank, angle)} |" for angle in (180.0, 179.0, -179.0)]
+    lines += ["", f"The double-rocker's highest sampled crank angle: {sampled:.7f}°; located as an extremum "
+                  f"of the input: {refined:.10f}° ({refined - dead:+.1e}° from arccos(−1/3)).", ""]
+    rows = ["| eight-bar | pieces | configurations compared | missed / spurious |", "|---|---|---|---|"]
+    for index, chain in enumerate(grubler_chains(8)):
+        rng = np.random.default_rng([19, 8, index])
+        drawn = generic_integer_configuration(chain, rng)
+        scene = next(s for s in (scene_from_dict(instance_dict(chain, drawn, g)) for g in range(8)) if crank_of(s))
+        driver = crank_of(scene)
+        system = one_dof_system(scene)
+        traced = trace(system)
+        branches = driven_motion(system, traced, driver, -180 + 30 * np.arange(12))
+        total = missed = spurious = 0
+        for angle in -180 + 30 * np.arange(12):
+            found = [p.joints for p in distinct_configurations(branches, float(angle), 360)]
+            modes = [m.joints for m in solve(rigidified(scene, driver, float(angle)), method="numeric").assembly_modes]
+            counts = compare_modes(found, modes)
+            total, missed, spurious = total + len(modes), missed + counts[0], spurious + counts[1]
+        rows.append(f"| {index} | {len(traced.pieces)} | {total} | {missed} / {spurious} |")
+    return lines + rows
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--time-limit", type=float, default=60.0, help="seconds per solve")
     args = parser.parse_args()
     start = time.perf_counter()
     sections = {"rpr": three_rpr(args.time_limit), "merging": merging(args.time_limit),
-                "families": families(args.time_limit), "conditioning": conditioning(args.time_limit)}
+                "families": families(args.time_limit), "conditioning": conditioning(args.time_limit),
+                "one_dof": one_dof()}
     collinear = ROOT / "docs" / "bench" / "collinear-joints.md"
     sections["collinear"] = [collinear.read_text(encoding="utf-8").strip() if collinear.exists()
                              else "(not run: see the command above)"]
@@ -413,6 +483,19 @@ for every ε since the perturbation has one direction); where ε is below its ac
 figure grows like 1/ε.
 
 {conditioning}
+
+## One-degree-of-freedom chains: the driven motion (issue 19)
+
+`baranov trace --input` lists every configuration at each input value from the traced
+configuration space (docs/motion.md). Here it is compared, mode for mode, with the numeric
+backend on the rigid linkage the crank held at that angle leaves
+(`baranov.motion.driving.rigidified`). Four-bars by their link lengths (frame, crank,
+coupler, rocker); a configuration at a branch point ends several pieces and is counted
+once. Then each eight-bar Grübler chain, one random integer configuration (seed
+[19, 8, index]) with a crank pinned to the fixed link, at the twelve crank angles
+−180°, −150°, …, 150°.
+
+{one_dof}
 
 ## Known failures of the project's backends (pinned in tests/test_stability.py)
 

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from baranov.scene import SceneInput
+from baranov.scene import Scene, SceneError, SceneInput, scene_from_dict
 from baranov.solvers.placement import placed_configurations
 
 from .configuration_space import ConfigurationPoint, OneDofSystem, verified_configurations
@@ -73,11 +73,12 @@ def driven_motion(system: OneDofSystem, traced: Trace, driver: SceneInput, grid)
             piece = _with_extrema(system, driver, piece)
         for before, after in _segments(piece):
             for target in _crossed(driver, before, after, grid):
-                refined = _refined(system, driver, before, after, target)
-                if refined is not None and not any(value == target and _same(refined, point)
-                                                   for value, point in zip(values, points, strict=True)):
-                    values.append(target)
-                    points.append(refined)
+                _keep(values, points, target, _refined(system, driver, before, after, target))
+        if not piece.closed:  # a value just beyond an end, met at the end itself (_beyond)
+            for target in _beyond(driver, piece.points[-1], grid):
+                _keep(values, points, target, piece.points[-1])
+            for target in _beyond(driver, piece.points[0], grid):
+                _keep(values, points, target, piece.points[0], first=True)
         if points:
             branches.append(DrivenBranch(index, piece.signs, tuple(values), tuple(points)))
     return branches
@@ -118,12 +119,12 @@ def _with_extrema(system: OneDofSystem, driver: SceneInput, piece: Piece) -> Pie
     return Piece(piece.signs, tuple(points), piece.closed)
 
 
-def _same(first: ConfigurationPoint, second: ConfigurationPoint) -> bool:
+def _same(first: ConfigurationPoint, second: ConfigurationPoint, tolerance: float = 1e-7) -> bool:
     """One configuration found twice on a piece: every joint within 1e-7 of the joints'
     spread (a piece that goes out and back over a stretch, as a trace can where its sign
     vector's curve ends without a flat triangle, meets a value twice at one configuration)."""
     spread = max(max(abs(x) + abs(y) for x, y in first.joints.values()), 1.0)
-    return all(math.dist(first.joints[name], second.joints[name]) < 1e-7 * spread for name in first.joints)
+    return all(math.dist(first.joints[name], second.joints[name]) < tolerance * spread for name in first.joints)
 
 
 def _segments(piece: Piece) -> list[tuple[ConfigurationPoint, ConfigurationPoint]]:
@@ -136,7 +137,11 @@ def _crossed(driver: SceneInput, before: ConfigurationPoint, after: Configuratio
     the short way round, unwrapped from ``before``'s value), in the order passed."""
     start = input_value(driver, before)
     end = start + _turned(driver, input_value(driver, after) - start)
-    low, high = min(start, end), max(start, end)
+    # a value the input meets at a point is taken within rounding, on both segments (the
+    # piece keeps it once, _same): a piece can end exactly there (a crank at 180°, its
+    # triangle with the fixed link flat, ends pieces: 8-bar 3 lost 5 of 6 configurations)
+    slack = VALUE_SLACK * max(1.0, abs(start), abs(end))
+    low, high = min(start, end) - slack, max(start, end) + slack
     found = []
     for value in np.asarray(grid, dtype=float):
         if driver.kind == "angle":
@@ -144,8 +149,53 @@ def _crossed(driver: SceneInput, before: ConfigurationPoint, after: Configuratio
             found += [value + 360.0 * n for n in turns]
         elif low <= value <= high:
             found.append(float(value))
-    found = [value for value in found if value != end]  # an end value belongs to the next segment
     return sorted(found, reverse=end < start)
+
+
+def _keep(values: list[float], points: list[ConfigurationPoint], target: float, point: ConfigurationPoint | None,
+          first: bool = False) -> None:
+    """Add ``point`` at ``target`` (at the front with ``first``) unless it is None or
+    already there (:func:`_same`)."""
+    if point is None or any(value == target and _same(point, other) for value, other in zip(values, points,
+                                                                                           strict=True)):
+        return
+    values.insert(0 if first else len(values), target)
+    points.insert(0 if first else len(points), point)
+
+
+def distinct_configurations(branches: list[DrivenBranch], value: float, period: float | None = None
+                            ) -> list[ConfigurationPoint]:
+    """The configurations of ``branches`` at input ``value`` (modulo ``period``: 360 for an
+    angle), each once: one at a branch point ends every piece that meets there, and each
+    lists it, each end located to about 1e-5 of the linkage's size (two configurations
+    closer than 1e-4 of it are taken as one, as where two modes merge)."""
+    found: list[ConfigurationPoint] = []
+    for branch in branches:
+        for at, point in zip(branch.values, branch.points, strict=True):
+            gap = at - value if period is None else (at - value + period / 2) % period - period / 2
+            if abs(gap) <= VALUE_SLACK * max(1.0, abs(value)) and not any(_same(point, other, 1e-4) for other in found):
+                found.append(point)
+    return found
+
+
+def _beyond(driver: SceneInput, end: ConfigurationPoint, grid) -> list[float]:
+    """The grid values within END_SLACK of the input at a piece's ``end`` (unwrapped to
+    it): a piece ends where a triangle is flat, located to about √(1e-13) of the range, so
+    a value the linkage meets at that branch point (a crank at 180° in line with the fixed
+    link: 8-bar 3 lost 5 of 6 configurations there) can lie just beyond the last point."""
+    at = input_value(driver, end)
+    scale = 360.0 if driver.kind == "angle" else max(1.0, abs(at))
+    return [at + _turned(driver, float(value) - at) for value in np.asarray(grid, dtype=float)
+            if abs(_turned(driver, float(value) - at)) <= END_SLACK * scale]
+
+
+#: A value within this fraction of the input's scale (360° for an angle; a distance's
+#: size, at least 1) of its value at a piece's end is met at the end: the ends of 8-bar
+#: 15's pieces at a crank angle of 0° lie 1.7e-5° to 2.8e-5° from it.
+END_SLACK = 1e-6
+
+#: Input values within this fraction (of the value's size, at least 1) of a point's are met there.
+VALUE_SLACK = 1e-12
 
 
 def _refined(system: OneDofSystem, driver: SceneInput, before: ConfigurationPoint, after: ConfigurationPoint,
@@ -161,6 +211,10 @@ def _refined(system: OneDofSystem, driver: SceneInput, before: ConfigurationPoin
 
     def offset(point: ConfigurationPoint) -> float:
         return _turned(driver, input_value(driver, point) - target)
+
+    for point in (before, after):  # met at a traced point (within VALUE_SLACK)
+        if abs(offset(point)) <= VALUE_SLACK * max(1.0, abs(target)):
+            return point
 
     if len(names) == 1:
         try:
@@ -244,3 +298,50 @@ def followed(traced: Trace, driven: list[DrivenBranch], start: int) -> DrivenBra
         piece, entered = onward[0]
     signs = traced.pieces[start].signs
     return DrivenBranch(start, signs, tuple(values), tuple(points))
+
+
+def rigidified(scene: Scene, driver: SceneInput, degrees: float) -> Scene:
+    """The rigid linkage ``scene`` becomes with its crank held at ``degrees``: ``driver``
+    an angle at P_a from P_f to P_t with P_a and P_f on the fixed link and P_a, P_t the two
+    joints of a binary link (the crank); the crank's tip P_t joins the fixed link, at
+    P_a + |P_a P_t| (cos, sin)(φ + θ), φ the direction of P_f from P_a, and the crank and its
+    pin P_a go. The other links keep their squared distances (and the orientation of
+    their first three joints). Its modes are the configurations the driven motion lists at
+    that value (tests/test_motion.py), found independently by a backend.
+
+    Raises :class:`~baranov.scene.SceneError` for an input that is not such a crank."""
+    at, towards, tip = driver.joints if driver.kind == "angle" else (None, None, None)
+    crank = next((link for link in scene.links if link.name != scene.ground and set(link.joints) == {at, tip}), None)
+    if crank is None or at not in scene.world or towards not in scene.world:
+        raise SceneError(f"input {driver.name}: not a crank (an angle at a joint of the fixed link {scene.ground} "
+                         "from another of its joints to the other joint of a binary link)")
+    (ax, ay), (fx, fy) = (tuple(map(float, scene.world[name])) for name in (at, towards))
+    radius = math.sqrt(float(crank.squared_distances[frozenset((at, tip))]))
+    turn = math.atan2(fy - ay, fx - ax) + math.radians(degrees)
+    ground = {name: [float(x), float(y)] for name, (x, y) in scene.world.items() if name != at}
+    ground[tip] = [ax + radius * math.cos(turn), ay + radius * math.sin(turn)]
+    links = [{"name": scene.ground, "joints": ground}]
+    for link in scene.links:
+        if link.name in (scene.ground, crank.name):
+            continue
+        entry = {"name": link.name, "joints": list(link.joints),
+                 "squared_distances": {f"{a},{b}": str(value) for pair, value in link.squared_distances.items()
+                                       for a, b in [sorted(pair)]}}
+        if len(link.joints) >= 3:
+            (x1, y1), (x2, y2), (x3, y3) = (link.local[name] for name in link.joints[:3])
+            entry["orientation"] = "ccw" if (x2 - x1) * (y3 - y1) - (y2 - y1) * (x3 - x1) > 0 else "cw"
+        links.append(entry)
+    return scene_from_dict({"ground": scene.ground, "links": links})
+
+
+def crank_of(scene: Scene) -> SceneInput | None:
+    """The crank input of ``scene``'s first binary link pinned to the fixed link: the
+    angle at its pin P_a from the fixed link's next joint P_f to its tip P_t; None if no
+    binary link has exactly one joint on the fixed link."""
+    for link in scene.links:
+        pinned = [joint for joint in link.joints if joint in scene.world]
+        if link.name != scene.ground and len(link.joints) == 2 and len(pinned) == 1:
+            at = pinned[0]
+            towards = next(joint for joint in scene.world if joint != at)
+            return SceneInput(f"crank {link.name}", "angle", (at, towards, next(j for j in link.joints if j != at)))
+    return None

@@ -300,42 +300,17 @@ def test_kinematic_inversion_fixes_another_link(butterfly):
 
 # --- the motion driven by an input (motion/driving.py) --------------------------------
 
-def _rigidified(entries: dict, scene, crank: str, at: str, towards: str, tip: str, degrees: float) -> dict:
-    """The rigid scene of a one-DOF ``scene`` (JSON ``entries``, ground given by
-    coordinates) with its crank ``crank`` (pinned to the ground at ``at``) turned to
-    ``degrees`` counter-clockwise from ``at`` → ``towards``: the crank's tip joins the
-    ground; the crank and its pin go."""
-    (ax, ay), (fx, fy) = (tuple(map(float, scene.world[name])) for name in (at, towards))
-    radius = math.sqrt(float(scene.link_of(crank).squared_distances[frozenset((at, tip))]))
-    turn = math.atan2(fy - ay, fx - ax) + math.radians(degrees)
-    links = []
-    for entry in entries["links"]:
-        if entry["name"] == crank:
-            continue
-        if entry["name"] == entries["ground"]:
-            joints = {name: [float(x), float(y)] for name, (x, y) in scene.world.items() if name != at}
-            joints[tip] = [ax + radius * math.cos(turn), ay + radius * math.sin(turn)]
-            entry = {"name": entry["name"], "joints": joints}
-        links.append(entry)
-    return {"ground": entries["ground"], "links": links}
-
-
 def _driven_equals_rigid_solves(entries: dict, rng, values: int = 4) -> int:
     """At ``values`` random crank angles within the traced range: the configurations the
     driven motion lists are, mode for mode, the numeric backend's of the rigidified
     chain; returns how many configurations were compared."""
-    from baranov.motion.driving import driven_motion, input_value
-    from baranov.scene import SceneInput, scene_from_dict
+    from baranov.motion.driving import crank_of, distinct_configurations, driven_motion, input_value, rigidified
+    from baranov.scene import scene_from_dict
     from baranov.solvers import solve
     from baranov.solvers.msolve import compare_modes
 
     scene = scene_from_dict(entries)
-    crank = next(link for link in scene.links if link.name != scene.ground and len(link.joints) == 2
-                 and sum(joint in scene.world for joint in link.joints) == 1)
-    at = next(joint for joint in crank.joints if joint in scene.world)
-    tip = next(joint for joint in crank.joints if joint != at)
-    towards = next(joint for joint in scene.world if joint != at)
-    driver = SceneInput("crank", "angle", (at, towards, tip))
+    driver = crank_of(scene)
     system = one_dof_system(scene)
     traced = trace(system)
     reached = [input_value(driver, point) for piece in traced.pieces for point in piece.points]
@@ -343,9 +318,8 @@ def _driven_equals_rigid_solves(entries: dict, rng, values: int = 4) -> int:
     branches = driven_motion(system, traced, driver, angles)
     compared = 0
     for angle in angles:
-        found = [point.joints for branch in branches for value, point in zip(branch.values, branch.points, strict=True)
-                 if abs((value - angle + 180) % 360 - 180) < 1e-9]
-        rigid = scene_from_dict(_rigidified(entries, scene, crank.name, at, towards, tip, angle))
+        found = [point.joints for point in distinct_configurations(branches, angle, 360)]
+        rigid = rigidified(scene, driver, angle)
         modes = [mode.joints for mode in solve(rigid, method="numeric").assembly_modes]
         assert compare_modes(found, modes)[:2] == (0, 0), (angle, len(found), len(modes))
         assert all(point.max_residual < 1e-8 for branch in branches for point in branch.points)
@@ -392,15 +366,14 @@ def test_driven_six_bars_equal_the_rigidified_chains(seed, six_bar):
 def _with_a_crank(chain, rng) -> dict:
     """A scene (JSON) of ``chain`` from a random integer configuration, its fixed link the
     first with a binary link pinned to it (a crank)."""
+    from baranov.motion.driving import crank_of
     from baranov.scene import scene_from_dict
     from baranov.scene.instances import generic_integer_configuration, instance_dict
 
     drawn = generic_integer_configuration(chain, rng)
     for ground in range(chain.number_of_links):
         entries = instance_dict(chain, drawn, ground)
-        scene = scene_from_dict(entries)
-        if any(len(link.joints) == 2 and link.name != scene.ground and sum(j in scene.world for j in link.joints) == 1
-               for link in scene.links):
+        if crank_of(scene_from_dict(entries)) is not None:
             return entries
     raise AssertionError("no link with a crank pinned to it")
 
@@ -469,19 +442,16 @@ def _configurations_at(entries: dict, angle: float) -> tuple[list[dict], list[di
     """The driven motion's configurations of a four-bar (crank at P1 from P4 to P2) at
     ``angle``, each once (a branch point's belongs to every piece meeting there), and the
     numeric backend's modes of the four-bar rigidified there."""
-    from baranov.motion.driving import driven_motion
+    from baranov.motion.driving import distinct_configurations, driven_motion, rigidified
     from baranov.scene import SceneInput, scene_from_dict
     from baranov.solvers import solve
 
     scene = scene_from_dict(entries)
     system = one_dof_system(scene)
     driver = SceneInput("crank", "angle", ("P1", "P4", "P2"))
-    found: list[dict] = []
-    for branch in driven_motion(system, trace(system), driver, [angle]):
-        for point in branch.points:
-            if not any(max(math.dist(point.joints[j], other[j]) for j in other) < 1e-9 for other in found):
-                found.append(point.joints)
-    rigid = scene_from_dict(_rigidified(entries, scene, "crank", "P1", "P4", "P2", angle))
+    found = [point.joints for point in distinct_configurations(driven_motion(system, trace(system), driver, [angle]),
+                                                               angle, 360)]
+    rigid = rigidified(scene, driver, angle)
     return found, [mode.joints for mode in solve(rigid, method="numeric").assembly_modes]
 
 
@@ -517,3 +487,15 @@ def test_a_change_point_four_bar_through_its_singular_configuration():
     for angle, count in ((180.0, 1), (179.0, 2), (-179.0, 2)):
         found, modes = _configurations_at(entries, angle)
         assert len(found) == count and compare_modes(found, modes) == (0, 0, 0), angle
+
+
+def test_rigidified_needs_a_crank():
+    from baranov.motion.driving import rigidified
+    from baranov.scene import SceneError, SceneInput, scene_from_dict
+
+    scene = scene_from_dict(_four_bar(*GRASHOF["crank-rocker"]))
+    for driver in (SceneInput("stroke", "distance", ("P1", "P3")), SceneInput("knee", "angle", ("P2", "P1", "P3"))):
+        with pytest.raises(SceneError, match=f"input {driver.name}: not a crank"):
+            rigidified(scene, driver, 30.0)
+    assert rigidified(scene, SceneInput("crank", "angle", ("P1", "P4", "P2")), 90.0).world["P2"] == \
+        pytest.approx((0.0, 2.0))
