@@ -599,7 +599,8 @@ MAX_MINIMA = 8
 
 
 def _next_to_roots(grid: np.ndarray, roots: list[float]) -> list[tuple[float, float]]:
-    """The cells on either side of each root's cell, to re-sample finely: a tangential
+    """The cells on either side of each root's cell, and the next ones out, to re-sample
+    finely: a tangential
     root next to a simple one hides in the slope towards it (issue 25's 9/N6: f ≈ −c(s −
     25)² touches 0 at 25 and crosses it at 25.0472; the samples 24.971, 25.047, 25.123
     read −3e-7, −5e-9, +4e-6, a single crossing)."""
@@ -616,7 +617,17 @@ def _next_to_roots(grid: np.ndarray, roots: list[float]) -> list[tuple[float, fl
     # seed 26: 16 470 brackets, 198 s); past MAX_MINIMA stretches only lone roots are kept
     if len(merged) > MAX_MINIMA:
         merged = [cell for cell in merged if sum(cell[0] <= r <= cell[1] for r in roots) == 1]
-    return [(low, high) for low, high in merged[:MAX_MINIMA]]
+    merged = merged[:MAX_MINIMA]
+    # and the next cell out on each side, on its own (the windows above keep their
+    # sampling): seed 40's 9/N19 (collinear 15) crosses 0 at s1,10 = 9.8902, at the end of
+    # its cell, and touches it at 10, in the second cell beyond (samples 9.892, 9.975,
+    # 10.058 read −4.0e-8, −7.6e-8, −7.0e-7: no minimum of |f|)
+    outer = []
+    for low, high in merged:
+        i, j = int(np.searchsorted(grid, low)), int(np.searchsorted(grid, high))
+        outer += [(float(grid[a]), float(grid[a + 1])) for a in (i - 1, j) if 0 <= a < len(grid) - 1
+                  and not any(m_low <= grid[a] and grid[a + 1] <= m_high for m_low, m_high in merged)]
+    return [(low, high) for low, high in merged] + sorted(set(outer))
 
 
 def _suspicious_minima(grid: np.ndarray, values: np.ndarray) -> list[tuple[float, float]]:
