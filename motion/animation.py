@@ -8,7 +8,7 @@ import tempfile
 from pathlib import Path
 
 from baranov.scene import Scene
-from baranov.solvers.drawing import _draw_mode
+from baranov.solvers.drawing import draw_mode
 
 from .driving import DrivenBranch
 
@@ -36,7 +36,7 @@ def render_animation(scene: Scene, branch: DrivenBranch, tracers: list[str], inp
         for tracer in tracers:
             path = [p.joints[tracer] for p in branch.points[:number + 1]]
             axis.plot([x for x, _ in path], [y for _, y in path], color="tab:blue", linewidth=1.2, zorder=2.5)
-        _draw_mode(axis, scene, point, extent)
+        draw_mode(axis, scene, point, extent)
         axis.set_xlim(min(xs) - margin, max(xs) + margin)
         axis.set_ylim(min(ys) - margin, max(ys) + margin)
         axis.set_aspect("equal")

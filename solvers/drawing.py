@@ -75,7 +75,7 @@ def modes_figure(scene: Scene, solution: Solution, columns: int | None = None) -
             if not modes:
                 axis.text(0.5, 0.5, "no assembly mode", ha="center", va="center", transform=axis.transAxes)
             continue
-        _draw_mode(axis, scene, modes[index], extent)
+        draw_mode(axis, scene, modes[index], extent)
         values = ", ".join(f"{name} = {value:.6g}" for name, value in modes[index].parameters.items())
         signs = "".join({1: "+", -1: "-", 0: "0"}[sign] for sign in modes[index].signs)
         axis.set_title(f"mode {index + 1}" + (f" ({signs})" if signs else "") + (f": {values}" if values else ""),
@@ -86,8 +86,10 @@ def modes_figure(scene: Scene, solution: Solution, columns: int | None = None) -
     return figure
 
 
-def _draw_mode(axis, scene: Scene, mode, extent: float) -> None:
-    """The links (ground hatched, k-ary links filled, bars), slider axes (dashed, the
+def draw_mode(axis, scene: Scene, mode, extent: float) -> None:
+    """One configuration of ``scene`` (an assembly mode, or any record with ``joints``:
+    a traced configuration, a frame of ``baranov trace --animate``) on a matplotlib
+    ``axis``, ``extent`` its size: the links (ground hatched, k-ary links filled, bars), slider axes (dashed, the
     joint's two points as squares), joints and their labels (:func:`_label_directions`)."""
     segments, polygons = [], []
     for link in scene.links:
@@ -145,7 +147,7 @@ def _label_directions(groups: list[tuple[list[str], tuple[float, float]]], segme
                       extent: float) -> list[float]:
     """For each joint (group), the direction of its label: of LABEL_DIRECTIONS around
     it, the one whose label box — its corners and centre, the box anchored as
-    :func:`_draw_mode` anchors the text — keeps farthest from every link edge, bar,
+    :func:`draw_mode` anchors the text — keeps farthest from every link edge, bar,
     slider axis, joint and label already placed (a point inside a filled link counts as
     touching it); a box that overlaps a placed label's box (grown by LABEL_MARGIN) loses to
     every box that does not (9-B28: 5 overlapping pairs of 168 labels when only corners
@@ -190,7 +192,7 @@ def _boxes_overlap(first: tuple[float, float, float, float], second: tuple[float
 
 def _label_box(joint, angle: float, width: float, height: float, offset: float) -> list[tuple[float, float]]:
     """Centre and corners of a label anchored ``offset`` from ``joint`` in direction
-    ``angle`` (left/right/centre and bottom/top/centre as :func:`_draw_mode` aligns it)."""
+    ``angle`` (left/right/centre and bottom/top/centre as :func:`draw_mode` aligns it)."""
     dx, dy = math.cos(angle), math.sin(angle)
     x, y = joint[0] + offset * dx, joint[1] + offset * dy
     left = x if dx > 0.3 else x - width if dx < -0.3 else x - width / 2
