@@ -89,8 +89,9 @@ def modes_figure(scene: Scene, solution: Solution, columns: int | None = None) -
 def draw_mode(axis, scene: Scene, mode, extent: float) -> None:
     """One configuration of ``scene`` (an assembly mode, or any record with ``joints``:
     a traced configuration, a frame of ``baranov trace --animate``) on a matplotlib
-    ``axis``, ``extent`` its size: the links (ground hatched, k-ary links filled, bars), slider axes (dashed, the
-    joint's two points as squares), joints and their labels (:func:`_label_directions`)."""
+    ``axis``, ``extent`` its size: the links (ground hatched, k-ary links filled, bars),
+    slider axes (dashed, the joint's two points as squares), joints and their labels
+    (:func:`_label_directions`)."""
     segments, polygons = [], []
     for link in scene.links:
         points = [mode.joints[scene.point_name(link.name, j)] for j in link.joints]
