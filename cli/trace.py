@@ -53,7 +53,7 @@ def _triangles(text: str | None, default) -> list[tuple[str, str, str]]:
 def run_trace(args: argparse.Namespace) -> int:
     """Trace the scene's configuration space; print a summary, or JSON; draw it."""
     from baranov.catalog.files import write_atomically
-    from baranov.motion import one_dof_system, sign_index, trace
+    from baranov.motion import one_dof_system, trace
     from baranov.scene import load_scene
 
     from .main import UsageError
@@ -69,26 +69,8 @@ def run_trace(args: argparse.Namespace) -> int:
         if any(len(pair) != 2 for pair in parameters):
             raise UsageError(f"--parameter {args.parameter}: pairs of joints, e.g. P2,P4")
     system = one_dof_system(scene, parameters)
-    triangles = _triangles(args.eta, system.plan.free_sign_triangles)
-    joints = {joint.name for joint in scene.chain.joints}
-    unknown = sorted({name for triangle in triangles for name in triangle} - joints)
-    if unknown:
-        raise UsageError(f"--eta: joint {unknown[0]}: no such joint in this chain")
-    tracers = args.tracer or [sorted(joints - set(scene.world), key=lambda n: int(n[1:]) if n[1:].isdigit() else 0)[-1]]
-    if set(tracers) - joints:
-        raise UsageError(f"--tracer {sorted(set(tracers) - joints)[0]}: no such joint in this chain")
+    triangles, tracers, driver = _checked_options(args, scene, system)
     degrees = _degrees(scene, tracers) if args.degree else {}
-    if args.fixed is not None:
-        from baranov.motion.inversion import fixed_frame_joints
-
-        fixed_frame_joints(scene, args.fixed)  # refused before tracing
-    driver = _driver(scene, args.input) if args.input is not None else None
-    if args.grid < 1:
-        raise UsageError(f"--grid {args.grid}: at least 1")
-    if args.animate is not None and (driver is None or not args.animate.parent.is_dir()):
-        raise UsageError(f"--animate {args.animate}: " + ("give --input too: the animation follows the driven motion"
-                                                         if driver is None else
-                                                         f"folder {args.animate.parent} does not exist"))
     traced = trace(system, steps=args.steps)
     driven = _driven(system, traced, driver, args.grid) if driver is not None else []
     fixed = None
@@ -105,24 +87,67 @@ def run_trace(args: argparse.Namespace) -> int:
     if args.animate is not None:
         _animate(args.animate, scene, traced, driven, tracers, driver)
     if args.json:
-        print(json.dumps({
-            "parameters": list(system.parameter_names),
-            "fixed_link": args.fixed or scene.ground,
-            "eta_triangles": [list(t) for t in triangles],
-            "pieces": [{"eta": sign_index(piece.points[0], triangles), "signs": list(piece.signs),
-                        "closed": piece.closed,
-                        "points": [{**point.parameters, "joints": {j: list(p) for j, p in point.joints.items()}}
-                                   for point in piece.points]} for piece in traced.pieces],
-            "branch_points": [{"pieces": [list(end) for end in bp.pieces], **bp.parameters}
-                              for bp in traced.branch_points],
-            "loose_ends": [list(end) for end in traced.loose_ends],
-            "jumps": list(traced.jumps),
-            **({"coupler_curve_degrees": degrees} if args.degree else {}),
-            **({"driven": [{"piece": branch.piece, "input": driver.name, "values": list(branch.values),
-                            "points": [{**point.parameters, "joints": {j: list(p) for j, p in point.joints.items()}}
-                                       for point in branch.points]} for branch in driven]} if driver else {})},
-                         indent=1))
-        return 0
+        print(json.dumps(_as_json(args, scene, system, traced, triangles, degrees, driver, driven), indent=1))
+    else:
+        _print_summary(args, system, traced, triangles, degrees, driver, driven)
+    return 0
+
+
+def _checked_options(args: argparse.Namespace, scene, system):
+    """The η triangles, the tracers and the input, each checked against the scene (one
+    line naming what is wrong), and --fixed, --grid and --animate, before tracing."""
+    from .main import UsageError
+
+    triangles = _triangles(args.eta, system.plan.free_sign_triangles)
+    joints = {joint.name for joint in scene.chain.joints}
+    unknown = sorted({name for triangle in triangles for name in triangle} - joints)
+    if unknown:
+        raise UsageError(f"--eta: joint {unknown[0]}: no such joint in this chain")
+    tracers = args.tracer or [sorted(joints - set(scene.world), key=lambda n: int(n[1:]) if n[1:].isdigit() else 0)[-1]]
+    if set(tracers) - joints:
+        raise UsageError(f"--tracer {sorted(set(tracers) - joints)[0]}: no such joint in this chain")
+    if args.fixed is not None:
+        from baranov.motion.inversion import fixed_frame_joints
+
+        fixed_frame_joints(scene, args.fixed)
+    driver = _driver(scene, args.input) if args.input is not None else None
+    if args.grid < 1:
+        raise UsageError(f"--grid {args.grid}: at least 1")
+    if args.animate is not None and (driver is None or not args.animate.parent.is_dir()):
+        raise UsageError(f"--animate {args.animate}: " + ("give --input too: the animation follows the driven motion"
+                                                         if driver is None else
+                                                         f"folder {args.animate.parent} does not exist"))
+    return triangles, tracers, driver
+
+
+def _point(point) -> dict:
+    return {**point.parameters, "joints": {j: list(p) for j, p in point.joints.items()}}
+
+
+def _as_json(args, scene, system, traced, triangles, degrees, driver, driven) -> dict:
+    from baranov.motion import sign_index
+
+    result = {
+        "parameters": list(system.parameter_names),
+        "fixed_link": args.fixed or scene.ground,
+        "eta_triangles": [list(t) for t in triangles],
+        "pieces": [{"eta": sign_index(piece.points[0], triangles), "signs": list(piece.signs), "closed": piece.closed,
+                    "points": [_point(point) for point in piece.points]} for piece in traced.pieces],
+        "branch_points": [{"pieces": [list(end) for end in bp.pieces], **bp.parameters} for bp in traced.branch_points],
+        "loose_ends": [list(end) for end in traced.loose_ends],
+        "jumps": list(traced.jumps),
+    }
+    if args.degree:
+        result["coupler_curve_degrees"] = degrees
+    if driver is not None:
+        result["driven"] = [{"piece": branch.piece, "input": driver.name, "values": list(branch.values),
+                             "points": [_point(point) for point in branch.points]} for branch in driven]
+    return result
+
+
+def _print_summary(args, system, traced, triangles, degrees, driver, driven) -> None:
+    from baranov.motion import sign_index
+
     print(f"{args.scene}: {len(traced.pieces)} pieces in ({', '.join(system.parameter_names)}), "
           f"{len(traced.branch_points)} branch points, {len(traced.loose_ends)} piece ends not joined")
     print("piece  eta  signs  points  " + "  ".join(f"{name} range" for name in system.parameter_names))
@@ -144,7 +169,6 @@ def run_trace(args: argparse.Namespace) -> int:
                   f"to {branch.values[-1]:.6g}{unit}")
     if degrees:
         print("coupler-curve degrees: " + ", ".join(f"{where} {degree}" for where, degree in degrees.items()))
-    return 0
 
 
 def _driver(scene, text: str):
