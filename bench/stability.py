@@ -455,19 +455,32 @@ parameter's own joints included (2ae9a11, docs/exact.md step 9;
 `7-N2-parameter-joints-coincide*.json`). Since that fix the exact backend has certified
 no incomplete list, and missed a mode only where it said so: all modes, certified, on 7093
 instances at 2ae9a11 (seed 37, `adversarial-2ae9a11` below), 7035 at 5ae6c72 (seed 38,
-`adversarial-5ae6c72`), and 7378 of 7379 at the current
-solving code (3eb446264259, seed 39, `adversarial-97681e7`: all 6000 seven-link and 1404
-nine-link instances), where the one other, 9/N21 double-root 6, is not certified: the norm
-of its closure condition vanishes identically and the exact backend lists no mode, where
-msolve lists one (`tests/regressions/open/9-N21-vanishing-norm-seed39.json`; the numeric
-backend finds it).
-Those runs found three numeric misses, all a tangential root beside a crossing one or a
-shallow root (seed 37, 7/N2; seed 38, 7/N1, two missed and one spurious; and a random
-robot's), each fixed with its instance saved (docs/numeric.md); at the current solving
-code the numeric backend is 0 / 0 on all 7379 instances. Solve times were measured beside
-other jobs on both cores. The issue-25 targets — 10⁴ instances with no miss at one
-commit, p99 ≤ 10 × median — are not met yet: coupling-2 outliers remain (numeric 92.8 s
-on 9/N18, exact 198.9 s on 9/N28, where msolve takes under 1 s).
+`adversarial-5ae6c72`), and 7378 of 7379 at 3eb446264259 (seed 39, `adversarial-97681e7`:
+all 6000 seven-link and 1404 nine-link instances), where the one other, 9/N21 double-root
+6, was not certified: the norm of its closure condition vanishes identically in the best
+plan's parameter s8,10, and the exact backend listed no mode where msolve lists one. A
+vanishing norm belongs to the parametrisation, not always to the linkage: another
+parameter (s7,12) gives a certified polynomial with that mode, and the exact backend now
+tries other parameters where the norm vanishes (ffd6819, docs/exact.md;
+`9-N21-vanishing-norm-seed39.json`). **At that fix (solving code b1d66af6ef8f, commit
+0d3aac6, seed 40, `adversarial-0d3aac6` below) the exact backend listed every mode and
+certified every list on all 10 163 finite instances of 7 and 9 links (6000 and 4200
+drawn, 37 movable, said so), 0 missed and 0 spurious: issue 25's target for the exact
+backend.** The numeric backend missed 3 modes there (2 spurious): 9/N19 collinear 15, a
+tangential root two sampling cells from a crossing one (fixed at 5bc4a33, docs/numeric.md;
+`9-N19-collinear-15-seed40.json`), and two coupling-2 singular modes (9/N18 double-root 9
+and 9/N28 domain-edge 21, each with two joints at one point) reported as a valley of
+verified configurations whose representative lies 1e-3 and 2e-3 from msolve's mode (open:
+`tests/regressions/open/*-seed40.json`). Earlier runs found numeric misses of the same
+kinds, a tangential root beside a crossing one or a shallow root (seed 37, 7/N2; seed 38,
+7/N1; a random robot), each fixed with its instance saved (docs/numeric.md). Solve times
+were measured beside other jobs on both cores. On 11 links (every 56th truss, 53 of 55
+instances) the exact backend was 0 / 0 too, but ran over the run's 300 s limit on three
+coupling-2 instances (11/N393, 11/N561), where the numeric backend took 3-4 s; the
+numeric backend listed one spurious mode (11/N57 double-root 0, open). The issue-25
+targets not met yet: no numeric miss at one commit, and the time bound (numeric p99/median per truss at
+most 11.8 where the target is 10, max 40.1 s; the exact backend's coupling-2 outliers up
+to 134.3 s on 9/N28, where msolve takes under 1 s).
 
 {adversarial}
 
