@@ -188,6 +188,8 @@ def _driver(scene, text: str):
     unknown = [joint for joint in joints if joint not in known]
     if unknown:
         raise UsageError(f"--input {text}: joint {unknown[0]}: no such joint in this chain")
+    if len(set(joints)) != len(joints):
+        raise UsageError(f"--input {text}: a joint named twice; an angle needs three joints, a distance two")
     return SceneInput(text, "angle" if len(joints) == 3 else "distance", tuple(joints))
 
 
@@ -226,7 +228,6 @@ def _degrees(scene, tracers: list[str]) -> dict[str, int | str]:
     """The coupler-curve degree of each tracer joint ("fixed" on the ground) and of a
     generic point of each moving link (:func:`baranov.motion.coupler_curve_degree`)."""
     from baranov.motion import coupler_curve_degree
-    from baranov.solvers.msolve import MsolveUnavailable
 
     from .main import UsageError
 
@@ -239,6 +240,6 @@ def _degrees(scene, tracers: list[str]) -> dict[str, int | str]:
             degrees[joint] = "fixed" if fixed else coupler_curve_degree(scene, link, joint=joint)
         for link in moving:
             degrees[f"{link.name} (generic point)"] = coupler_curve_degree(scene, link.name, seed=0)
-    except MsolveUnavailable as error:
+    except RuntimeError as error:  # msolve missing (MsolveUnavailable) or failing
         raise UsageError(f"--degree: {error}") from None
     return degrees

@@ -31,7 +31,7 @@ from pathlib import Path
 import flint
 
 from baranov.scene import Scene, SceneError
-from baranov.solvers.msolve import MsolveUnavailable, cartesian_system, find_msolve
+from baranov.solvers.msolve import MsolveUnavailable, cartesian_system, find_msolve, msolve_text
 
 #: The field of the elimination: the largest prime msolve takes (below 2^31).
 PRIME = 2147483629
@@ -139,7 +139,7 @@ def _eliminated(variables: list[str], polynomials: list[dict], prime: int, timeo
     order = [*variables, *TRACER]
     with tempfile.TemporaryDirectory(prefix="baranov-coupler-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "basis.ms"
-        source.write_text(",".join(order) + f"\n{prime}\n" + ",\n".join(_modular_text(p, prime) for p in polynomials)
+        source.write_text(",".join(order) + f"\n{prime}\n" + ",\n".join(msolve_text(p) for p in polynomials)
                           + "\n")
         done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-g", "2", "-e", str(len(variables)),
                                "-t", "1"], capture_output=True, text=True, timeout=timeout)
@@ -148,17 +148,6 @@ def _eliminated(variables: list[str], polynomials: list[dict], prime: int, timeo
         raise RuntimeError(f"msolve exit code {done.returncode}: {(done.stderr or done.stdout).strip()[:200]}")
     body = output[output.index("[") + 1:output.rindex("]")]
     return [text.strip() for text in body.split(",") if text.strip()]
-
-
-def _modular_text(polynomial: dict, prime: int) -> str:
-    """msolve's input syntax over F_prime: each coefficient n/d as n · d⁻¹ mod prime."""
-    terms = []
-    for monomial, value in polynomial.items():
-        coefficient = value.numerator * pow(value.denominator, -1, prime) % prime
-        if coefficient:  # powers written out: msolve reads x0*x0 as x0
-            powers = [f"{name}^{monomial.count(name)}" for name in dict.fromkeys(monomial)]
-            terms.append("*".join([str(coefficient), *powers]))
-    return "+".join(terms) or "0"
 
 
 _POWER = re.compile(r"([A-Za-z_]\w*)(?:\^(\d+))?")

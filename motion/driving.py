@@ -200,6 +200,8 @@ VALUE_SLACK = 1e-12
 
 def _refined(system: OneDofSystem, driver: SceneInput, before: ConfigurationPoint, after: ConfigurationPoint,
              target: float) -> ConfigurationPoint | None:
+    """The verified configuration between two neighbouring traced points at which the
+    input is ``target`` (module docstring), or None where none is found."""
     names = system.parameter_names
     branch = np.array(before.signs)[None, :]
     start = np.array([before.parameters[name] for name in names])
@@ -222,14 +224,15 @@ def _refined(system: OneDofSystem, driver: SceneInput, before: ConfigurationPoin
         except (ValueError, TypeError):  # the ends place no configuration or do not bracket
             return None
         return placed(np.array([root]))
-    def placed_anyway(values: np.ndarray) -> float | None:  # off the curve too: Newton's iterates
+
+    def offset_anywhere(values: np.ndarray) -> float | None:  # off the curve too: Newton's iterates
         joints, points = placed_configurations(system.scene, system.compiled, values[None, :], branch)
         if not np.isfinite(points).all():
             return None
         where = {name: (point.real, point.imag) for name, point in zip(joints, points[0], strict=True)}
         return offset(ConfigurationPoint({}, (), where, math.inf))
 
-    return _newton(system, branch, start, end, placed_anyway)
+    return _newton(system, branch, start, end, offset_anywhere)
 
 
 def _newton(system: OneDofSystem, branch: np.ndarray, start: np.ndarray, end: np.ndarray,

