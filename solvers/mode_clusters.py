@@ -11,7 +11,7 @@ from baranov.scene import Scene
 
 from .modes import AssemblyMode
 from .placement import flattened_mode, mode_of, polished_mode, read_back
-from .polish import polish_configurations, polish_on_constraints
+from .polish import polish_at_singular_mode, polish_configurations
 from .verification import (
     RESIDUAL_TOLERANCE,
     distance_bound,
@@ -174,7 +174,7 @@ def _refined_in_valley(scene: Scene, compiled: CompiledSystem, members: list[Ass
     points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in members])
     before = np.abs(placement_residuals(scene, {j: points[:, n] for n, j in enumerate(joints)})).max(axis=1)
     seeds = points[np.argsort(before, kind="stable")[:VALLEY_SEEDS]]
-    polished, after = polish_on_constraints(scene, joints, seeds, VALLEY_STEPS, model=placement_residuals)
+    polished, after = polish_at_singular_mode(scene, joints, seeds, placement_residuals, VALLEY_STEPS)
     best = int(np.argmin(after))
     point = polished[best]
     if not np.abs(points - point).max(axis=1).min() <= CLUSTER * distance_bound(scene):

@@ -103,7 +103,7 @@ def placement_residuals(scene: Scene, at: dict[str, np.ndarray]) -> np.ndarray:
         if len(link.joints) < 2:
             continue
         point = {joint: at[scene.point_name(link.name, joint)] for joint in link.joints}
-        a, b = tuple(max(link.squared_distances, key=lambda pair: link.squared_distances[pair]))
+        a, b = sorted(max(link.squared_distances, key=lambda pair: link.squared_distances[pair]))  # sorted: not hash order
         squared = float(link.squared_distances[frozenset((a, b))])
         columns.append((np.abs(point[b] - point[a]) ** 2 - squared) / squared)
         start, frame = complex(*link.local[a]), complex(*link.local[b]) - complex(*link.local[a])
