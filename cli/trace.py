@@ -17,7 +17,9 @@ def add_trace_parser(commands) -> None:
     trace.add_argument("--eta", metavar="TRIANGLES",
                        help="the triangles whose oriented areas' signs make η, most significant first, e.g. "
                             "P2,P4,P10;P1,P3,P6;P1,P6,P5;P4,P9,P7 (default: the plan's free-sign triangles)")
-    trace.add_argument("--tracer", action="append", metavar="JOINT", help="a joint whose path to draw (repeatable)")
+    trace.add_argument("--tracer", action="append", metavar="POINT",
+                       help="a joint or a scene's tracer point (\"tracers\") whose path to draw (repeatable); "
+                            "default: the scene's tracer points, else its last joint")
     trace.add_argument("--steps", type=int, default=400, help="resolution: slices of the first parameter (default 400)")
     trace.add_argument("--input", metavar="INPUT",
                        help="drive the linkage: a scene input's name, an angle 'P1,P4,P2' (at P1 from P4 to P2, "
@@ -73,6 +75,10 @@ def run_trace(args: argparse.Namespace) -> int:
     degrees = _degrees(scene, tracers) if args.degree else {}
     traced = trace(system, steps=args.steps)
     driven = _driven(system, traced, driver, args.grid) if driver is not None else []
+    if scene.tracers:
+        from baranov.motion.tracer_paths import driven_with_tracer_points, traced_with_tracer_points
+
+        traced, driven = traced_with_tracer_points(scene, traced), driven_with_tracer_points(scene, driven)
     fixed = None
     if args.fixed is not None and traced.pieces:
         from baranov.motion.inversion import inverted
@@ -103,9 +109,11 @@ def _checked_options(args: argparse.Namespace, scene, system):
     unknown = sorted({name for triangle in triangles for name in triangle} - joints)
     if unknown:
         raise UsageError(f"--eta: joint {unknown[0]}: no such joint in this chain")
-    tracers = args.tracer or [sorted(joints - set(scene.world), key=lambda n: int(n[1:]) if n[1:].isdigit() else 0)[-1]]
-    if set(tracers) - joints:
-        raise UsageError(f"--tracer {sorted(set(tracers) - joints)[0]}: no such joint in this chain")
+    points = joints | {tracer.name for tracer in scene.tracers}
+    last = sorted(joints - set(scene.world), key=lambda n: int(n[1:]) if n[1:].isdigit() else 0)[-1]
+    tracers = args.tracer or [tracer.name for tracer in scene.tracers] or [last]
+    if set(tracers) - points:
+        raise UsageError(f"--tracer {sorted(set(tracers) - points)[0]}: no such joint or tracer point in this scene")
     if args.fixed is not None:
         from baranov.motion.inversion import fixed_frame_joints
 
@@ -120,19 +128,25 @@ def _checked_options(args: argparse.Namespace, scene, system):
     return triangles, tracers, driver
 
 
-def _point(point) -> dict:
-    return {**point.parameters, "joints": {j: list(p) for j, p in point.joints.items()}}
+def _point(point, tracers: frozenset[str] = frozenset()) -> dict:
+    """A traced configuration as JSON: its parameters, its joints and, apart, the scene's
+    tracer points (``tracers``: their names)."""
+    result = {**point.parameters, "joints": {j: list(p) for j, p in point.joints.items() if j not in tracers}}
+    if tracers:
+        result["tracers"] = {name: list(point.joints[name]) for name in sorted(tracers)}
+    return result
 
 
 def _as_json(args, scene, system, traced, triangles, degrees, driver, driven) -> dict:
     from baranov.motion import sign_index
 
+    names = frozenset(tracer.name for tracer in scene.tracers)
     result = {
         "parameters": list(system.parameter_names),
         "fixed_link": args.fixed or scene.ground,
         "eta_triangles": [list(t) for t in triangles],
         "pieces": [{"eta": sign_index(piece.points[0], triangles), "signs": list(piece.signs), "closed": piece.closed,
-                    "points": [_point(point) for point in piece.points]} for piece in traced.pieces],
+                    "points": [_point(point, names) for point in piece.points]} for piece in traced.pieces],
         "branch_points": [{"pieces": [list(end) for end in bp.pieces], **bp.parameters} for bp in traced.branch_points],
         "loose_ends": [list(end) for end in traced.loose_ends],
         "jumps": list(traced.jumps),
@@ -141,7 +155,7 @@ def _as_json(args, scene, system, traced, triangles, degrees, driver, driven) ->
         result["coupler_curve_degrees"] = degrees
     if driver is not None:
         result["driven"] = [{"piece": branch.piece, "input": driver.name, "values": list(branch.values),
-                             "points": [_point(point) for point in branch.points]} for branch in driven]
+                             "points": [_point(point, names) for point in branch.points]} for branch in driven]
     return result
 
 
@@ -228,18 +242,38 @@ def _degrees(scene, tracers: list[str]) -> dict[str, int | str]:
     """The coupler-curve degree of each tracer joint ("fixed" on the ground) and of a
     generic point of each moving link (:func:`baranov.motion.coupler_curve_degree`)."""
     from baranov.motion import coupler_curve_degree
+    from baranov.scene.tracers import exact_ratio
 
     from .main import UsageError
 
     moving = [link for link in scene.links if link.name != scene.ground]
+    points = {tracer.name: tracer for tracer in scene.tracers}
     try:
         degrees: dict[str, int | str] = {}
-        for joint in tracers:
-            link = next((link.name for link in moving if joint in link.joints), None)
-            fixed = link is None or joint in scene.world
-            degrees[joint] = "fixed" if fixed else coupler_curve_degree(scene, link, joint=joint)
+        for name in tracers:
+            if name in points:
+                degrees[name] = _tracer_point_degree(scene, points[name], exact_ratio(points[name]))
+                continue
+            link = next((link.name for link in moving if name in link.joints), None)
+            fixed = link is None or name in scene.world
+            degrees[name] = "fixed" if fixed else coupler_curve_degree(scene, link, joint=name)
         for link in moving:
             degrees[f"{link.name} (generic point)"] = coupler_curve_degree(scene, link.name, seed=0)
     except RuntimeError as error:  # msolve missing (MsolveUnavailable) or failing
         raise UsageError(f"--degree: {error}") from None
     return degrees
+
+
+def _tracer_point_degree(scene, tracer, ratio) -> int | str:
+    """The coupler-curve degree of a tracer point: "fixed" on the ground link; its (λ, μ)
+    must be rational (the elimination is exact)."""
+    from baranov.motion import coupler_curve_degree
+
+    from .main import UsageError
+
+    if tracer.link == scene.ground:
+        return "fixed"
+    if ratio is None:
+        raise UsageError(f"--degree: tracer {tracer.name}: its place on link {tracer.link} is not rational "
+                         "(give the link by rational coordinates)")
+    return coupler_curve_degree(scene, tracer.link, ratio)

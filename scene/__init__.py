@@ -3,12 +3,14 @@ joint coordinates), a ground link — as users write it (JSON) and as every back
 it; its validation (one clear error naming the offending link, joint or value); and
 random instances of a truss built from integer configurations (thesis §2.1: the
 dimensions of a Baranov truss); adversarial and hard instances (issue 25); and, for a
-linkage with mobility F > 0, its named inputs (:mod:`~baranov.scene.inputs`)."""
+linkage with mobility F > 0, its named inputs (:mod:`~baranov.scene.inputs`) and the
+points of links whose paths a trace draws (:mod:`~baranov.scene.tracers`)."""
 
 from .inputs import SceneInput, angle_as_distance
 from .instances import generic_integer_configuration, instance_dict, scene_of
 from .model import Scene, SceneError, SceneLink, load_scene, scene_from_dict
 from .numbers import Number, rational_sqrt
+from .tracers import TracerPoint, tracer_positions
 
 __all__ = [
     "Number",
@@ -16,6 +18,7 @@ __all__ = [
     "SceneError",
     "SceneInput",
     "SceneLink",
+    "TracerPoint",
     "angle_as_distance",
     "generic_integer_configuration",
     "instance_dict",
@@ -23,4 +26,5 @@ __all__ = [
     "rational_sqrt",
     "scene_from_dict",
     "scene_of",
+    "tracer_positions",
 ]

@@ -20,7 +20,9 @@ marks the scene inexact (give ``"5/2"`` or ``Fraction(5, 2)`` for exactness).
 Slider joints are listed under ``"sliders"`` (:mod:`~baranov.scene.sliders`; docs/scenes.md).
 A linkage with mobility F = 3(L − 1) − 2J > 0 (a four-bar, a six-bar) is a scene too,
 with up to F named ``"inputs"`` (a driven angle or distance: :mod:`~baranov.scene.inputs`);
-the backends solve rigid scenes (F = 0) and refuse it.
+the backends solve rigid scenes (F = 0) and refuse it; ``baranov trace`` traces it. Points
+of links that are not joints, whose paths a trace draws, are listed under ``"tracers"``
+(:mod:`~baranov.scene.tracers`).
 
 Besides ``"links"`` and ``"ground"``, a scene may carry ``"comment"`` and the
 annotations of saved instances (``"verified_modes"``, ``"generating_configuration"``,
@@ -36,7 +38,7 @@ import difflib
 import json
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from decimal import Decimal
 from fractions import Fraction
 from functools import cached_property
@@ -58,6 +60,7 @@ from baranov.topology import (
 from .inputs import INPUT_KEYS, SceneInput
 from .numbers import Number, rational_sqrt
 from .sliders import SLIDER_KEYS, AngleError, SliderAxis, SliderJoint, angle_direction, slider_loop
+from .tracers import TRACER_KEYS, TracerPoint, tracer_from_frame
 
 #: A link triangle whose area is below this fraction of the link's squared size is flat
 #: (its orientation is not defined by the link's shape).
@@ -88,7 +91,8 @@ class SceneLink:
 @dataclass(frozen=True)
 class Scene:
     """A linkage: links with dimensions, the name of the ground link, and, for a linkage
-    with mobility F > 0, up to F named inputs (:mod:`~baranov.scene.inputs`)."""
+    with mobility F > 0, up to F named inputs (:mod:`~baranov.scene.inputs`); tracer
+    points, points of links whose paths a trace draws (:mod:`~baranov.scene.tracers`)."""
 
     links: tuple[SceneLink, ...]
     ground: str
@@ -96,6 +100,7 @@ class Scene:
     world: Mapping[str, tuple[Number, Number]] = field(default_factory=dict)
     inputs: tuple[SceneInput, ...] = ()
     sliders: tuple[SliderJoint, ...] = ()
+    tracers: tuple[TracerPoint, ...] = ()
 
     def point_name(self, link: str, joint: str) -> str:
         """The name of ``joint``'s point on ``link``: the joint's own name for a revolute
@@ -342,7 +347,7 @@ def _require_positive(name: str, joints: tuple[str, ...], squared: Mapping[froze
 
 
 #: The keys a scene and a link may have (the module docstring says what each means).
-SCENE_KEYS = ("links", "ground", "inputs", "sliders", "comment", "verified_modes", "generating_configuration",
+SCENE_KEYS = ("links", "ground", "inputs", "sliders", "tracers", "comment", "verified_modes", "generating_configuration",
               "generating_tolerance")
 LINK_KEYS = ("name", "joints", "squared_length", "squared_distances", "orientation", "comment")
 
@@ -466,7 +471,39 @@ def scene_from_dict(data) -> Scene:
         scene = Scene(links, ground, exact, world, sliders=sliders)
     if "inputs" in data:
         scene = Scene(links, ground, scene.exact, world, _parse_inputs(data["inputs"], scene), scene.sliders)
+    if "tracers" in data:
+        frames = [given or _rational_frame(link) or link.local for link, (_, given, _) in zip(links, parsed, strict=True)]
+        scene = replace(scene, tracers=_parse_tracers(data["tracers"], scene, dict(zip(names, frames, strict=True))))
     return scene
+
+
+def _parse_tracers(entries, scene: Scene, frames: Mapping[str, Mapping]) -> tuple[TracerPoint, ...]:
+    """The scene's tracer points (:mod:`~baranov.scene.tracers`), validated: each names a
+    link of the scene and a point [x, y] in its frame (``frames``: link → its joints'
+    coordinates in that frame), under a name no joint or other tracer has."""
+    if not isinstance(entries, list):
+        raise SceneError("tracers: expected a list of points such as {\"name\": \"C\", \"link\": \"coupler\", "
+                         "\"at\": [1, 2]}")
+    taken = {joint.name for joint in scene.chain.joints}
+    tracers = []
+    for index, entry in enumerate(entries):
+        if not isinstance(entry, Mapping) or not isinstance(entry.get("name"), str) or not entry["name"]:
+            raise SceneError(f"tracer #{index + 1}: expected an object with a \"name\", a \"link\" and \"at\": [x, y]")
+        name = entry["name"]
+        _require_known_keys(entry, TRACER_KEYS, f"tracer {name}")
+        if name in taken:
+            raise SceneError(f"tracer {name}: name already used by a joint or another tracer")
+        taken.add(name)
+        if entry.get("link") not in frames:
+            raise SceneError(f"tracer {name}: link {entry.get('link')!r}: no such link "
+                             f"(links: {', '.join(link.name for link in scene.links)})")
+        at = entry.get("at")
+        if not isinstance(at, (list, tuple)) or len(at) != 2:
+            raise SceneError(f"tracer {name}: \"at\" needs the point's coordinates [x, y] in link {entry['link']}'s frame")
+        point = tuple(_number(value, f"tracer {name}, at") for value in at)
+        frame, first, second = frames[entry["link"]], *scene.link_of(entry["link"]).joints[:2]
+        tracers.append(tracer_from_frame(name, entry["link"], point, frame[first], frame[second]))
+    return tuple(tracers)
 
 
 def _parse_sliders(entries, links: tuple[SceneLink, ...]) -> tuple[SliderJoint, ...]:

@@ -159,6 +159,8 @@ CASES = [
          (("scene.json", json.dumps(FOUR_BAR)),)),
     Case("trace: an unknown tracer joint", ("trace", "scene.json", "--tracer", "P9"),
          (("scene.json", json.dumps(FOUR_BAR)),)),
+    Case("trace: a tracer point on no link of the scene", ("trace", "scene.json"),
+         (("scene.json", json.dumps({**FOUR_BAR, "tracers": [{"name": "C", "link": "d", "at": [1, 2]}]})),)),
     Case("no command", ()),
     Case("an unknown command", ("draw", "7/B1")),
     Case("an unknown option", ("solve", "scene.json", "--exact"), (("scene.json", json.dumps(TRIAD)),)),

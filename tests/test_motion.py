@@ -3,6 +3,7 @@ published starting configurations, its traced configuration space checked agains
 independent slices, and `baranov trace`."""
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -13,7 +14,7 @@ from hypothesis import strategies as st
 from baranov.cli.main import main
 from baranov.motion import configurations_at, one_dof_system, sign_index, trace
 from baranov.motion.tracing import _on_piece, _scaled
-from baranov.scene import load_scene
+from baranov.scene import load_scene, scene_from_dict
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 #: The thesis's η: A2,4,10, A1,3,6, A1,6,5, A4,9,7, most significant first (§6.3).
@@ -501,3 +502,60 @@ def test_rigidified_needs_a_crank():
             rigidified(scene, driver, 30.0)
     assert rigidified(scene, SceneInput("crank", "angle", ("P1", "P4", "P2")), 90.0).world["P2"] == \
         pytest.approx((0.0, 2.0))
+
+
+def test_a_tracer_point_follows_the_link_it_is_on(capsys, tmp_path):
+    """A tracer point placed where a joint of its link is (P5 of the Stephenson six-bar's
+    coupler, given by coordinates; P3 of the binary rocker, given by its squared length,
+    whose frame has P3 at the origin and P4 on +x) draws that joint's path, at every
+    traced and driven configuration, in the JSON output too; one off the joints keeps its
+    distances to the link's joints."""
+    import json
+
+    scene = json.loads((EXAMPLES / "stephenson-six-bar.json").read_text())
+    scene["tracers"] = [{"name": "C5", "link": "coupler", "at": [2, 4]},
+                        {"name": "C3", "link": "rocker", "at": [0, 0]},
+                        {"name": "C", "link": "coupler", "at": ["3/2", -1]}]
+    path = tmp_path / "six-bar.json"
+    path.write_text(json.dumps(scene))
+    assert main(["trace", str(path), "--input", "crank", "--grid", "12", "--steps", "60", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    points = [p for piece in result["pieces"] for p in piece["points"]] + [p for b in result["driven"] for p in b["points"]]
+    assert len(points) > 100 and all(set(p["tracers"]) == {"C5", "C3", "C"} and "C" not in p["joints"] for p in points)
+    for p in points:
+        joints, tracers = p["joints"], p["tracers"]
+        assert math.dist(tracers["C5"], joints["P5"]) < 1e-9 and math.dist(tracers["C3"], joints["P3"]) < 1e-9
+        # (3/2, -1) in the coupler's frame P2 (0, 0), P3 (6, 0): squared distances 13/4 and 85/4
+        assert abs(math.dist(tracers["C"], joints["P2"]) ** 2 - 13 / 4) < 1e-9
+        assert abs(math.dist(tracers["C"], joints["P3"]) ** 2 - 85 / 4) < 1e-9
+
+
+@needs_msolve
+def test_a_coupler_point_draws_the_sextic(capsys):
+    """examples/four-bar-coupler-point.json: the coupler point C off the coupler's line
+    draws a curve of degree 6 (the four-bar's tricircular sextic), exactly as a generic
+    point of the coupler."""
+    assert main(["trace", str(EXAMPLES / "four-bar-coupler-point.json"), "--degree", "--steps", "50"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1].startswith("coupler-curve degrees: C 6, ")
+
+
+def test_tracer_points_are_validated():
+    """Each mistake in a scene's "tracers" is one SceneError naming the tracer."""
+    import json
+
+    from baranov.scene import SceneError
+
+    base = json.loads((EXAMPLES / "four-bar-coupler-point.json").read_text())
+    for tracers, message in [
+        ({"name": "C"}, "tracers: expected a list"),
+        ([{"link": "coupler", "at": [1, 2]}], "tracer #1: expected an object with a \"name\""),
+        ([{"name": "P2", "link": "coupler", "at": [1, 2]}], "tracer P2: name already used"),
+        ([{"name": "C", "link": "coupler", "at": [1, 2]}, {"name": "C", "link": "crank", "at": [0, 1]}],
+         "tracer C: name already used"),
+        ([{"name": "C", "link": "cupler", "at": [1, 2]}], "tracer C: link 'cupler': no such link"),
+        ([{"name": "C", "link": "coupler", "at": [1]}], "tracer C: \"at\" needs the point's coordinates"),
+        ([{"name": "C", "link": "coupler", "at": ["one", 2]}], "tracer C, at"),
+        ([{"name": "C", "link": "coupler", "at": [1, 2], "colour": "red"}], "tracer C: unknown key 'colour'"),
+    ]:
+        with pytest.raises(SceneError, match=re.escape(message)):
+            scene_from_dict({**base, "tracers": tracers})

@@ -100,7 +100,7 @@ def test_decimal_literals_of_a_file_are_exact(tmp_path):
 @pytest.mark.parametrize("where, key, message", [
     (None, "grund", "scene: unknown key 'grund' (did you mean \"ground\"?)"),
     (1, "squared_lenght", "link b13: unknown key 'squared_lenght' (did you mean \"squared_length\"?)"),
-    (None, "mass", "scene: unknown key 'mass' (expected one of links, ground, inputs, sliders, comment"),
+    (None, "mass", "scene: unknown key 'mass' (expected one of links, ground, inputs, sliders, tracers, comment"),
 ])
 def test_unknown_keys_are_errors_with_a_suggestion(where, key, message):
     data = json.loads((EXAMPLES / "3-B1.json").read_text())
