@@ -543,15 +543,21 @@ def _radicand_bumps(codes: np.ndarray, radicands: np.ndarray, feasible: int) -> 
 
 
 def _radicand_dips(codes: np.ndarray, margins: np.ndarray, feasible: int) -> np.ndarray:
-    """Indices i of defined samples between defined neighbours where some free-sign
-    step's radicand (``margins``, one column per step) is a local minimum: it may turn
-    negative between samples, an undefined gap with a domain edge (and a root next to it)
-    on each side (tests/regressions/9-gap-between-samples.json, found by the completeness
-    test)."""
+    """Indices i of defined samples with a defined neighbour where some free-sign step's
+    radicand (``margins``, one column per step) is a local minimum among the defined
+    neighbours: it may turn negative between samples, an undefined gap with a domain edge
+    (and a root next to it) on each side (tests/regressions/9-gap-between-samples.json,
+    found by the completeness test). An undefined neighbour does not count against the
+    minimum: on issue 25's 9/N7 drawn with a mode at a domain edge (seed 41) the domain
+    starts at s5,11 = 4, its first sample 4.0118 holds the radicand's minimum, and the gap
+    (4.012, 4.037) and the mode at its far edge, 4.038146, lay before the next sample."""
     inner = margins[1:-1]
-    defined = (codes[:-2] == feasible) & (codes[1:-1] == feasible) & (codes[2:] == feasible)
-    minimum = ((inner <= margins[:-2]) & (inner <= margins[2:])).any(axis=-1)
-    return np.flatnonzero(defined & minimum) + 1
+    defined = codes == feasible
+    around = defined[1:-1] & (defined[:-2] | defined[2:])
+    left = np.where(defined[:-2, None], margins[:-2], np.inf)
+    right = np.where(defined[2:, None], margins[2:], np.inf)
+    minimum = ((inner <= left) & (inner <= right)).any(axis=-1)
+    return np.flatnonzero(around & minimum) + 1
 
 
 def _with_windows(grid, values, failures, radicands, margins, sampled, failing, feasible):
