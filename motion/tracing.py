@@ -10,9 +10,10 @@ continuation: a step along the tangent (−f_v, f_u), then Newton back onto f = 
 the gradient (central differences), the step halved where Newton does not converge in
 four iterations, f is undefined (the domain of the sign vector ends: a triangle is
 flat) or a joint would move more than ``jump`` of the linkage's size, and doubled up to
-``resolution`` of the ranges otherwise. A piece ends where the step falls below 1e-6 of
-the ranges (a domain edge) or closes on itself. Folds, where the curve turns back in u,
-need nothing special.
+``resolution`` of the ranges otherwise. Where the step falls below 1e-6 of the ranges
+(next to a domain edge the curve runs along it and predictor steps leave the domain; a
+hairpin fold) the curve is followed on slices instead (:func:`_slid`), to the edge, or on
+until continuation can resume. A piece ends at a domain edge or closes on itself.
 
 **One parameter (d = 1).** A piece is a range of the parameter on one sign vector: the
 runs of RANGE_SAMPLES samples (even in √s) on which the plan places every joint, each
@@ -47,6 +48,7 @@ from .configuration_space import (
     OneDofSystem,
     configurations_at,
     oriented_area,
+    slice_configurations,
     verified_configurations,
 )
 
@@ -206,19 +208,34 @@ def _across(system: OneDofSystem, end: ConfigurationPoint) -> list[Configuration
     scale = np.array(system.upper, float)
     landed = _corrected(_closure_with_gradient(system, signs), _scaled(end, scale))
     if landed is not None:
-        return verified_configurations(system, (landed * scale)[None, :], np.array([signs]))
+        found = [p for p in verified_configurations(system, (landed * scale)[None, :], np.array([signs]))
+                 if p.max_residual < TRACED_RESIDUAL]
+        if found:
+            return found
     # Newton left the domain (next to its edge the closure has a square-root edge): the
-    # slice through the end, on the flipped sign vector, its root nearest the end
+    # slice through the end, on the flipped sign vector, its root nearest the end; or a
+    # slice just beside it, where the end is placed on the edge's other side (eight-bar 9
+    # of tests/test_motion.py: −−++ ends at s1,10 = 0.5344, where −−+− is not yet defined)
     names = system.parameter_names
     u, v = end.parameters[names[0]], end.parameters[names[-1]]
-    near = [p for p in configurations_at(system, u) if p.signs == signs
-            and abs(p.parameters[names[-1]] - v) < CROSSING_GAP * system.upper[-1]]
-    return sorted(near, key=lambda p: abs(p.parameters[names[-1]] - v))[:1]
+    width = CROSSING_GAP * system.upper[-1]
+    grid = np.linspace(max(v - width, 0.0), min(v + width, system.upper[-1]), SLIDE_SAMPLES)
+    for offset in CROSSING_OFFSETS:
+        beside = u + offset * system.upper[0]
+        if not 0 < beside <= system.upper[0]:
+            continue
+        near = [p for p in slice_configurations(system, beside, grid[grid > 0], np.array([signs]))
+                if p.max_residual < TRACED_RESIDUAL]
+        if near:
+            return [min(near, key=lambda p: abs(p.parameters[names[-1]] - v))]
+    return []
 
 
 #: A piece end's crossing found on the slice through it lies within this fraction of the
-#: second parameter's range of the end.
+#: second parameter's range of the end; else on a slice this fraction of the first
+#: parameter's range beside it.
 CROSSING_GAP = 1e-3
+CROSSING_OFFSETS = (0.0, -1e-9, 1e-9, -1e-7, 1e-7, -1e-5, 1e-5)
 
 
 def _scaled(point: ConfigurationPoint, scale: np.ndarray) -> np.ndarray:
@@ -248,15 +265,29 @@ def _follow(system: OneDofSystem, start: ConfigurationPoint, direction: int, jum
             resolution: float) -> list[ConfigurationPoint]:
     """Points along the curve of ``start``'s sign vector from ``start`` in ``direction``
     (+1 or −1 along the tangent (−f_v, f_u)), until a domain edge, back at the start, or
-    MAX_POINTS."""
+    MAX_POINTS; where the steps stall, on along slices (:func:`_slid`)."""
     scale = np.array(system.upper, float)
     value_and_gradient = _closure_with_gradient(system, start.signs)
     points, x, step, tangent_sign = [start], _scaled(start, scale), resolution / 4, direction
-    origin, previous_tangent, travelled = x.copy(), None, 0.0
-    while len(points) < MAX_POINTS and step >= SMALLEST_STEP:
+    origin, previous_tangent, travelled, slides = x.copy(), None, 0.0, 0
+    while len(points) < MAX_POINTS:
         _, g = value_and_gradient(x)
-        if not np.isfinite(g).all() or not g.any():
-            break
+        if step < SMALLEST_STEP or not np.isfinite(g).all() or not g.any():
+            # next to a domain edge every predictor step leaves the domain
+            heading = previous_tangent if previous_tangent is not None else np.array([direction, 0.0])
+            more, goes_on = _slid(system, points[-1], heading, jump, resolution)
+            ordered = points + more
+            if not goes_on and len(ordered) > 1 and not _at_edge(system, ordered[-1]):  # a fold in the slid parameter
+                turned = _turned(system, ordered[-2], ordered[-1], heading)
+                more_on, goes_on = _slid(system, ordered[-1], turned, jump, resolution)
+                more += more_on
+            points += more
+            if not goes_on or slides >= MAX_SLIDES:
+                break
+            slides += 1
+            moved = _scaled(more[-1], scale) - x
+            previous_tangent, x, step = moved / np.linalg.norm(moved), x + moved, resolution / 4
+            continue
         tangent = np.array([-g[1], g[0]]) / np.linalg.norm(g) * tangent_sign
         if previous_tangent is not None and tangent @ previous_tangent < 0:  # keep going the same way
             tangent, tangent_sign = -tangent, -tangent_sign
@@ -275,6 +306,127 @@ def _follow(system: OneDofSystem, start: ConfigurationPoint, direction: int, jum
             points.append(start)  # closed: back at the start
             break
     return points
+
+
+#: Every traced point verifies to this on the link dimensions (issue 19); a slide's or a
+#: crossing's point closer to a domain edge, where placement loses digits as √ of the
+#: distance to it (8e-9 to 1e-8 on the double butterfly), is not taken.
+TRACED_RESIDUAL = 1e-9
+#: Samples of the window in which :func:`_slid` follows a root, its bisection steps, and
+#: the most slides per piece end.
+SLIDE_SAMPLES = 400
+SLIDE_STEPS = 24
+MAX_SLIDES = 8
+
+
+def _slid(system: OneDofSystem, last: ConfigurationPoint, heading: np.ndarray, jump: float,
+          resolution: float) -> tuple[list[ConfigurationPoint], bool]:
+    """Points from ``last`` on along the curve where continuation stalled, and whether the
+    curve goes on beyond them. Next to a domain edge the curve runs along it, every
+    predictor step leaves the domain and the step falls below SMALLEST_STEP; so the curve
+    is followed on slices instead: the parameter along which ``heading`` (scaled) moves
+    most is fixed and moved that way, the root of the other nearest the previous one
+    within a ``resolution`` window tracked (edge roots included:
+    :func:`slice_configurations`). If it exists a full step on, the points up to there
+    (the curve goes on: continuation resumes there); else the end is placed by
+    SLIDE_STEPS bisections on whether it exists, with points between; either way no joint
+    moves more than ``jump`` between neighbours where midpoints can help. On eight-bar 9
+    of tests/test_motion.py the piece on −−++ stopped at s1,10 = 0.5535, 1.2e-4 of the
+    ranges short of its end at the flat triangle P10 P5 P6 (s1,10 = 0.535), and the short
+    piece beyond it was never crossed into. Cost: up to SLIDE_STEPS slices of
+    SLIDE_SAMPLES samples, and one per point added."""
+    axis = int(np.argmax(np.abs(heading)))
+    if heading[axis] == 0:
+        return [], False
+    names, scale = system.parameter_names, np.array(system.upper, float)
+    other, branch = 1 - axis, np.array([last.signs])
+    width = resolution * scale[other]
+
+    def near(value: float, previous: float) -> ConfigurationPoint | None:
+        grid = np.linspace(max(previous - width, 0.0), min(previous + width, scale[other]), SLIDE_SAMPLES)
+        for edges in (False, True):  # the edges' bisection only where no root is bracketed
+            found = [p for p in slice_configurations(system, value, grid[grid > 0], branch, axis, edges)
+                     if p.max_residual < TRACED_RESIDUAL]
+            if found:
+                return min(found, key=lambda p: abs(p.parameters[names[other]] - previous))
+        return None
+
+    start, previous = last.parameters[names[axis]], last.parameters[names[other]]
+    outside = float(np.clip(start + np.sign(heading[axis]) * resolution * scale[axis], scale[axis] * 1e-12,
+                            scale[axis]))
+    beyond = near(outside, previous) if outside != start else None
+    if beyond is not None:
+        filled = _without_jumps(_filled(near, names[axis], [last, beyond], jump), jump)
+        return filled[1:], filled[-1] is beyond
+    inside, point = start, last
+    for _ in range(SLIDE_STEPS):
+        middle = (inside + outside) / 2
+        found = near(middle, point.parameters[names[other]])
+        if found is None:
+            outside = middle
+        else:
+            inside, point = middle, found
+    if point is last:
+        return [], False
+    return _without_jumps(_filled(near, names[axis], [last, point], jump), jump)[1:], False
+
+
+def _without_jumps(points: list[ConfigurationPoint], jump: float) -> list[ConfigurationPoint]:
+    """``points`` up to the first neighbour that a joint moves more than ``jump`` to (no
+    midpoint verified to TRACED_RESIDUAL there: next to the edge joints move as √ of the
+    distance to it): a piece ends short rather than jump."""
+    for k, (a, b) in enumerate(zip(points, points[1:], strict=False)):
+        if max(math.dist(a.joints[j], b.joints[j]) for j in a.joints) > jump:
+            return points[:k + 1]
+    return points
+
+
+def _filled(near, name: str, points: list[ConfigurationPoint], jump: float, rounds: int = 12) -> list[ConfigurationPoint]:
+    """``points`` (ordered along parameter ``name``) with midpoints on the slices between
+    neighbours (``near(value, previous root)``) wherever a joint moves more than ``jump``,
+    up to ``rounds`` rounds."""
+    other = next(n for n in points[0].parameters if n != name)
+    for _ in range(rounds):
+        grown, added = [points[0]], False
+        for a, b in zip(points, points[1:], strict=False):
+            if max(math.dist(a.joints[j], b.joints[j]) for j in a.joints) > jump:
+                middle = near((a.parameters[name] + b.parameters[name]) / 2, a.parameters[other])
+                if middle is not None:
+                    grown.append(middle)
+                    added = True
+            grown.append(b)
+        points = grown
+        if not added:
+            break
+    return points
+
+
+#: A free-sign triangle whose doubled area is below this fraction of its longest side
+#: squared is flat: a piece's end there is at the domain's edge.
+FLAT = 1e-3
+
+
+def _at_edge(system: OneDofSystem, point: ConfigurationPoint) -> bool:
+    """Whether one of the plan's free-sign triangles is flat at ``point`` (FLAT)."""
+    for triangle in system.plan.free_sign_triangles:
+        corners = [point.joints[name] for name in triangle]
+        longest = max(math.dist(a, b) for a in corners for b in corners)
+        if abs(oriented_area(point, triangle)) <= FLAT * longest ** 2:
+            return True
+    return False
+
+
+def _turned(system: OneDofSystem, before: ConfigurationPoint, fold: ConfigurationPoint,
+            heading: np.ndarray) -> np.ndarray:
+    """The heading that continues a slide past a fold of the curve in the parameter it
+    slid along: along the other parameter, the way the curve was already moving in it
+    (eight-bar 9: on ++ +− the curve folds back in s1,10 at 1.3843 and goes on down in
+    s3,10; a slide in s1,10 ends there)."""
+    axis = 1 - int(np.argmax(np.abs(heading)))
+    name = system.parameter_names[axis]
+    turned = np.zeros(2)
+    turned[axis] = 1.0 if fold.parameters[name] >= before.parameters[name] else -1.0
+    return turned
 
 
 def _closure_with_gradient(system: OneDofSystem, signs: tuple[int, ...]):
@@ -308,7 +460,7 @@ def _range(system: OneDofSystem, steps: int) -> tuple[float, float]:
     sweep of (0, upper] and widened by one coarse step each side (then clipped)."""
     upper = system.upper[0]
     coarse = np.linspace(0.0, upper, steps + 1)[1:]
-    found = [u for u in coarse if configurations_at(system, u, samples=400)]
+    found = [u for u in coarse if configurations_at(system, u, samples=400, edges=False)]
     if not found:
         return float(coarse[0]), float(upper)
     step = upper / steps

@@ -391,16 +391,8 @@ def test_driven_double_butterfly_equals_the_rigidified_chains():
     assert _driven_equals_rigid_solves(entries, np.random.default_rng(6), 6) > 0
 
 
-#: Eight-bar 9 (seed [19, 8, 9]): at 109.2° the numeric backend finds a configuration at
-#: s1,10 = 0.50 (P1 and P10 about 0.7 apart, the plan's parameter 0 to 10726) on sign
-#: vector −−+− that no traced piece holds: a piece too short for the slices (the slice at
-#: s1,10 = 0.5012 does not see it either) that no piece end crosses into; its neighbours
-#: end there with no triangle flat (docs/motion.md, "Not yet").
-MISSED_PIECE = pytest.mark.xfail(strict=True, reason="a short piece near s1,10 = 0.5 is not traced (docs/motion.md)")
-
-
 @pytest.mark.slow
-@pytest.mark.parametrize("index", [pytest.param(k, marks=[MISSED_PIECE] if k == 9 else []) for k in range(16)])
+@pytest.mark.parametrize("index", range(16))
 def test_driven_eight_bars_equal_the_rigidified_chains(index):
     """Every eight-bar Grübler chain, a random integer configuration with a crank pinned
     to the fixed link (measured: 0.4-25 s each, the four two-distance chains slowest)."""
