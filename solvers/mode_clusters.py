@@ -11,7 +11,7 @@ from baranov.scene import Scene
 
 from .modes import AssemblyMode
 from .placement import flattened_mode, mode_of, polished_mode, read_back
-from .polish import polish_at_singular_mode, polish_configurations
+from .polish import polish_at_singular_mode, polish_configurations, polish_on_constraints
 from .verification import (
     RESIDUAL_TOLERANCE,
     distance_bound,
@@ -174,9 +174,11 @@ def _refined_in_valley(scene: Scene, compiled: CompiledSystem, members: list[Ass
     points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in members])
     before = np.abs(placement_residuals(scene, {j: points[:, n] for n, j in enumerate(joints)})).max(axis=1)
     seeds = points[np.argsort(before, kind="stable")[:VALLEY_SEEDS]]
-    polished, after = polish_at_singular_mode(scene, joints, seeds, placement_residuals, VALLEY_STEPS)
-    best = int(np.argmin(after))
-    point = polished[best]
+    polished, after = polish_on_constraints(scene, joints, seeds, VALLEY_STEPS, model=placement_residuals)
+    point = polished[int(np.argmin(after))]
+    if after.min() > AT_ROUNDING:  # a singular mode the damped steps stall at (9/N18, 9/N28 of seed 40)
+        polished, after = polish_at_singular_mode(scene, joints, seeds, placement_residuals, VALLEY_STEPS)
+        point = polished[int(np.argmin(after))]
     if not np.abs(points - point).max(axis=1).min() <= CLUSTER * distance_bound(scene):
         return None
     values, branches = read_back(compiled, {j: point[None, n] for n, j in enumerate(joints)}, scene=scene)
