@@ -188,14 +188,15 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
             fine = np.linspace(low, high, REFINEMENT)
             roots += _scan(f, fine, sampled(fine), sampled, near, noise, RESOLUTION * upper, refined=True)
         roots, valleys = _merged_flat_valleys(sampled, roots, RESOLUTION * upper)
-        roots = _one_per_noise_stretch(roots, _merged_stretches(noise))
+        stretches = _merged_stretches(noise)
+        roots = _one_per_noise_stretch(roots, stretches)
         name = parameter_name(compiled.parameters[0])
         undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition "
                       "is flat to rounding there; reported as one mode (a singular mode, or modes closer than "
                       "floating point separates)" for low, high in valleys]
         undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition's "
                       f"sign is rounding noise there ({changes} sign changes); reported as one mode"
-                      for low, high, changes in _merged_stretches(noise)
+                      for low, high, changes in stretches
                       if not any(a <= low and high <= b for a, b in valleys)]  # said already
         for root in roots:
             candidates.append((np.array([root]), branch))
