@@ -492,8 +492,9 @@ and 0 spurious. The numeric backend missed 2 modes, both at a domain edge on 9 l
 9/N7 domain-edge 3 (coupling 1: an undefined gap between the first two defined samples,
 its mode at the gap's far edge; fixed at fad5713, `9-N7-domain-edge-3-seed41.json`) and
 9/N27 domain-edge 8 (coupling 2: both conditions dip to 0 and back within less than a
-grid cell next to the domain's edge where a radicand nearly vanishes; open,
-`tests/regressions/open/9-N27-domain-edge-8-seed41.json`). **The numeric time bound holds
+grid cell next to the domain's edge where a radicand nearly vanishes; fixed by samples
+between the boundary and the grid spaced uniformly in √ of the distance, and a polish on
+the rigid-link model, `9-N27-domain-edge-8-seed41.json`, docs/numeric.md). **The numeric time bound holds
 in this run: p99/median per truss at most 7.7 (target 10), max 33.8 s.** On 11 links
 (every 56th truss, one instance per kind) 50 of 55 instances ran before the session's end
 (11/N561's five did not): both backends 0 / 0 on all 50, every exact list certified, but

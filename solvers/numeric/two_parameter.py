@@ -48,6 +48,9 @@ DEPTH = 4
 BOUNDARY_DEPTH = 2
 #: Bisection steps locating the domain boundary on a grid edge.
 BOUNDARY_STEPS = 30
+#: Samples between the domain boundary and the defined end of a grid edge, spaced
+#: uniformly in the square root of the distance from the boundary (:func:`_boundary`).
+EDGE_SAMPLES = 4
 #: Newton iterations, and the largest residual a candidate may keep.
 NEWTON_STEPS = 50
 CANDIDATE_TOLERANCE = 1e-9
@@ -155,10 +158,12 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     seen = np.stack([values[:, :-1, :-1], values[:, 1:, :-1], values[:, :-1, 1:], values[:, 1:, 1:],
                      along_first[1][:, :, :-1], along_first[1][:, :, 1:],
                      along_second[1][:, :-1, :], along_second[1][:, 1:, :]], axis=3)
-    changes, suspect, distance = _classify(seen)
+    near_boundary = _EdgeSamples.of_cells(along_first[3], along_second[3])
+    changes, suspect, distance = _classify(seen, near_boundary)
     inside = np.isfinite(seen[:, :, :, :4]).all(axis=(3, 4))
     size = np.where(np.isfinite(seen).all(axis=-1), np.abs(seen).max(axis=-1), np.inf)
     best = np.take_along_axis(points, np.argmin(size, axis=3)[:, :, :, None, None], axis=3)[:, :, :, 0]
+    best = np.where((near_boundary.size < size.min(axis=3))[..., None], near_boundary.best, best)
 
     def cells_of(mask: np.ndarray) -> tuple[Cells, np.ndarray]:
         c, i, j = np.nonzero(mask)
@@ -183,6 +188,48 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
         touching, touching_best = cells_of(suspect & ~changes & inside & minima.reshape(lowest.shape))
         starts = (np.concatenate([starts[0], touching_best**2]), np.concatenate([starts[1], touching.branch]))
     return interior, (edge_best**2, edge_cells), _strip_cells(cells, grid, window, strip), starts
+
+
+@dataclass
+class _EdgeSamples:
+    """What the EDGE_SAMPLES samples between the domain boundary and a grid edge's defined
+    end saw (:func:`_boundary`), per grid edge: the smallest and largest value of each
+    condition (±inf where none), and the sample of the smallest max(|f_1|, |f_2|) with
+    that size (NaN, inf where none). Kept per edge and merged into its two cells, rather
+    than stacked as more samples of every cell, because few edges cross the boundary."""
+
+    low: np.ndarray  # (..., 2)
+    high: np.ndarray  # (..., 2)
+    best: np.ndarray  # (..., 2) a point of the √ plane
+    size: np.ndarray  # (...)
+
+    @staticmethod
+    def empty(shape: tuple[int, ...]) -> _EdgeSamples:
+        return _EdgeSamples(np.full((*shape, 2), np.inf), np.full((*shape, 2), -np.inf),
+                            np.full((*shape, 2), np.nan), np.full(shape, np.inf))
+
+    def record(self, at: tuple[np.ndarray, ...], points: np.ndarray, values: np.ndarray) -> None:
+        """Samples ``points`` (E, k, 2) with ``values`` (E, k, 2) of the edges ``at``."""
+        defined = np.isfinite(values)
+        self.low[at] = np.where(defined, values, np.inf).min(axis=1)
+        self.high[at] = np.where(defined, values, -np.inf).max(axis=1)
+        size = np.where(defined.all(axis=-1), np.abs(values).max(axis=-1), np.inf)
+        pick = np.argmin(size, axis=1)
+        self.best[at] = points[np.arange(len(points)), pick]
+        self.size[at] = size[np.arange(len(points)), pick]
+
+    @staticmethod
+    def of_cells(along_first: _EdgeSamples, along_second: _EdgeSamples) -> _EdgeSamples:
+        """Per cell (i, j), the samples of its four sides merged, from the edges along the
+        first axis (C, n, n + 1) and along the second (C, n + 1, n)."""
+        def sides(name: str) -> list[np.ndarray]:
+            first, second = getattr(along_first, name), getattr(along_second, name)
+            return [first[:, :, :-1], first[:, :, 1:], second[:, :-1, :], second[:, 1:, :]]
+        sizes = np.stack(sides("size"), axis=-1)
+        pick = np.argmin(sizes, axis=-1)[..., None, None]
+        best = np.take_along_axis(np.stack(sides("best"), axis=-2), pick, axis=-2)[..., 0, :]
+        return _EdgeSamples(np.minimum.reduce(sides("low")), np.maximum.reduce(sides("high")), best,
+                            sizes.min(axis=-1))
 
 
 def _local_minima(branch: np.ndarray, low: np.ndarray, width: np.ndarray, value: np.ndarray,
@@ -251,13 +298,23 @@ def _boundary(compiled, signs, first, second, first_failures, second_failures):
     on an edge whose two ends fail at different steps, a point of a strip of the domain
     between them if there is one (values NaN if not). For such a strip, also where it ends
     (a second bisection towards the later-failing end). NaN for edges whose ends fail at
-    the same step, or are both defined, and for ends of strips not found."""
+    the same step, or are both defined, and for ends of strips not found. Last, on an edge
+    with one end defined, EDGE_SAMPLES points between the boundary and that end with the
+    values there, at distances from the boundary growing like k² (uniform in the square
+    root of the distance, in which the conditions are smooth).
+
+    The conditions change like the square root of the distance from the boundary, so
+    between the boundary and the nearest grid point they can dip to 0 and back unseen
+    (issue 25, seed 41: 9/N27 drawn at a domain edge, a mode 0.0125 inside the edge line
+    of s1,11 in a cell 0.058 tall; f_2 is 3.5 on the boundary, 3.4 at the corners and
+    negative on an interval 0.004 wide beside the mode)."""
     crossing = first_failures != second_failures
     points, far = np.full(first.shape, np.nan), np.full(first.shape, np.nan)
     values = np.full((*first.shape[:-1], 2), np.nan)
+    inner = _EdgeSamples.empty(first.shape[:-1])
     index = np.nonzero(crossing)
     if len(index[0]) == 0:
-        return points, values, far
+        return points, values, far, inner
     first_later = (first_failures[index] > second_failures[index])[:, None]
     beyond = np.where(first_later, first[index], second[index])
     earlier = np.where(first_later, second[index], first[index])
@@ -272,7 +329,13 @@ def _boundary(compiled, signs, first, second, first_failures, second_failures):
         end = _bisection(compiled, edge_signs[in_strip], later[in_strip], beyond[in_strip],
                          lambda failure: failure == feasible)
         far[tuple(axis[in_strip] for axis in index)] = end
-    return points, values, far
+    edge = np.flatnonzero(later_failure == feasible)
+    if len(edge):
+        fractions = (np.arange(1, EDGE_SAMPLES + 1) / (EDGE_SAMPLES + 1)) ** 2
+        samples = later[edge, None] + (beyond[edge] - later[edge])[:, None] * fractions[:, None]
+        sampled = _paired(compiled, samples.reshape(-1, 2), np.repeat(edge_signs[edge], EDGE_SAMPLES, axis=0))
+        inner.record(tuple(axis[edge] for axis in index), samples, sampled.reshape(samples.shape))
+    return points, values, far, inner
 
 
 def _bisection(compiled, signs, good, bad, is_good):
@@ -286,8 +349,9 @@ def _bisection(compiled, signs, good, bad, is_good):
     return good
 
 
-def _classify(seen: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """For the values seen by each cell, shape (C, n, n, k, 2) with NaN where undefined:
+def _classify(seen: np.ndarray, near_boundary: _EdgeSamples) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """For the values seen by each cell, shape (C, n, n, k, 2) with NaN where undefined,
+    and those its sides' samples near the domain boundary saw (``near_boundary``):
     cells where both conditions change sign; cells where both zero sets may pass (a sign
     change, or the smallest |f_k| within the spread of f_k over the 3 × 3 neighbouring
     cells); and each cell's distance from a common zero, measured by the conditions that
@@ -301,9 +365,12 @@ def _classify(seen: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     (issue 25, seed 35: 9/N2 (s1,10, s1,12) = (25, 10), f_2 ≥ 0 with an isolated zero,
     no Newton start on its branch)."""
     defined = np.isfinite(seen)
-    low = np.where(defined, seen, np.inf).min(axis=3)
-    high = np.where(defined, seen, -np.inf).max(axis=3)
-    smallest = np.where(defined, np.abs(seen), np.inf).min(axis=3)
+    low = np.minimum(np.where(defined, seen, np.inf).min(axis=3), near_boundary.low)
+    high = np.maximum(np.where(defined, seen, -np.inf).max(axis=3), near_boundary.high)
+    # where the boundary samples keep one sign, their smallest |f| is their low or -high
+    # (where they change sign, so does the cell, and its smallest |f| is not used)
+    boundary_smallest = np.where(near_boundary.low > 0, near_boundary.low, np.maximum(-near_boundary.high, 0.0))
+    smallest = np.minimum(np.where(defined, np.abs(seen), np.inf).min(axis=3), boundary_smallest)
     changes = (low <= 0) & (high >= 0)
     size = (1, 3, 3, 1)
     spread = maximum_filter(high, size=size, mode="nearest") - minimum_filter(low, size=size, mode="nearest")
