@@ -26,7 +26,7 @@ from scipy.optimize import brentq, minimize_scalar
 from baranov.scene import Scene, SceneError, SceneInput, scene_from_dict
 from baranov.solvers.placement import placed_configurations
 
-from .configuration_space import ConfigurationPoint, OneDofSystem, verified_configurations
+from .configuration_space import ConfigurationPoint, OneDofSystem, slice_configurations, verified_configurations
 from .tracing import Piece, Trace
 
 
@@ -199,9 +199,12 @@ VALUE_SLACK = 1e-12
 
 
 def _refined(system: OneDofSystem, driver: SceneInput, before: ConfigurationPoint, after: ConfigurationPoint,
-             target: float) -> ConfigurationPoint | None:
+             target: float, splits: int = 0) -> ConfigurationPoint | None:
     """The verified configuration between two neighbouring traced points at which the
-    input is ``target`` (module docstring), or None where none is found."""
+    input is ``target`` (module docstring), or None where none is found. d = 2: where
+    Newton's method fails from the interpolation, the stretch is split at a point of the
+    curve between them (:func:`_middle_on_curve`) and the half the input crosses
+    ``target`` on is refined instead, at most MAX_SPLITS times."""
     names = system.parameter_names
     branch = np.array(before.signs)[None, :]
     start = np.array([before.parameters[name] for name in names])
@@ -232,7 +235,48 @@ def _refined(system: OneDofSystem, driver: SceneInput, before: ConfigurationPoin
         where = {name: (point.real, point.imag) for name, point in zip(joints, points[0], strict=True)}
         return offset(ConfigurationPoint({}, (), where, math.inf))
 
-    return _newton(system, branch, start, end, offset_anywhere)
+    found = _newton(system, branch, start, end, offset_anywhere)
+    if found is not None or splits >= MAX_SPLITS:
+        return found
+    middle = _middle_on_curve(system, before, after)
+    if middle is None:
+        return None
+    for first, second in ((before, middle), (middle, after)):
+        if _crossed(driver, first, second, np.array([target])):
+            return _refined(system, driver, first, second, target, splits + 1)
+    return None
+
+
+#: Splits of a stretch where Newton's method fails (:func:`_refined`), and the samples of
+#: the slice that finds a point of the curve between its ends (:func:`_middle_on_curve`).
+MAX_SPLITS = 12
+MIDDLE_SAMPLES = 64
+
+
+def _middle_on_curve(system: OneDofSystem, before: ConfigurationPoint,
+                     after: ConfigurationPoint) -> ConfigurationPoint | None:
+    """d = 2: a configuration on the curve between two neighbouring traced points of one
+    piece: on the slice halfway between them along the parameter that changes more
+    (relatively), the root of the closure condition on their branch nearest their joints'
+    midpoint (MIDDLE_SAMPLES samples of the other parameter over three times the two
+    points' spread, with the roots next to a domain edge). Where the curve bends sharply
+    in the parameters the linear interpolation of two traced points can lie outside the
+    domain: eight-bar 9 of docs/stability.md, P10 0.87 from P1 (s1,10 between 0.63 and
+    0.90) as the crank passes 180°."""
+    names = system.parameter_names
+    first = np.array([before.parameters[name] for name in names])
+    second = np.array([after.parameters[name] for name in names])
+    axis = int(np.argmax(np.abs(second - first) / np.maximum(np.abs(first) + np.abs(second), 1e-300)))
+    other = 1 - axis
+    low, high = sorted((first[other], second[other]))
+    spread = max(high - low, 1e-9 * system.upper[other])
+    grid = np.linspace(max(low - spread, 1e-12 * system.upper[other]), high + spread, MIDDLE_SAMPLES)
+    found = slice_configurations(system, (first[axis] + second[axis]) / 2, grid, np.array(before.signs)[None, :], axis)
+    if not found:
+        return None
+    middle = {name: ((before.joints[name][0] + after.joints[name][0]) / 2,
+                     (before.joints[name][1] + after.joints[name][1]) / 2) for name in before.joints}
+    return min(found, key=lambda point: max(math.dist(point.joints[name], middle[name]) for name in middle))
 
 
 def _newton(system: OneDofSystem, branch: np.ndarray, start: np.ndarray, end: np.ndarray,
@@ -245,26 +289,48 @@ def _newton(system: OneDofSystem, branch: np.ndarray, start: np.ndarray, end: np
         return None
     values = start + (end - start) * first / (first - last)
     scale = np.array(system.upper)
-    for _ in range(20):
-        residual = _equations(system, branch, values, offset)
+    residual = _equations(system, branch, values, offset)
+    for _ in range(NEWTON_STEPS):
         if residual is None:
             return None
         if np.max(np.abs(residual)) < 1e-12:
             break
         jacobian = np.empty((2, 2))
         for column in range(2):
+            # relative to the value: a step of 1e-7 of the range left s1,10 = 0.77 (P10
+            # 0.87 from P1 on eight-bar 9 of docs/stability.md) for the undefined region
             step = np.zeros(2)
-            step[column] = 1e-7 * scale[column]
+            step[column] = 1e-7 * max(abs(values[column]), 1e-9 * scale[column])
             moved = _equations(system, branch, values + step, offset)
             if moved is None:
                 return None
             jacobian[:, column] = (moved - residual) / step[column]
         try:
-            values = values - np.linalg.solve(jacobian, residual)
+            step = np.linalg.solve(jacobian, residual)
         except np.linalg.LinAlgError:
             return None
+        values, residual = _damped(system, branch, values, step, residual, offset)
     found = verified_configurations(system, values[None, :], branch)
     return found[0] if found else None
+
+
+#: Newton steps of :func:`_newton`, and halvings of a step that does not lower the residual.
+NEWTON_STEPS = 30
+HALVINGS = 12
+
+
+def _damped(system: OneDofSystem, branch: np.ndarray, values: np.ndarray, step: np.ndarray,
+            residual: np.ndarray, offset) -> tuple[np.ndarray, np.ndarray | None]:
+    """``values − step``, the step halved (at most HALVINGS times) until the equations are
+    defined there and their largest residual lower; the full step if none is (a last
+    try, as plain Newton)."""
+    size = np.max(np.abs(residual))
+    for halving in range(HALVINGS):
+        trial = values - step / 2**halving
+        moved = _equations(system, branch, trial, offset)
+        if moved is not None and np.max(np.abs(moved)) < size:
+            return trial, moved
+    return values - step, _equations(system, branch, values - step, offset)
 
 
 def _equations(system: OneDofSystem, branch: np.ndarray, values: np.ndarray, offset) -> np.ndarray | None:

@@ -36,10 +36,11 @@ reported (``Trace.jumps``), never silently joined.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from baranov.solvers.numeric.one_parameter import window_samples
 from baranov.solvers.placement import placed_configurations
 from baranov.solvers.verification import distance_bound
 
@@ -113,20 +114,50 @@ RANGE_SAMPLES = 4000
 
 def _ranges(system: OneDofSystem, jump: float) -> list[tuple[tuple[int, ...], list[ConfigurationPoint]]]:
     """The ranges of a one-parameter configuration space, per sign vector (module docstring)."""
-    grid = np.linspace(0.0, math.sqrt(system.upper[0]), RANGE_SAMPLES + 1)[1:] ** 2
+    uniform = np.linspace(0.0, math.sqrt(system.upper[0]), RANGE_SAMPLES + 1)[1:] ** 2
+    failures, radicands, margins = system.compiled.failure_profile(uniform[:, None], np.array(system.branches))
     found = []
-    for branch in system.branches:
+    for b, branch in enumerate(system.branches):
+        # a window of the domain narrower than the samples (eight-bar 12 of docs/stability.md:
+        # 0.0011 of s2,10 wide, between the crank in line and a domain edge)
+        added, _ = window_samples(uniform, failures[b], radicands[b], margins[b],
+                                  lambda values, branch=branch: system.compiled.first_failures(values[:, None],
+                                                                                              branch[None, :])[0],
+                                  len(system.plan.steps))
+        grid = np.union1d(uniform, added)
         defined = _placed(system, grid, branch)
         edges = np.flatnonzero(np.diff(defined.astype(int)))
         starts = ([0] if defined[0] else []) + [e + 1 for e in edges if not defined[e]]
         for start in starts:
             stop = next((e for e in edges if e >= start and defined[e]), len(grid) - 1)
-            low = grid[0] if start == 0 else _edge(system, branch, grid[start - 1], grid[start])
-            high = grid[-1] if stop == len(grid) - 1 else _edge(system, branch, grid[stop + 1], grid[stop])
+            low, flat_low = (grid[0], None) if start == 0 else _edge(system, branch, grid[start - 1], grid[start])
+            high, flat_high = ((grid[-1], None) if stop == len(grid) - 1
+                               else _edge(system, branch, grid[stop + 1], grid[stop]))
             points = _sampled_range(system, branch, low, high, jump)
             if points:
-                found.append((tuple(int(x) for x in branch), points))
+                found.append((tuple(int(x) for x in branch), _with_flat_ends(system, points, flat_low, flat_high)))
     return found
+
+
+def _with_flat_ends(system: OneDofSystem, points: list[ConfigurationPoint], flat_low: int | None,
+                    flat_high: int | None) -> list[ConfigurationPoint]:
+    """A range's end points placed with the free-sign triangle that turns flat at that edge
+    flat (index into the plan's free-sign triangles; None at an end of the searched
+    range). The bisection leaves the end within 1e-13 of the range of the edge, but the
+    joints move like √ of that distance: eight-bar 12 of docs/stability.md ended a range
+    with its crank at 179.9987° where the crank's triangle with the fixed link turns flat,
+    at 180°, and the configuration at 180° was missed."""
+    name = system.parameter_names[0]
+    points = list(points)
+    for end, flat in ((0, flat_low), (-1, flat_high)):
+        if flat is None:
+            continue
+        branch = np.array(points[end].signs)
+        branch[flat] = 0
+        placed = verified_configurations(system, np.array([[points[end].parameters[name]]]), branch[None, :])
+        if placed:
+            points[end] = replace(placed[0], signs=points[end].signs)
+    return points
 
 
 def _placed(system: OneDofSystem, values: np.ndarray, branch: np.ndarray) -> np.ndarray:
@@ -136,8 +167,10 @@ def _placed(system: OneDofSystem, values: np.ndarray, branch: np.ndarray) -> np.
     return np.isfinite(points).all(axis=1)
 
 
-def _edge(system: OneDofSystem, branch: np.ndarray, outside: float, inside: float) -> float:
-    """The domain's edge between an undefined and a defined value, by bisection."""
+def _edge(system: OneDofSystem, branch: np.ndarray, outside: float, inside: float) -> tuple[float, int | None]:
+    """The domain's edge between an undefined and a defined value, by bisection; and the
+    free-sign triangle that cannot be built beyond it (its index among the plan's
+    free-sign triangles; None if the failing step has a fixed sign)."""
     for _ in range(60):
         middle = (outside + inside) / 2
         if _placed(system, np.array([middle]), branch)[0]:
@@ -146,7 +179,11 @@ def _edge(system: OneDofSystem, branch: np.ndarray, outside: float, inside: floa
             outside = middle
         if abs(inside - outside) <= 1e-13 * system.upper[0]:
             break
-    return inside
+    steps = system.plan.steps
+    failing = int(system.compiled.first_failures(np.array([[outside]]), branch[None, :])[0, 0])
+    if failing >= len(steps) or not steps[failing].free_sign:
+        return inside, None
+    return inside, sum(step.free_sign for step in steps[:failing])
 
 
 def _sampled_range(system: OneDofSystem, branch: np.ndarray, low: float, high: float,

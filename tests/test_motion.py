@@ -405,6 +405,76 @@ def test_driven_eight_bars_equal_the_rigidified_chains(index):
     _driven_equals_rigid_solves(_with_a_crank(grubler_chains(8)[index], rng), rng)
 
 
+def _eight_bar_with_a_crank(index: int):
+    """Eight-bar ``index`` as the fixed-angle bench of docs/stability.md draws it (seed
+    [19, 8, index]), its scene and crank."""
+    from baranov.enumerate.crosscheck import find_geng
+    from baranov.enumerate.grubler import grubler_chains
+    from baranov.motion.driving import crank_of
+
+    if find_geng() is None:
+        pytest.skip("geng not installed")
+    scene = scene_from_dict(_with_a_crank(grubler_chains(8)[index], np.random.default_rng([19, 8, index])))
+    return scene, crank_of(scene)
+
+
+def _rigid_modes(scene, driver, angle: float) -> list[dict]:
+    from baranov.motion.driving import rigidified
+    from baranov.solvers import solve
+
+    return [mode.joints for mode in solve(rigidified(scene, driver, angle), method="numeric").assembly_modes]
+
+
+def test_a_window_of_the_range_between_the_crank_in_line_and_an_edge():
+    """Eight-bar 12 (d = 1): on branches (−, +, −, ±) the domain of s2,10 includes a
+    window 0.0011 wide, from where the crank's triangle with the fixed link is flat (the
+    crank at 180°) to where P9 P7 P6 is; the range samples (4.7 apart there) missed it,
+    and the driven motion lost one of the six configurations at 180°. Now the window
+    search of the numeric backend finds it, and range ends are placed with their flat
+    triangle flat (the crank at exactly 180°, not 179.9987°)."""
+    from baranov.motion.driving import distinct_configurations, driven_motion, input_value
+    from baranov.solvers.msolve import match_configurations
+
+    scene, driver = _eight_bar_with_a_crank(12)
+    system = one_dof_system(scene)
+    traced = trace(system)
+    windows = [piece for piece in traced.pieces if abs(piece.points[-1].parameters["s2,10"]
+                                                       - piece.points[0].parameters["s2,10"]) < 0.01]
+    assert len(windows) == 2
+    assert all(abs(abs(input_value(driver, piece.points[0])) - 180) < 1e-9 for piece in windows)
+    found = [p.joints for p in distinct_configurations(driven_motion(system, traced, driver, [180.0]), 180.0, 360)]
+    modes = _rigid_modes(scene, driver, 180.0)
+    assert len(modes) == 6
+    assert match_configurations(found, modes) == ([], [])
+
+
+def test_a_crossing_where_the_curve_bends_past_the_domain():
+    """Eight-bar 9 (d = 2), two neighbouring traced points of piece (+, −, +, −) at
+    (s1,10, s3,10) ≈ (0.634, 2685.5) and (0.897, 2679.5), the crank at 176.5° and
+    −177.5°: their linear interpolation lies outside the domain (P10 is 0.87 from P1), so
+    Newton's method had no start, and the configuration at 180° was missed. The stretch
+    is now split at points of the curve until Newton's method converges."""
+    from baranov.motion.configuration_space import slice_configurations
+    from baranov.motion.driving import distinct_configurations, driven_motion, input_value
+    from baranov.motion.tracing import Piece, Trace
+    from baranov.solvers.msolve import match_configurations
+
+    scene, driver = _eight_bar_with_a_crank(9)
+    system = one_dof_system(scene)
+    signs = (1, -1, 1, -1)
+    ends = []
+    for s1_10, s3_10 in ((0.633698, 2685.544442), (0.897347, 2679.461168)):
+        near = np.linspace(s3_10 - 1, s3_10 + 1, 41)
+        ends.append(min(slice_configurations(system, s1_10, near, np.array([signs])),
+                        key=lambda point, s3_10=s3_10: abs(point.parameters["s3,10"] - s3_10)))
+    assert [round(input_value(driver, point), 1) for point in ends] == [176.5, -177.5]
+    stretch = Trace((Piece(signs, tuple(ends)),), ())
+    found = [p.joints for p in distinct_configurations(driven_motion(system, stretch, driver, [180.0]), 180.0, 360)]
+    modes = _rigid_modes(scene, driver, 180.0)
+    missed, spurious = match_configurations(found, modes)
+    assert (len(found), len(modes), len(missed), spurious) == (1, 2, 1, [])  # the other is on another piece
+
+
 def test_a_crank_turns_round_through_the_branch_points(capsys, tmp_path):
     """examples/stephenson-six-bar.json: its crank-rocker's crank turns fully, so the
     motion followed from one piece on through the branch points meets each of 36 crank

@@ -562,12 +562,26 @@ def _radicand_dips(codes: np.ndarray, margins: np.ndarray, feasible: int) -> np.
 
 
 def _with_windows(grid, values, failures, radicands, margins, sampled, failing, feasible):
-    """The grid plus dense samples wherever a feasible window may hide between samples:
-    neighbours failing at different steps, or a local maximum of a failing radicand;
-    refined level by level (all cells of a level in one vectorised evaluation). Also
-    returns the cells still failing at different steps on both sides after WINDOW_DEPTH
-    levels: windows narrower than 64^-6 of a cell, possibly a single point
-    (:func:`_roots_at_crossing_radicands`)."""
+    """The grid plus :func:`window_samples`, with the values there; and the cells still
+    failing at different steps on both sides after WINDOW_DEPTH levels."""
+    added, cells = window_samples(grid, failures, radicands, margins, failing, feasible)
+    if len(added) == 0:
+        return grid, values, cells
+    return (*_merge(grid, values, added, sampled(added)), cells)
+
+
+def window_samples(grid: np.ndarray, failures: np.ndarray, radicands: np.ndarray, margins: np.ndarray,
+                   failing, feasible: int) -> tuple[np.ndarray, list[tuple[float, float]]]:
+    """Dense samples (sorted, without repeats) of one parameter wherever a feasible window
+    may hide between the samples ``grid`` of one branch: neighbours failing at different
+    steps, a local maximum of a failing radicand, or a local minimum of a free-sign one
+    (``failures``, ``radicands``, ``margins``:
+    :meth:`~baranov.closure.CompiledSystem.failure_profile`); refined level by level with
+    ``failing`` (the first failing steps at given values), all cells of a level in one
+    vectorised evaluation. Also returns the cells still failing at different steps on
+    both sides after WINDOW_DEPTH levels: windows narrower than 64^-6 of a cell, possibly
+    a single point (:func:`_roots_at_crossing_radicands`). Cost: WINDOW_SAMPLES
+    placements per suspect cell and level."""
     extra = []
     cells = [(grid[i], grid[i + 1]) for i in _window_cells(failures, feasible)]
     cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_bumps(failures, radicands, feasible)]
@@ -586,10 +600,7 @@ def _with_windows(grid, values, failures, radicands, margins, sampled, failing, 
             cells = []
             break
         cells = following
-    if not extra:
-        return grid, values, []
-    added = np.unique(np.concatenate(extra))
-    return (*_merge(grid, values, added, sampled(added)), cells)
+    return (np.unique(np.concatenate(extra)) if extra else np.zeros(0)), cells
 
 
 def _merge(points: np.ndarray, values: np.ndarray, more_points: np.ndarray, more_values: np.ndarray):
