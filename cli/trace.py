@@ -74,6 +74,7 @@ def run_trace(args: argparse.Namespace) -> int:
     triangles, tracers, driver = _checked_options(args, scene, system)
     degrees = _degrees(scene, tracers) if args.degree else {}
     traced = trace(system, steps=args.steps)
+    exact = _exact_ranges(system, traced)
     driven = _driven(system, traced, driver, args.grid) if driver is not None else []
     if scene.tracers:
         from baranov.motion.tracer_paths import driven_with_tracer_points, traced_with_tracer_points
@@ -93,10 +94,31 @@ def run_trace(args: argparse.Namespace) -> int:
     if args.animate is not None:
         _animate(args.animate, scene, traced, driven, tracers, driver)
     if args.json:
-        print(json.dumps(_as_json(args, scene, system, traced, triangles, degrees, driver, driven), indent=1))
+        print(json.dumps(_as_json(args, scene, system, traced, triangles, degrees, driver, driven, exact), indent=1))
     else:
-        _print_summary(args, system, traced, triangles, degrees, driver, driven)
+        _print_summary(args, system, traced, triangles, degrees, driver, driven, exact)
     return 0
+
+
+def _exact_ranges(system, traced):
+    """One parameter and an exact scene: (the exact range of each piece or None, the exact
+    ranges not traced, the undecided stretches) (:mod:`baranov.motion.exact_ranges`);
+    else None."""
+    from baranov.motion.exact_ranges import certified_pieces, exact_ranges
+
+    if len(system.parameter_names) != 1 or not system.scene.exact:
+        return None
+    found = exact_ranges(system)
+    return (*certified_pieces(system, traced, found), found.undecided)
+
+
+def _end_json(end) -> dict:
+    return {"value": end.digits(30), "polynomial": list(end.polynomial) if end.polynomial else None,
+            "flat": [list(triangle) for triangle in end.triangles]}
+
+
+def _range_json(exact_range) -> dict:
+    return {"signs": list(exact_range.signs), "low": _end_json(exact_range.low), "high": _end_json(exact_range.high)}
 
 
 def _checked_options(args: argparse.Namespace, scene, system):
@@ -137,7 +159,7 @@ def _point(point, tracers: frozenset[str] = frozenset()) -> dict:
     return result
 
 
-def _as_json(args, scene, system, traced, triangles, degrees, driver, driven) -> dict:
+def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, exact=None) -> dict:
     from baranov.motion import sign_index
 
     names = frozenset(tracer.name for tracer in scene.tracers)
@@ -151,6 +173,12 @@ def _as_json(args, scene, system, traced, triangles, degrees, driver, driven) ->
         "loose_ends": [list(end) for end in traced.loose_ends],
         "jumps": list(traced.jumps),
     }
+    if exact is not None:
+        matched, untraced, undecided = exact
+        for piece, exact_range in zip(result["pieces"], matched, strict=True):
+            piece["exact_range"] = None if exact_range is None else _range_json(exact_range)
+        result["untraced_ranges"] = [_range_json(exact_range) for exact_range in untraced]
+        result["undecided_ranges"] = list(undecided)
     if args.degree:
         result["coupler_curve_degrees"] = degrees
     if driver is not None:
@@ -159,7 +187,7 @@ def _as_json(args, scene, system, traced, triangles, degrees, driver, driven) ->
     return result
 
 
-def _print_summary(args, system, traced, triangles, degrees, driver, driven) -> None:
+def _print_summary(args, system, traced, triangles, degrees, driver, driven, exact=None) -> None:
     from baranov.motion import sign_index
 
     print(f"{args.scene}: {len(traced.pieces)} pieces in ({', '.join(system.parameter_names)}), "
@@ -173,6 +201,15 @@ def _print_summary(args, system, traced, triangles, degrees, driver, driven) -> 
               f"{' (closed)' if piece.closed else ''}  {ranges}")
     for sentence in traced.jumps:
         print(f"jump: {sentence}")
+    if exact is not None:
+        matched, untraced, undecided = exact
+        print(f"exact ranges: {sum(r is not None for r in matched)} of {len(matched)} pieces certified (one connected "
+              f"range each, ends exact), {len(untraced)} ranges not traced")
+        for exact_range in untraced:
+            print(f"  not traced: {system.parameter_names[0]} in [{exact_range.low.digits(12)}, "
+                  f"{exact_range.high.digits(12)}] on signs {exact_range.signs}")
+        for sentence in undecided:
+            print(f"  undecided: {sentence}")
     if driver is not None:
         unit = "°" if driver.kind == "angle" else ""
         print(f"driven by {driver.name} ({driver.kind} {','.join(driver.joints)}), {args.grid} values: "

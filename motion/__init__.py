@@ -1,12 +1,15 @@
 """One-degree-of-freedom chains (thesis ch. 6): their configuration spaces in distance
 space (:mod:`.configuration_space`), their tracing into pieces joined at branch points
-(:mod:`.tracing`) and the degrees of their coupler curves (:mod:`.coupler_curves`). The
+(:mod:`.tracing`), its ranges computed exactly for one parameter (:mod:`.exact_ranges`) and the
+degrees of their coupler curves (:mod:`.coupler_curves`). The
 Grübler chains are enumerated in :mod:`baranov.enumerate.grubler` and planned by
 :func:`baranov.planner.one_dof_plans`."""
 
 from .configuration_space import ConfigurationPoint, OneDofSystem, configurations_at, one_dof_system, sign_index
 from .coupler_curves import CouplerCurveError, coupler_curve_degree
+from .exact_ranges import ExactRange, ExactRanges, RangeEnd, certified_pieces, exact_ranges
 from .tracing import BranchPoint, Piece, Trace, trace
 
-__all__ = ["BranchPoint", "ConfigurationPoint", "CouplerCurveError", "OneDofSystem", "Piece", "Trace",
-           "configurations_at", "coupler_curve_degree", "one_dof_system", "sign_index", "trace"]
+__all__ = ["BranchPoint", "ConfigurationPoint", "CouplerCurveError", "ExactRange", "ExactRanges", "OneDofSystem", "Piece",
+           "RangeEnd", "Trace", "certified_pieces", "configurations_at", "coupler_curve_degree", "exact_ranges",
+           "one_dof_system", "sign_index", "trace"]

@@ -12,6 +12,7 @@ import baranov.cli
 import baranov.closure
 import baranov.enumerate
 import baranov.literature
+import baranov.motion
 import baranov.planner
 import baranov.robots
 import baranov.scene
@@ -21,7 +22,8 @@ import baranov.topology
 MODULES = sorted(
     info.name
     for package in (baranov.topology, baranov.enumerate, baranov.literature, baranov.planner, baranov.closure,
-                    baranov.scene, baranov.solvers, baranov.baselines, baranov.catalog, baranov.cli, baranov.robots)
+                    baranov.scene, baranov.solvers, baranov.baselines, baranov.catalog, baranov.cli, baranov.robots,
+                    baranov.motion)
     for info in pkgutil.walk_packages(package.__path__, package.__name__ + ".")
     if not info.name.endswith("__main__")
 ) + ["baranov", "baranov.topology", "baranov.enumerate"]

@@ -98,6 +98,23 @@ def test_trace_command(capsys, tmp_path):
         assert message in capsys.readouterr().err
 
 
+def test_trace_command_gives_exact_range_ends(capsys):
+    """One parameter: the summary says how many pieces the exact ranges certify, and the
+    JSON gives each piece's ends exactly (crank 2, coupler 6: s1,3 from 16 to 64)."""
+    import json
+
+    example = str(EXAMPLES / "four-bar-coupler-point.json")
+    assert main(["trace", example]) == 0
+    assert "exact ranges: 4 of 4 pieces certified (one connected range each, ends exact), 0 ranges not traced" in (
+        capsys.readouterr().out)
+    assert main(["trace", example, "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    first = result["pieces"][0]["exact_range"]
+    assert (first["low"]["polynomial"], first["high"]["polynomial"]) == ([-16, 1], [-64, 1])
+    assert first["low"]["value"].startswith("16.0000000000") and first["low"]["flat"] == [["P1", "P2", "P3"]]
+    assert (result["untraced_ranges"], result["undecided_ranges"]) == ([], [])
+
+
 def _grubler_cases():
     from baranov.enumerate.crosscheck import find_geng
 
@@ -145,6 +162,62 @@ def test_traced_pieces_hold_random_configurations(chain, seed):
     assert at_drawn and all(on_trace(p) for p in at_drawn)
     for u in rng.uniform(0, system.upper[0], 12):
         assert all(on_trace(p) for p in configurations_at(system, u))
+    if len(system.parameter_names) == 1:
+        _assert_ranges_certified(system, traced)
+
+
+def _assert_ranges_certified(system, traced) -> None:
+    """One parameter: every traced piece is an exact range of its branch (ends within
+    1e-9 of the range, one connected range), and every exact range is traced."""
+    from baranov.motion.exact_ranges import certified_pieces, exact_ranges
+
+    found = exact_ranges(system)
+    matched, untraced = certified_pieces(system, traced, found)
+    assert found.undecided == ()
+    assert all(r is not None for r in matched), [n for n, r in enumerate(matched) if r is None]
+    assert untraced == [], [(r.signs, r.low.digits(12), r.high.digits(12)) for r in untraced]
+
+
+def _one_parameter_chains() -> list:
+    from baranov.enumerate.crosscheck import find_geng
+    from baranov.enumerate.grubler import grubler_chains
+    from baranov.planner import one_dof_plans
+
+    if find_geng() is None:
+        return []
+    return [chain for links in (4, 6, 8) for chain in grubler_chains(links)
+            if one_dof_plans(chain)[0].number_of_parameters == 1]
+
+
+@settings(max_examples=15, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), pick=st.integers(0, 2**16))
+def test_exact_ranges_are_the_traced_pieces(seed, pick):
+    """Random integer dimensions of a random one-parameter Grübler chain (the four-bar,
+    both six-bars, twelve eight-bars): the ranges computed exactly from the radicands'
+    norms (motion/exact_ranges.py) are exactly the traced pieces, each certified one
+    connected range. Before the window search of the ranges, eight-bar 12 of
+    docs/stability.md had an exact range 0.0011 wide that no piece traced."""
+    from baranov.scene.instances import generic_integer_configuration, scene_of
+
+    chains = _one_parameter_chains()
+    if not chains:
+        pytest.skip("geng not installed")
+    chain = chains[pick % len(chains)]
+    system = one_dof_system(scene_of(chain, generic_integer_configuration(chain, np.random.default_rng(seed))))
+    _assert_ranges_certified(system, trace(system))
+
+
+def test_exact_ranges_need_one_parameter_and_exact_dimensions(butterfly):
+    from baranov.motion.exact_ranges import exact_ranges
+    from baranov.solvers.exact import ExactMethodError
+
+    system, _ = butterfly
+    with pytest.raises(ValueError, match="parameters s2,4, s1,6: exact ranges need a one-parameter space"):
+        exact_ranges(system)
+    inexact = dict(FOUR_BAR, links=[dict(link) for link in FOUR_BAR["links"]])
+    inexact["links"][1]["squared_length"] = 4.5
+    with pytest.raises(ExactMethodError, match="a float was given"):
+        exact_ranges(one_dof_system(scene_from_dict(inexact)))
 
 
 # --- coupler-curve degrees (beyond the thesis; motion/coupler_curves.py) ---------------

@@ -388,9 +388,27 @@ def eliminate_radicals(polynomial: flint.fmpq_mpoly,
         if not content.is_constant():
             polynomial = polynomial / content
             removed.append((content, 2 ** (n + 1)))
-        odd, even = divmod(polynomial, tower.radical(n))
-        polynomial = tower.multiply(even, even, n) - tower.multiply(tower.radicands[n], tower.multiply(odd, odd, n), n)
+        polynomial = _norm_step(tower, polynomial, n)
     return polynomial, removed
+
+
+def _norm_step(tower: RadicalTower, polynomial: flint.fmpq_mpoly, n: int) -> flint.fmpq_mpoly:
+    """Res_{r_n}(F, r_n² - Δ_n) = A² - Δ_n B² for F = A + B r_n in normal form, free of the
+    radicals beyond r_n: F(√Δ_n) F(-√Δ_n), in normal form."""
+    odd, even = divmod(polynomial, tower.radical(n))
+    return tower.multiply(even, even, n) - tower.multiply(tower.radicands[n], tower.multiply(odd, odd, n), n)
+
+
+def radicand_norm(tower: RadicalTower, n: int) -> flint.fmpz_poly:
+    """The norm of the radicand Δ_{n+1} (``n`` counts from 0, innermost first) over the
+    radicals it involves, r_n, …, r_1: a primitive integer polynomial in the one parameter
+    (coupling degree 1) whose real roots hold every value at which triangle n + 1 of the
+    plan turns flat on some sign branch (a domain edge, thesis §3.3.1). Cost: n norm
+    steps (:func:`eliminate_radicals`)."""
+    polynomial = tower.radicands[n]
+    for inner in range(n - 1, -1, -1):
+        polynomial = _norm_step(tower, polynomial, inner)
+    return _univariate(polynomial)
 
 
 def _radical_content(polynomial: flint.fmpq_mpoly, radicals: int) -> flint.fmpq_mpoly:
