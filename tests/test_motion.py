@@ -53,6 +53,20 @@ def test_traced_pieces_verify_and_do_not_jump(butterfly):
                    for piece in traced.pieces)
 
 
+#: Thesis Table 6.1: the sign combinations of A2,4,10, A1,3,6, A1,6,5, A4,9,7 coloured in
+#: Figs. 6.6–6.7 (−−−−, −−−+, −+−−, −+−+, −+++, +−−−, +−−+, ++−−, ++−+, +++−, ++++) as η.
+TABLE_6_1 = {0b0000, 0b0001, 0b0100, 0b0101, 0b0111, 0b1000, 0b1001, 0b1100, 0b1101, 0b1110, 0b1111}
+
+
+def test_the_sign_combinations_of_table_6_1(butterfly):
+    """The thesis decomposes the configuration space into "16 components, one for each
+    combination of signs" (§6.3): the 2⁴ sign combinations, of which its Table 6.1 colours
+    eleven. The traced pieces carry exactly those eleven η; a combination's curve may
+    consist of several pieces (17 pieces in all), each a connected arc of it."""
+    _, traced = butterfly
+    assert {sign_index(piece.points[0], ETA) for piece in traced.pieces} == TABLE_6_1
+
+
 def test_traced_pieces_hold_every_slice_configuration(butterfly):
     """An independent check: at 40 random values of s2,4 every configuration that the
     slice root finder lists lies on a traced piece of its sign vector."""
