@@ -10,14 +10,14 @@ from baranov.closure import CompiledSystem
 from baranov.scene import Scene
 
 from .modes import AssemblyMode
-from .placement import flattened_mode, mode_of, polished_mode, read_back
+from .placement import flattened_mode, mode_of, polished_configurations, read_back
 from .polish import polish_at_singular_mode, polish_configurations, polish_on_constraints
 from .verification import (
     RESIDUAL_TOLERANCE,
+    SAME_MODE,
     distance_bound,
     joint_residuals,
     placement_residuals,
-    same_mode,
     sorted_modes,
 )
 
@@ -54,33 +54,67 @@ def merged_clusters(scene: Scene, compiled: CompiledSystem,
     if not clustered:
         return sorted_modes(modes), ()
     kept = [mode for index, mode in enumerate(modes) if index not in clustered]
-    for index in sorted(clustered, key=lambda i: modes[i].max_residual):
-        mode = modes[index]
-        if mode.max_residual > ROUNDING:  # one placed to rounding (msolve's) stays where it is
-            mode = polished_mode(scene, compiled, mode, CLUSTER_STEPS, monotone=False)
-        mode = flattened_mode(scene, compiled, mode if mode.max_residual < RESIDUAL_TOLERANCE else modes[index])
-        if not any(same_mode(mode, other, scene) for other in kept):
+    joints = sorted(modes[0].joints)
+    at = np.array([[complex(*mode.joints[j]) for j in joints] for mode in kept]).reshape(len(kept), len(joints))
+    tolerance = SAME_MODE * distance_bound(scene)  # same_mode's test, against all kept modes at once
+    for mode in _polished_members(scene, compiled, [modes[i] for i in clustered], joints):
+        point = np.array([complex(*mode.joints[j]) for j in joints])
+        if not (np.abs(at - point).max(axis=1, initial=0.0) < tolerance).any():
             kept.append(mode)
+            at = np.vstack([at, point[None]])
     groups = _valley_groups(scene, kept)
     modes_out, undecided = [], []
     for group in groups:
         members = [kept[i] for i in group]
         parts = _between_humps(members)
         if len(parts) > 1:  # distinct roots along one valley: each its best member
-            modes_out += [min(part, key=lambda mode: mode.max_residual) for part in parts]
+            modes_out += [_flat_at_rounding(part) or min(part, key=lambda mode: mode.max_residual) for part in parts]
             continue
         if len(members) > 1:
             undecided.append(_valley_sentence(members))
-            modes_out.append(_refined_in_valley(scene, compiled, members) or _valley_representative(members))
+            modes_out.append(_flat_at_rounding(members) or _refined_in_valley(scene, compiled, members)
+                             or _valley_representative(members))
         else:
             modes_out.append(members[0])
     return sorted_modes(modes_out), tuple(undecided)
+
+
+def _polished_members(scene: Scene, compiled: CompiledSystem, modes: list[AssemblyMode],
+                      joints: list[str]) -> list[AssemblyMode]:
+    """``modes`` in order of their residuals, those above ROUNDING polished by CLUSTER_STEPS
+    plain Gauss–Newton steps (all in one batch), each kept as polished only where that
+    verifies, then :func:`flattened_mode`. (One at a time, and a duplicate check that
+    recomputed the linkage's size per pair, these took 40 s of a 45 s solve on issue 25's
+    9/N27 small-box 14, seed 42: 1447 members of one valley.)"""
+    modes = sorted(modes, key=lambda mode: mode.max_residual)
+    rough = [n for n, mode in enumerate(modes) if mode.max_residual > ROUNDING]  # msolve's stay where they are
+    polished = list(modes)
+    if rough:
+        points = np.array([[complex(*modes[n].joints[j]) for j in joints] for n in rough])
+        points, values, branches, residuals = polished_configurations(scene, compiled, joints, points, CLUSTER_STEPS,
+                                                                      monotone=False)
+        for k, n in enumerate(rough):
+            if residuals[k] < RESIDUAL_TOLERANCE:
+                polished[n] = mode_of(compiled, joints, values[k], branches[k], points[k], residuals[k])
+    return [flattened_mode(scene, compiled, mode) for mode in polished]
 
 
 #: A valley member placed to this residual is at rounding (a root, simple or not); one at
 #: HUMP or more between two such is no root, and separates two distinct roots.
 AT_ROUNDING = 1e-14
 HUMP = 1e-11
+
+
+def _flat_at_rounding(members: list[AssemblyMode]) -> AssemblyMode | None:
+    """The member of a valley placed with a free-sign triangle flat (a 0 in its signs)
+    to rounding (AT_ROUNDING), the lowest residual first, if any: the singular mode
+    itself, as msolve lists it where the plan's joints coincide
+    (:func:`~baranov.solvers.coincidence.with_modes_from_msolve`). Among its neighbours
+    a float member can verify lower: on issue 25's 9/N27 small-box 14 (seed 42) msolve's
+    mode with P1 = P11, (s1,10, s1,11) = (5, 0), had residual 1.8e-15, and a member 1.5e-3
+    away, at (4.9986, 8.6e-8), 2.7e-16 — and stood for the mode."""
+    flat = [mode for mode in members if 0 in mode.signs and mode.max_residual <= AT_ROUNDING]
+    return min(flat, key=lambda mode: mode.max_residual) if flat else None
 
 
 def _between_humps(members: list[AssemblyMode]) -> list[list[AssemblyMode]]:
@@ -142,6 +176,7 @@ def _valley_groups(scene: Scene, modes: list[AssemblyMode]) -> list[list[int]]:
 
     def root(i: int) -> int:
         while parent[i] != i:
+            parent[i] = parent[parent[i]]  # path halving: chains of 1400 members took 21 s unhalved
             i = parent[i]
         return i
 
