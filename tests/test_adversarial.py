@@ -273,3 +273,14 @@ def test_a_tangential_root_beside_a_crossing_is_found():
     scene = load_scene(REGRESSIONS / "7-N2-tangential-beside-crossing.json")
     found = [mode.joints for mode in solve(scene).assembly_modes]
     assert compare_modes(found, list(msolve_modes(scene).configurations)) == (0, 0, 0)
+
+
+def test_a_singular_mode_is_one_mode_and_one_sentence():
+    """tests/regressions/7-N1-double-root-131-seed42.json (seed 42): at the singular mode
+    s2,7 = 4 on branch ++- the closure condition is flat to rounding over [3.9913, 4.0087];
+    the mode is reported once, within 1e-6 of s2,7 = 4 (the middle of its valley), and the
+    flat stretch in one sentence (there were 88, one per run of noise roots)."""
+    solution = solve(load_scene(REGRESSIONS / "7-N1-double-root-131-seed42.json"))
+    near = [mode for mode in solution.assembly_modes if mode.signs == (1, 1, -1) and abs(mode.parameters["s2,7"] - 4) < 0.01]
+    assert len(near) == 1 and abs(near[0].parameters["s2,7"] - 4) < 1e-5
+    assert len([sentence for sentence in solution.undecided if "on branch ++-: the closure condition is flat" in sentence]) == 1

@@ -188,6 +188,9 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
             fine = np.linspace(low, high, REFINEMENT)
             roots += _scan(f, fine, sampled(fine), sampled, near, noise, RESOLUTION * upper, refined=True)
         roots, valleys = _merged_flat_valleys(sampled, roots, RESOLUTION * upper)
+        # one sentence per stretch: around one singular mode the runs of noise roots give
+        # overlapping valleys (issue 25's 7/N1 double-root 131, seed 42: 88 sentences)
+        valleys = [(low, high) for low, high, _ in _merged_stretches([(low, high, 0) for low, high in valleys])]
         stretches = _merged_stretches(noise)
         roots = _one_per_noise_stretch(roots, stretches)
         name = parameter_name(compiled.parameters[0])
