@@ -14,8 +14,8 @@ from .placement import flattened_mode, mode_of, polished_configurations, read_ba
 from .polish import polish_at_singular_mode, polish_configurations, polish_on_constraints
 from .verification import (
     RESIDUAL_TOLERANCE,
-    SAME_MODE,
     distance_bound,
+    first_of_each_mode,
     joint_residuals,
     placement_residuals,
     sorted_modes,
@@ -55,13 +55,10 @@ def merged_clusters(scene: Scene, compiled: CompiledSystem,
         return sorted_modes(modes), ()
     kept = [mode for index, mode in enumerate(modes) if index not in clustered]
     joints = sorted(modes[0].joints)
-    at = np.array([[complex(*mode.joints[j]) for j in joints] for mode in kept]).reshape(len(kept), len(joints))
-    tolerance = SAME_MODE * distance_bound(scene)  # same_mode's test, against all kept modes at once
-    for mode in _polished_members(scene, compiled, [modes[i] for i in clustered], joints):
-        point = np.array([complex(*mode.joints[j]) for j in joints])
-        if not (np.abs(at - point).max(axis=1, initial=0.0) < tolerance).any():
-            kept.append(mode)
-            at = np.vstack([at, point[None]])
+    # the unclustered modes first: none is within CLUSTER of another, so all stay
+    kept += _polished_members(scene, compiled, [modes[i] for i in clustered], joints)
+    points = np.array([[complex(*mode.joints[j]) for j in joints] for mode in kept])
+    kept = [kept[k] for k in first_of_each_mode(points, scene)]
     groups = _valley_groups(scene, kept)
     modes_out, undecided = [], []
     for group in groups:
