@@ -28,6 +28,11 @@ FLAT_AREA = 1e-10
 #: the product of its sides from P_i) is tried flat by :func:`flattened_mode`.
 NEARLY_FLAT = 1e-4
 
+#: A snap of :func:`flattened_mode` may move a joint by at most this (relative to the
+#: linkage's size): √RESIDUAL_TOLERANCE, how far a configuration that verifies can stand
+#: from a singular mode (a residual quadratic in the displacement there).
+FLAT_SNAP_MOVE = math.sqrt(RESIDUAL_TOLERANCE)
+
 
 def compile_scene(scene: Scene, plan: Plan) -> CompiledSystem:
     """The closure system of ``plan`` bound to the dimensions of ``scene`` (floats), with
@@ -213,7 +218,13 @@ def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -
     ~√(1e-10) — at a double root of the characteristic polynomial the same mode was
     reported twice, 5e-5 apart (9/N20 of the collinear-joints sweep). Snapped flat, they
     are one; two genuinely distinct modes this close keep a triangle area whose removal
-    breaks the verification (the merging pair of docs/stability.md)."""
+    breaks the verification (the merging pair of docs/stability.md).
+
+    The snapped configuration must also stay within FLAT_SNAP_MOVE of the mode: a snap
+    refines a mode, it does not replace it by another. Issue 25's 9/N13 domain-edge 1
+    (seed 43): a simple mode at s2,3 = 9 − 3.4e-8, next to the domain's edge at 9, has a
+    triangle of relative area ~1e-5; rebuilt flat at that s it became the mode *at* the
+    edge, 0.31 away, with residual 5.7e-9, and the two were reported as one."""
     if scene.sliders:  # a triangle with a vertex at infinity has no area to snap
         return mode
     at = {joint: complex(*point) for joint, point in mode.joints.items()}
@@ -224,7 +235,10 @@ def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -
     branch = np.array(mode.signs)
     branch[flat] = 0
     snapped = configuration(scene, compiled, np.array(list(mode.parameters.values())), branch)
-    return snapped if snapped.max_residual < RESIDUAL_TOLERANCE else mode
+    if not snapped.max_residual < RESIDUAL_TOLERANCE:
+        return mode
+    moved = max(math.dist(snapped.joints[joint], point) for joint, point in mode.joints.items())
+    return snapped if moved < FLAT_SNAP_MOVE * distance_bound(scene) else mode
 
 
 def polished_configurations(scene: Scene, compiled: CompiledSystem, joints: list[str], points: np.ndarray,
