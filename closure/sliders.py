@@ -18,6 +18,8 @@ P_k from P_i, P_j                           :func:`point_off_axis`: at h_k from 
 P_l from P_i, P_j, both sliders of a link   :func:`turned_axis`: P_i's axis turned by the
                                             angle the link fixes between them
 P_k from P_i, P_l, both sliders             :func:`point_on_two_axes` (two lines)
+P_k from P_i, P_l, all three sliders of a   :func:`third_axis`: the link is where its two
+link (thesis §5.2.1.3)                      placed axes put it, and its third axis with it
 closure s_{i,v}                             :func:`height_above`: P_v's h, computed
 ==========================================  =============================================
 
@@ -128,6 +130,23 @@ def point_on_two_axes(first: Axis, h_first, second: Axis, h_second, reference) -
     return start + offset / (u2.conjugate() * u1).imag * u1
 
 
+def third_axis(first: Axis, second: Axis, turn, crossing_height, reference, unit=1) -> Axis:
+    """The axis of the third slider of a link whose three joints are all sliders (thesis
+    §5.2.1.3), from the link's two other axes, placed: its direction is ``first``'s
+    turned by ``turn`` (as :func:`turned_axis`), and it passes at ``crossing_height`` (a
+    constant of the link, :meth:`SliderGeometry.crossing_height`) from the point where the
+    two placed axes cross, a point of the link. The limit of locating P_k from two sliders
+    P_i, P_l of its link. O(1).
+
+    >>> x_axis, y_axis = Axis(1 + 0j, 0j, 0.0), Axis(1j, 0j, 0.0)
+    >>> axis = third_axis(x_axis, y_axis, 1j, 2.0, 1.0)  # upwards, the crossing 2 to its left: x = 2
+    >>> complex(axis.direction), round(float(height_above(axis, 1 + 5j, 1.0)), 12)
+    (1j, 1.0)
+    """
+    crossing = point_on_two_axes(first, 0 * crossing_height, second, 0 * crossing_height, reference)
+    return Axis(first.direction * turn, crossing, crossing_height, unit)
+
+
 def slider_point(axis: Axis, p_x, offset) -> Any:
     """The slider's point on a link (P_i' or P_i''), from a placed joint P_x of that link
     whose place in the axis frame of the link is ``offset`` = a_x + i h_x
@@ -191,6 +210,19 @@ class SliderGeometry:
     def offset(self, joint: str) -> complex | None:
         """``joint``'s a + i h, if it lies on one of the slider's links."""
         return next((frame[joint] for frame in self.offsets.values() if joint in frame), None)
+
+    def crossing_height(self, second: str, third: str) -> Any:
+        """For a link of this slider whose other joints ``second`` and ``third`` are sliders
+        too: the oriented distance, in ``third``'s axis units, of the point where this
+        slider's and ``second``'s axes cross (on the link) to ``third``'s axis. In this
+        slider's frame on the link (its axis the real line) the crossing is
+        x = o₂ − (Im o₂ / Im t₂) t₂, with o the sliders' points on the link and t the
+        turns to their axes; its height above the line o₃ + λ t₃ is
+        Im(t̄₃ (x − o₃)) / |t₃|² (the turn carries √(q₃/q), :func:`turned_axis`)."""
+        frame = next(frame for frame in self.slider_offsets.values() if second in frame and third in frame)
+        o2, o3, t2, t3 = frame[second], frame[third], self.turns[second], self.turns[third]
+        crossing = o2 - o2.imag / t2.imag * t2
+        return (t3.conjugate() * (crossing - o3)).imag / (t3.conjugate() * t3).real
 
 
 def takes_root(step, sliders: Collection[str]) -> bool:
@@ -267,8 +299,10 @@ class SliderPlacement:
             return False
         sliders = [name for name in (i, j) if name in self.geometry]
         if k in self.geometry:
-            if len(sliders) == 2:
-                raise NotImplementedError(f"slider {k} located from the two sliders {i}, {j}")
+            if len(sliders) == 2:  # three sliders of one link (planner.sliders allows no other)
+                self.axes[k] = third_axis(self.axes[i], self.axes[j], self.geometry[i].turns[k],
+                                          self.geometry[i].crossing_height(j, k), reference, self.geometry[k].unit)
+                return True
             if sliders:
                 other = j if sliders[0] == i else i
                 self.axes[k] = turned_axis(self.axes[sliders[0]], self.geometry[sliders[0]].turns[k], points[other],

@@ -9,8 +9,10 @@ among the constructions implemented: a reference, parameter or closure pair made
 sliders (the
 thesis avoids both: "can always be avoided because all kinematic loops of an Assur
 kinematic chain contain at least one revolute joint"), and a slider located from two
-sliders. A parameter pair with one slider is the oriented distance t of the other joint
-to its axis (thesis §4.2.4).
+sliders unless all three are joints of one link whose two axes are already placed
+together (thesis §5.2.1.3: every joint of a non-binary link a slider; the link's two
+placed axes fix it, and its third axis with it). A parameter pair with one slider is the
+oriented distance t of the other joint to its axis (thesis §4.2.4).
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from collections.abc import Collection
 
 from baranov.topology import KinematicChain, TopologyError
 
-from .plan import Plan
+from .plan import Plan, StepKind
 from .search import ALTERNATIVE_PLANS, bilateration_plans
 
 
@@ -50,9 +52,11 @@ def slider_plan_obstacle(plan: Plan, sliders: Collection[str]) -> str | None:
     for pair in plan.closure_pairs:
         if set(pair) <= sliders:
             return f"closure pair {name(pair)} joins two sliders"
+    together: set[frozenset[str]] = set()  # pairs placed by one step, hence consistent
     for step in plan.steps:
-        if set(step.triangle) <= sliders:
+        if set(step.triangle) <= sliders and not (step.kind is StepKind.LINK and frozenset(step.base) in together):
             return f"step {step.joint} from {', '.join(step.base)}: three sliders"
+        together.update(frozenset((step.joint, joint)) for joint in step.base)
     return None
 
 

@@ -230,7 +230,8 @@ def test_robot_command_on_every_example(name, method, capsys):
     family = name.split("-")[1]
     assert f"family {family}," in out[0]
     parameter = out[1].split()[-1]
-    assert parameter in {"s1,5", "t1,5"} and len(out) - 2 == int(out[0].split(", ")[2].split()[0])
+    # t1,6: the exact method's plan for 3-RPP, whose t1,5 is in units of √13 (exact_plan)
+    assert parameter in {"s1,5", "t1,5", "t1,6"} and len(out) - 2 == int(out[0].split(", ")[2].split()[0])
 
 
 def test_example_vi_is_analytic_its_sextic_solvable():
@@ -414,17 +415,21 @@ def test_thesis_examples_iv_and_viii(name, family, published):
     (docs/sliders.md, "Robots")."""
     robot, actuators = load_robot(REPO / "examples" / f"{name}.json")
     assert robot_family(robot.legs).name == family
+    solutions = {}
     for method in ("numeric", "exact", "msolve"):
         solution, poses = robot_solution(robot, actuators, method)
+        solutions[method] = solution
         assert _distances_to_p6_axis(poses) == [-t for t in published[::-1]]
         assert method != "exact" or solution.certificate.complete
         assert all(max(map(abs, pose_residuals(robot, actuators, pose))) < 1e-9 for pose in poses)
     if family == "VIII":
-        # Γ(t) has the family's generic degree 2 (Table 5.3) and both roots real here, so it
-        # is (t − t1)(t − t2): the published t² − 8.1681 t + 16.6723 to its printed digits
-        # (the slider plan thesis §5.2.1.3 derives it by is not implemented: docs/sliders.md)
-        first, second = (-t for t in _distances_to_p6_axis(poses, digits=12))
-        assert (round(-(first + second), 4), round(first * second, 4)) == (-8.1681, 16.6723)
+        # every platform joint a slider: the plan of thesis §5.2.1.3 (the third axis from
+        # the other two) in t1,6, which the exact method picks since t1,5 is in units of
+        # √13; Γ(t) = 2713 t² + 22160 t + 45232, the published t² − 8.1681 t + 16.6723 in
+        # our t = −(the thesis's t): the family's generic degree 2 (Table 5.3)
+        polynomial = solutions["exact"].characteristic_polynomial
+        assert polynomial.variable == "t1,6" and polynomial.degree == 2
+        assert [round(float(c), 4) for c in polynomial.monic_coefficients()] == [1.0, 8.1681, 16.6723]
 
 
 @pytest.mark.parametrize("family", FAMILY_NAMES)

@@ -454,3 +454,37 @@ def test_degenerate_slider_plans_fall_back_to_msolve(path):
     for method in ("numeric", "exact"):
         found = [mode.joints for mode in solve(scene, method=method).assembly_modes]
         assert compare_modes(found, oracle) == (0, 0, 0), method
+
+
+@needs_msolve
+@pytest.mark.parametrize(("truss", "sliders", "seed"), [
+    ("5/N1", ["P1", "P3", "P5"], 0),              # the pentad with a ternary link all sliders (a robot's platform)
+    ("5/N1", ["P1", "P2", "P3", "P5"], 1),
+    ("7/N1", ["P3", "P5", "P9"], 2),
+    ("7/N3", ["P1", "P4", "P7", "P8"], 3),
+])
+def test_a_link_whose_joints_are_all_sliders_is_placed_by_its_two_axes(truss, sliders, seed):
+    """Thesis §5.2.1.3: where every joint of a ternary link is a slider, the plan locates
+    its third axis from the other two (closure/sliders.py: third_axis), so these chains,
+    solved by msolve before, run the bilateration method: both backends give msolve's
+    modes and the generating configuration, with no fallback note, and the exact one
+    certifies them."""
+    from baranov.catalog.lookup import truss as catalog_truss
+    from baranov.planner import slider_plan
+    from baranov.planner.plan import StepKind
+    from baranov.scene.slider_instances import slider_instance_dict
+
+    chain = catalog_truss(truss)
+    plan = slider_plan(chain, sliders)
+    assert any(set(step.triangle) <= set(sliders) and step.kind is StepKind.LINK for step in plan.steps)
+    data = slider_instance_dict(chain, sliders, np.random.default_rng(seed), rational=True)
+    scene = scene_from_dict(data)
+    oracle = list(msolve_modes(scene).configurations)
+    generating = {name: tuple(map(float, point)) for name, point in data["generating_configuration"].items()}
+    for method in ("numeric", "exact"):
+        solution = solve(scene, method=method)
+        assert not any("msolve" in sentence for sentence in solution.undecided), method
+        found = [mode.joints for mode in solution.assembly_modes]
+        assert compare_modes(found, oracle)[:2] == (0, 0), method
+        assert compare_modes(found, [generating])[0] == 0, method
+    assert solution.certificate.complete

@@ -46,7 +46,6 @@ from ..coincidence import (
     coincidence_possible,
     division_pairs,
     modes_without_plan,
-    solvable_plan,
     unexamined_coincidences,
     with_modes_where_plan_divides_by_zero,
 )
@@ -60,6 +59,7 @@ from .characteristic import (
     ExactMethodError,
     characteristic_polynomial,
     closure_residuals,
+    exact_plan,
     residual_verdict,
 )
 from .coupling_two import characteristic_polynomial_two, common_points
@@ -86,7 +86,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     tried (:func:`by_other_parameters`)."""
     chosen = plan is None
     try:
-        plan = plan or solvable_plan(scene)
+        plan = plan or exact_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
         described, modes, note = modes_without_plan(scene, error)
         return ExactSolution.of_plan("exact", scene, described, modes, certificate=Certificate(True, note, ()))

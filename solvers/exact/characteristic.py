@@ -43,11 +43,11 @@ import flint
 from baranov.closure.bilateration import dehomogenised, place_joints, squared_distance, triangle_radicand
 from baranov.closure.homogeneous import Homogeneous
 from baranov.closure.sliders import SliderPlacement, height_above, takes_root
-from baranov.planner import Plan, parameter_name
+from baranov.planner import Plan, SliderPlanError, parameter_name, slider_plan
 from baranov.scene import Scene, rational_sqrt
-from baranov.scene.sliders import axis_units
+from baranov.scene.sliders import axis_unit, axis_units
 
-from ..coincidence import solvable_plan
+from ..coincidence import slider_plan_undefined, solvable_plan
 from ..modes import SolverError
 from ..placement import slider_geometry
 
@@ -435,9 +435,32 @@ def _univariate(polynomial: flint.fmpq_mpoly) -> flint.fmpz_poly:
     return flint.fmpq_poly(coefficients).numer()
 
 
+def exact_plan(scene: Scene) -> Plan:
+    """The plan the exact method runs: :func:`~baranov.solvers.coincidence.solvable_plan`,
+    or, where one of its parameters is the oriented distance t to a slider's axis whose
+    frames are rational only in units of √q (t would be √q times a rational variable,
+    which the radical tower cannot hold: docs/sliders.md), the best slider plan whose
+    parameters avoid such sliders, if it is defined for the scene (a family-VIII robot of
+    thesis §5.2.2, every platform joint a slider: its best plan's t1,5 is in units of √13,
+    the plan in t1,6 is rational)."""
+    plan = solvable_plan(scene)
+    sliders = [slider.joint for slider in scene.sliders]
+    irrational = {slider.joint for slider in scene.sliders
+                  if axis_unit(slider, [scene.link_of(axis.link) for axis in slider.axes]) not in (None, 1)}
+    if not irrational & {joint for pair in plan.parameters for joint in pair}:
+        return plan
+    joints = sorted(joint.name for joint in scene.chain.joints)
+    allowed = [pair for pair in combinations(joints, 2) if not irrational & set(pair)]
+    try:
+        other = slider_plan(scene.chain, sliders, parameters=allowed)
+    except SliderPlanError:
+        return plan  # refused with the slider named (characteristic.py)
+    return other if slider_plan_undefined(scene, other) is None else plan
+
+
 def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> CharacteristicPolynomial:
     """The characteristic polynomial of ``scene`` in the parameter of ``plan`` (default:
-    the best plan), coupling degree 1.
+    :func:`exact_plan`), coupling degree 1.
 
     >>> from baranov.scene import load_scene
     >>> from pathlib import Path
@@ -445,7 +468,7 @@ def characteristic_polynomial(scene: Scene, plan: Plan | None = None) -> Charact
     >>> characteristic_polynomial(scene).degree   # thesis §3.3.1: 14 assembly modes
     14
     """
-    plan = plan or solvable_plan(scene)
+    plan = plan or exact_plan(scene)
     if plan.number_of_parameters != 1:
         raise ExactMethodError(
             f"coupling degree {plan.number_of_parameters}: the exact method derives one-parameter polynomials so far")
