@@ -21,7 +21,7 @@ from baranov.topology.graphs import joints_of_links
 
 from .bilateration import dehomogenised, place_joints, signed_root
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
-from .sliders import SearchedParameter, SliderGeometry, SliderPlacement, height_above
+from .sliders import SearchedParameter, SliderGeometry, SliderPlacement
 
 Triangle = tuple[str, str, str]
 Pair = frozenset[str]
@@ -229,17 +229,20 @@ class CompiledSystem:
         return np.stack(np.broadcast_arrays(*columns), axis=-1)
 
     def _slider_closure(self, placement: _Placement, u: str, v: str) -> np.ndarray:
-        """The closure s_{i,v} of a slider P_i as δ → ∞: P_v's oriented distance to the
-        axis, computed, minus the link's, relative to the link's size."""
+        """The closure s_{i,v} of a slider P_i as δ → ∞
+        (:meth:`~.sliders.SliderPlacement.closure`): P_v's oriented distance to the axis,
+        computed, minus the link's, relative to the link's size; for two sliders of one
+        link, sin θ of the error θ of the turn between their axes (θ = π, a reversed axis,
+        is a root too: the verification drops it)."""
         slider, joint = (u, v) if u in self.sliders else (v, u)
-        if joint in self.sliders:
-            raise NotImplementedError(f"a closure condition between the two sliders {u}, {v}")
-        geometry = self.sliders[slider]
-        target = geometry.offset(joint)
-        size = max(abs(z) for frame in geometry.offsets.values() for z in frame.values())
-        x, y, _ = placement.points[joint]
+        at = {name: x + 1j * y for name, (x, y, _) in placement.points.items() if name == joint}
         with np.errstate(invalid="ignore"):
-            return (height_above(placement.sliders.axes[slider], x + 1j * y, placement.s_ref) - target.imag) / size
+            value = placement.sliders.closure(slider, joint, at, placement.s_ref)
+        if joint in self.sliders:
+            return value.imag
+        geometry = self.sliders[slider]
+        size = max(abs(z) for frame in geometry.offsets.values() for z in frame.values())
+        return value.real / size
 
 
 class _Placement(NamedTuple):

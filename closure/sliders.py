@@ -21,6 +21,8 @@ P_k from P_i, P_l, both sliders             :func:`point_on_two_axes` (two lines
 P_k from P_i, P_l, all three sliders of a   :func:`third_axis`: the link is where its two
 link (thesis §5.2.1.3)                      placed axes put it, and its third axis with it
 closure s_{i,v}                             :func:`height_above`: P_v's h, computed
+closure s_{i,l}, both sliders of a link     :func:`turn_mismatch`: the turn between the
+                                            placed axes against the link's
 ==========================================  =============================================
 
 The along-axis step between two joints is ``along`` = σ√(s_{j,k} − Δh²): σ the
@@ -145,6 +147,30 @@ def third_axis(first: Axis, second: Axis, turn, crossing_height, reference, unit
     """
     crossing = point_on_two_axes(first, 0 * crossing_height, second, 0 * crossing_height, reference)
     return Axis(first.direction * turn, crossing, crossing_height, unit)
+
+
+def turn_mismatch(first: Axis, second: Axis, turn) -> Any:
+    """r − 1 with r = ũ₂ conj(ũ₁ t) / |ũ₁ t|², t = ``turn`` the link's turn from the first
+    axis to the second (:func:`turned_axis`): 0 exactly where the two placed axes hold the
+    angle the link fixes between them, sense included. The closure s_{i,l} of two sliders
+    of one link as δ_i, δ_l → ∞ (thesis §4.2.3's cosine theorem, §5.2.1.3's
+    d4,5² = d5,6² + d4,6² + 2 d5,6 d4,6 cos(α5 − α3)): the link, turned onto the first
+    axis, must carry the second axis's direction too.
+
+    |ũ₂| = |ũ₁ t| (both √(q₂/s_ref), also over the radical tower, where the identity is
+    algebraic), so r = e^{iθ} with θ the error of the turn: Im r = sin θ, with simple
+    zeros, is the closure condition, and Re r − 1 is −2 at θ = π, where the second axis
+    is reversed (another linkage: the link with that axis turned by π). Over C,
+    (Re r)² + (Im r)² = 1 still holds, so r − 1 = 0, read as the complex number
+    Re r − 1 + i Im r, holds only at r = 1: one residual that tells the two apart, for
+    complex modes too (the exact method's factor test). O(1).
+
+    >>> x_axis = Axis(1 + 0j, 0j, 0.0)
+    >>> [complex(turn_mismatch(x_axis, Axis(d, 0j, 0.0), 1j)) for d in (1j, -1j)]  # turned by 90°, reversed
+    [0j, (-2+0j)]
+    """
+    turned = first.direction * turn
+    return second.direction * turned.conjugate() / (turned.conjugate() * turned).real - 1
 
 
 def slider_point(axis: Axis, p_x, offset) -> Any:
@@ -280,6 +306,16 @@ class SliderPlacement:
         height, unit = self.height(slider, other, {}, 1), self.geometry[slider].unit
         self.axes[slider] = Axis(1 + 0 * height, 0 * height, 0 * height, unit)  # 1, 0, 0 in the height's arithmetic
         return {other: 1j * height}, unit
+
+    def closure(self, u: str, v: str, points: Mapping[str, Any], reference) -> Any:
+        """The closure s_{u,v} of a pair with a slider as δ → ∞: P_v's oriented distance
+        to the slider P_u's axis, computed, minus the link's (:func:`height_above`; a
+        real number), or, for two sliders of one link, the complex :func:`turn_mismatch`
+        of their axes, whose imaginary part is the condition."""
+        slider, joint = (u, v) if u in self.geometry else (v, u)
+        if joint in self.geometry:
+            return turn_mismatch(self.axes[slider], self.axes[joint], self.geometry[slider].turns[joint])
+        return height_above(self.axes[slider], points[joint], reference) - self.geometry[slider].offset(joint).imag
 
     def _along(self, index: int, step, slider: str, first: str, second: str, squared, rise) -> Any:
         """The along-axis step from ``first`` to ``second``: a constant of ``slider``'s

@@ -5,13 +5,14 @@ A slider chain has the plans of its Baranov truss (the sliders taken as revolute
 thesis §4.2: "the closure conditions for the Baranov trusses ... can be directly used");
 every step that touches a slider becomes the limit of its bilateration; a reference pair
 with a slider puts the frame on its axis (thesis §4.2.4). A few steps have no such limit
-among the constructions implemented: a reference, parameter or closure pair made of two
-sliders (the
-thesis avoids both: "can always be avoided because all kinematic loops of an Assur
+among the constructions implemented: a reference or parameter pair made of two sliders
+(the thesis avoids them: "can always be avoided because all kinematic loops of an Assur
 kinematic chain contain at least one revolute joint"), and a slider located from two
 sliders unless all three are joints of one link whose two axes are already placed
 together (thesis §5.2.1.3: every joint of a non-binary link a slider; the link's two
-placed axes fix it, and its third axis with it). A parameter pair with one slider is the
+placed axes fix it, and its third axis with it). A closure pair of two sliders (two
+joints of one link, as every closure pair) compares the turn between their placed axes
+with the link's (thesis §4.2.3's cosine theorem). A parameter pair with one slider is the
 oriented distance t of the other joint to its axis (thesis §4.2.4).
 """
 
@@ -49,9 +50,6 @@ def slider_plan_obstacle(plan: Plan, sliders: Collection[str]) -> str | None:
     for pair in plan.parameters:
         if set(pair) <= sliders:
             return f"parameter pair {name(pair)} joins two sliders"
-    for pair in plan.closure_pairs:
-        if set(pair) <= sliders:
-            return f"closure pair {name(pair)} joins two sliders"
     together: set[frozenset[str]] = set()  # pairs placed by one step, hence consistent
     for step in plan.steps:
         if set(step.triangle) <= sliders and not (step.kind is StepKind.LINK and frozenset(step.base) in together):

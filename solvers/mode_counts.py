@@ -89,6 +89,13 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
       (:func:`~baranov.scene.slider_instances.slider_instance_dict`) until two agree;
     * ``"coupling 0"``: no parameter, one configuration per sign of the steps that take a
       square root (:func:`~baranov.closure.sliders.takes_root`; two lines meet once);
+      Where the plan closes on two sliders of one link (:func:`~baranov.closure.sliders.turn_mismatch`),
+      its condition sin θ = 0 also holds with that axis reversed, θ = π: the solutions
+      of the linkage whose link turns that axis by π more, another generic instance of
+      the same chain with as many modes. The degree modulo p counts both (the exact
+      method's factor test tells them apart; modulo p there is no root to test), so it
+      is divided by 2 per such closure pair; msolve's count on another instance checks
+      it (the catalog's ``msolve_agrees``: every chain of 3–7 links);
     * ``"msolve"``: where no plan suits the sliders, the complex solutions of the
       Cartesian system counted by msolve over Q
       (:func:`~baranov.solvers.msolve.msolve_solution_count`, divided by 2 per auxiliary
@@ -125,11 +132,13 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
     if not sliders:
         return (*characteristic_degree(truss, seed), "modular")
     primes = random.Random(seed)
+    reversible = 0 if plan is None else sum(set(pair) <= set(sliders) for pair in plan.closure_pairs)
     degrees: list[int] = []
     while len(degrees) < MOST_INSTANCES:
         scene = scene_from_dict(slider_instance_dict(truss, list(sliders), rng, rational=True))
         if plan is not None:
-            degrees.append(characteristic_degree_modulo(scene, plan, random_prime(primes), seed=len(degrees)))
+            degrees.append(characteristic_degree_modulo(scene, plan, random_prime(primes), seed=len(degrees))
+                           // 2 ** reversible)
         else:
             count, auxiliaries = msolve_solution_count(scene)
             degrees.append(0 if count is None else count // 2 ** auxiliaries)

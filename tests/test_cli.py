@@ -213,8 +213,8 @@ def test_show_sliders_prints_the_thesis_substitutions_and_case():
     assert "parameters t1,6" in end and "§4.2.4: it ends the variable segment, so the unknown is t1,6" in end
     by_name = run("show", "7/B1", "--sliders", "P4")
     assert by_name.returncode == 0 and "slider joints: P4" in by_name.stdout and "δ1 → ∞" in by_name.stdout
-    unsuited = run("show", "7/B2", "--sliders", "P1,P2,P3,P4").stdout
-    assert "none of the 50 best plans suits these sliders" in unsuited
+    unsuited = run("show", "9/N3", "--sliders", "P5,P6,P11").stdout  # every 7-link chain has a plan now
+    assert "none of the 46 best plans suits these sliders (the best: step P5 from P11, P6: three sliders)" in unsuited
 
 
 def test_show_finds_catalog_names_from_any_folder(tmp_path):

@@ -469,14 +469,45 @@ def test_a_link_whose_joints_are_all_sliders_is_placed_by_its_two_axes(truss, sl
     solved by msolve before, run the bilateration method: both backends give msolve's
     modes and the generating configuration, with no fallback note, and the exact one
     certifies them."""
+    from baranov.planner.plan import StepKind
+
+    chain, plan = _slider_chain_plan(truss, sliders)
+    assert any(set(step.triangle) <= set(sliders) and step.kind is StepKind.LINK for step in plan.steps)
+    _check_plan_against_msolve(chain, sliders, seed)
+
+
+@needs_msolve
+@pytest.mark.parametrize(("truss", "sliders", "seed", "modes"), [
+    ("7/N3", ["P5", "P6"], 4, 6),
+    ("7/N2", ["P1", "P2", "P5", "P6", "P7"], 5, 2),
+    ("7/N3", ["P5", "P6", "P8"], 6, 4),
+])
+def test_a_closure_between_two_sliders_compares_the_turn_of_their_axes(truss, sliders, seed, modes):
+    """A closure pair of two sliders of one link: the turn between their placed axes
+    against the link's (closure/sliders.py: turn_mismatch). sin θ = 0 holds with the
+    second axis reversed too; the numeric verification drops those modes, and the exact
+    factor test, on r − 1, drops the reversed linkage's factors: the characteristic
+    polynomial has the chain's generic degree (the catalog's count), where the norm of
+    sin θ has twice as many roots (solvers/mode_counts.py: slider_chain_degree)."""
+    chain, plan = _slider_chain_plan(truss, sliders)
+    assert any(set(pair) <= set(sliders) for pair in plan.closure_pairs)
+    solution = _check_plan_against_msolve(chain, sliders, seed)
+    assert solution.characteristic_polynomial.degree == modes
+
+
+def _slider_chain_plan(truss: str, sliders: list[str]):
     from baranov.catalog.lookup import truss as catalog_truss
     from baranov.planner import slider_plan
-    from baranov.planner.plan import StepKind
-    from baranov.scene.slider_instances import slider_instance_dict
 
     chain = catalog_truss(truss)
-    plan = slider_plan(chain, sliders)
-    assert any(set(step.triangle) <= set(sliders) and step.kind is StepKind.LINK for step in plan.steps)
+    return chain, slider_plan(chain, sliders)
+
+
+def _check_plan_against_msolve(chain, sliders: list[str], seed: int):
+    """Both backends on a random rational instance: msolve's modes and the generating
+    configuration, no msolve fallback, the exact list certified; the exact solution."""
+    from baranov.scene.slider_instances import slider_instance_dict
+
     data = slider_instance_dict(chain, sliders, np.random.default_rng(seed), rational=True)
     scene = scene_from_dict(data)
     oracle = list(msolve_modes(scene).configurations)
@@ -488,3 +519,4 @@ def test_a_link_whose_joints_are_all_sliders_is_placed_by_its_two_axes(truss, sl
         assert compare_modes(found, oracle)[:2] == (0, 0), method
         assert compare_modes(found, [generating])[0] == 0, method
     assert solution.certificate.complete
+    return solution

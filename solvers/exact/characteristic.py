@@ -42,7 +42,7 @@ import flint
 
 from baranov.closure.bilateration import dehomogenised, place_joints, squared_distance, triangle_radicand
 from baranov.closure.homogeneous import Homogeneous
-from baranov.closure.sliders import SliderPlacement, height_above, takes_root
+from baranov.closure.sliders import SliderPlacement, takes_root
 from baranov.planner import Plan, SliderPlanError, parameter_name, slider_plan
 from baranov.scene import Scene, rational_sqrt
 from baranov.scene.sliders import axis_unit, axis_units
@@ -289,7 +289,7 @@ def radical_tower(scene: Scene, plan: Plan, prime: int | None = None) -> Radical
     for u, v in plan.closure_pairs:
         if sliders is not None and {u, v} & set(slider_names):
             value = _slider_closure(sliders, u, v, points, reference, ring)
-            numerator, denominator = value.x, value.w
+            numerator, denominator = (value.y if {u, v} <= set(slider_names) else value.x), value.w
         else:
             numerator, denominator = distance(u, v, computed=True)
             target = Fraction(scene.known[frozenset((u, v))])
@@ -332,14 +332,15 @@ def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, al
 
 
 def _slider_closure(sliders: SliderPlacement, u: str, v: str, points: dict, reference, ring: dict) -> Homogeneous:
-    """The closure s_{i,v} of a slider P_i as δ → ∞: P_v's oriented distance to the axis,
-    computed, minus the link's (a real :class:`Homogeneous`)."""
-    slider, joint = (u, v) if u in sliders.geometry else (v, u)
-    if joint in sliders.geometry:
-        raise ExactMethodError(f"a closure condition between the two sliders {u}, {v}")
-    point = Homogeneous(*points[joint], **ring)
+    """The closure s_{i,v} of a slider P_i as δ → ∞
+    (:meth:`~baranov.closure.sliders.SliderPlacement.closure`) over the tower: a real
+    :class:`Homogeneous` (a height), or for two sliders of one link the complex turn
+    mismatch r − 1, whose imaginary part is the condition and which is 0 as a whole only
+    where the axis keeps its sense."""
+    joint = v if u in sliders.geometry else u
+    at = {joint: Homogeneous(*points[joint], **ring)} if joint in points else {}
     scale = Homogeneous(reference[0], ring["constant"](0), reference[1], **ring)
-    return height_above(sliders.axes[slider], point, scale) - sliders.geometry[slider].offset(joint).imag
+    return sliders.closure(u if joint == v else v, joint, at, scale)
 
 
 def link_area_root(scene: Scene, triangle: tuple[str, str, str]) -> Fraction:
@@ -672,7 +673,8 @@ def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb],
         if sliders is not None and {u, v} & sliders.geometry.keys():
             at = {joint: (x, y, flint.acb(1)) for joint, (x, y) in points.items()}
             value = _slider_closure(sliders, u, v, at, (reference, flint.acb(1)), _BALLS)
-            residuals.append((value.x / value.w, flint.arb(1)))  # a height over the link's: relative to 1
+            # a height over the link's, relative to 1; or r − 1 of two axes, 0 only with the sense kept
+            residuals.append(((value.x + flint.acb(0, 1) * value.y) / value.w, flint.arb(1)))
             continue
         known = Fraction(scene.known[frozenset((u, v))])
         target = flint.arb(flint.fmpq(known.numerator, known.denominator))
