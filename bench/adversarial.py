@@ -33,7 +33,7 @@ import numpy as np
 
 from baranov.enumerate import baranov_trusses
 from baranov.planner import coupling_degree
-from baranov.scene.adversarial import ADVERSARIAL_KINDS, adversarial_scene
+from baranov.scene.adversarial import ADVERSARIAL_KINDS, adversarial_scene, adversarial_slider_scene
 from baranov.scene.instances import instance_dict
 from baranov.solvers import ExactSolution, MovableLinkageError, solve
 from baranov.solvers.msolve import compare_modes, match_configurations, msolve_modes
@@ -79,15 +79,30 @@ def timed(function, seconds: float):
     return result, time.perf_counter() - start
 
 
-def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tuple[str, ...],
-        timeout: float, code: str = "unknown") -> dict:
-    """One instance: msolve's modes, each backend's, and what each backend missed or added."""
+def instance(links: int, index: int, kind: str, number: int, seed: int, sliders: bool = False
+             ) -> tuple[object, dict[str, tuple], dict]:
+    """The scene of one instance, its generating configuration and its JSON form: a truss
+    (:func:`~baranov.scene.adversarial.adversarial_scene`) or, with ``sliders``, a slider
+    chain drawn from the same kind of configuration (:func:`adversarial_slider_scene`),
+    from its own stream of random numbers."""
     truss = baranov_trusses(links)[index]
-    rng = np.random.default_rng([seed, links, index, ADVERSARIAL_KINDS.index(kind), instance])
+    rng = np.random.default_rng([seed, links, index, ADVERSARIAL_KINDS.index(kind), number, *([1] if sliders else [])])
+    if sliders:
+        data, scene = adversarial_slider_scene(truss, kind, rng)
+        return scene, {joint: tuple(point) for joint, point in data["generating_configuration"].items()}, data
     scene, coordinates = adversarial_scene(truss, kind, rng)
-    row = {"key": f"{links}/N{index + 1}/{kind}/{instance}", "links": links, "truss": f"{links}/N{index + 1}",
-           "kind": kind, "instance": instance, "coupling_degree": coupling_degree(scene.chain), "code": code,
-           "seed": seed}
+    return scene, coordinates, instance_dict(truss, coordinates)
+
+
+def run(links: int, index: int, kind: str, number: int, seed: int, methods: tuple[str, ...],
+        timeout: float, code: str = "unknown", sliders: bool = False) -> dict:
+    """One instance: msolve's modes, each backend's, and what each backend missed or added."""
+    scene, coordinates, data = instance(links, index, kind, number, seed, sliders)
+    row = {"key": f"{links}/N{index + 1}/{kind}/{number}" + ("/sliders" if sliders else ""), "links": links,
+           "truss": f"{links}/N{index + 1}", "kind": kind, "instance": number,
+           "coupling_degree": coupling_degree(scene.chain), "code": code, "seed": seed}
+    if sliders:
+        row["sliders"] = [slider.joint for slider in scene.sliders]
     oracle = msolve_modes(scene, timeout=timeout)
     row.update(msolve_status=oracle.status, msolve_seconds=oracle.seconds, msolve_modes=len(oracle.configurations),
                msolve_message=oracle.message)
@@ -117,7 +132,7 @@ def run(links: int, index: int, kind: str, instance: int, seed: int, methods: tu
             row[f"{method}_certified"] = solution.certificate.complete
             row[f"{method}_gaps"] = list(solution.certificate.gaps)
     if failed(row, methods):
-        row["scene"] = instance_dict(truss, coordinates)
+        row["scene"] = data
     return row
 
 
@@ -138,7 +153,8 @@ def failed(row: dict, methods: tuple[str, ...]) -> bool:
 
 def save_failure(row: dict, folder: Path) -> None:
     folder.mkdir(parents=True, exist_ok=True)
-    name = f"{row['truss'].replace('/', '-')}-{row['kind']}-{row['instance']}-seed{row['seed']}.json"
+    sliders = "-sliders-" + "-".join(row["sliders"]) if "sliders" in row else ""
+    name = f"{row['truss'].replace('/', '-')}{sliders}-{row['kind']}-{row['instance']}-seed{row['seed']}.json"
     summary = {k: v for k, v in row.items() if k not in ("scene", "key")}
     text = json.dumps({"comment": f"adversarial run (bench/adversarial.py): {json.dumps(summary)}",
                        **row["scene"]}, indent=1)
@@ -154,6 +170,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--instances", type=int, default=10, help="instances per truss and kind (default 10)")
     parser.add_argument("--methods", default=",".join(METHODS))
     parser.add_argument("--seed", type=int, default=25)
+    parser.add_argument("--sliders", action="store_true",
+                        help="slider chains: each instance's configuration with a random admissible slider set and "
+                             "axes of rational length (scene/adversarial.py: adversarial_slider_scene); keep their "
+                             "rows in their own --out")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--timeout", type=float, default=600.0, help="seconds per solve (default 600)")
     parser.add_argument("--memory", type=float, default=8.0,
@@ -175,12 +195,13 @@ def main(argv: list[str] | None = None) -> int:
     done = {(row["key"], row["seed"]) for row in current_rows(args.out, code)}
     wanted = set(args.trusses.split(",")) if args.trusses else None
     # instance by instance over all trusses and kinds, so that a run stopped early covers them evenly
-    tasks = [(links, index, kind, instance, args.seed, methods, args.timeout, code)
-             for links in map(int, args.links.split(",")) for instance in range(args.instances)
+    suffix = "/sliders" if args.sliders else ""
+    tasks = [(links, index, kind, number, args.seed, methods, args.timeout, code, args.sliders)
+             for links in map(int, args.links.split(",")) for number in range(args.instances)
              for index in range(len(baranov_trusses(links)))
              if (wanted is None or f"{links}/N{index + 1}" in wanted) and index % args.every == 0
              for kind in args.kinds.split(",")
-             if (f"{links}/N{index + 1}/{kind}/{instance}", args.seed) not in done]
+             if (f"{links}/N{index + 1}/{kind}/{number}{suffix}", args.seed) not in done]
     print(f"{len(tasks)} instances to run ({len(done)} already in {args.out} for solving code {code})", flush=True)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     with ProcessPoolExecutor(args.workers, initializer=_limit_memory, initargs=(args.memory,)) as pool, \
@@ -293,15 +314,15 @@ def complex_curves(rows: list[dict]) -> str:
     """The report's sentence on rows where msolve found a positive-dimensional set and the
     numeric backend reported real modes: each mode re-solved and tested by
     :func:`on_real_motion`."""
-    reported = [r for r in rows if r["msolve_status"] == "infinite" and r.get("numeric_status") == "solved"]
+    # (slider chains aside: on_real_motion knows the link dimensions only)
+    reported = [r for r in rows if r["msolve_status"] == "infinite" and r.get("numeric_status") == "solved"
+                and "sliders" not in r]
     if not reported:
         return ""
     moving = 0
     for row in reported:
         links, index = int(row["truss"].split("/")[0]), int(row["truss"].split("/N")[1]) - 1
-        truss = baranov_trusses(links)[index]
-        rng = np.random.default_rng([row["seed"], links, index, ADVERSARIAL_KINDS.index(row["kind"]), row["instance"]])
-        scene, _ = adversarial_scene(truss, row["kind"], rng)
+        scene, _, _ = instance(links, index, row["kind"], row["instance"], row["seed"], "sliders" in row)
         moving += any(on_real_motion(scene, mode.joints) for mode in solve(scene, method="numeric").assembly_modes)
     return (f"; on {len(reported)} of them the numeric backend reported real modes instead, and a local test "
             f"(bench/adversarial.py: on_real_motion) put {moving} of those instances on a real motion — the others' "

@@ -18,6 +18,11 @@ Kinds (``ADVERSARIAL_KINDS``):
 - ``double-root``: a configuration at which the framework is infinitesimally flexible
   (its rigidity matrix, ground pinned, loses rank), so the characteristic polynomial has
   a multiple root there — two modes merging (thesis §3.3.3, singularities).
+
+Slider chains (:func:`adversarial_slider_scene`): a configuration of one of these kinds,
+a random admissible slider set, and axes of rational length through the sliders
+(:func:`~baranov.scene.slider_instances.slider_instance_dict`), so that both backends and
+msolve take the scene.
 """
 
 from __future__ import annotations
@@ -34,7 +39,8 @@ from baranov.topology.graphs import joints_of_links
 
 from .hard_instances import coincident_joints_configuration, collinear_joints_configuration
 from .instances import scene_of
-from .model import Scene, SceneError
+from .model import Scene, SceneError, scene_from_dict
+from .slider_instances import random_slider_set, slider_instance_dict
 
 ADVERSARIAL_KINDS = ("small-box", "collinear", "coincident", "domain-edge", "double-root")
 
@@ -169,6 +175,29 @@ def adversarial_scene(truss: KinematicChain, kind: str, rng: np.random.Generator
         scene = _scene_or_none(truss, points)
         if scene is not None:
             return scene, points
+
+
+def adversarial_slider_scene(truss: KinematicChain, kind: str, rng: np.random.Generator,
+                             box: int | None = None) -> tuple[dict, Scene]:
+    """A slider chain of ``truss`` drawn from a configuration of ``kind``
+    (:func:`adversarial_configuration`), with a random admissible slider set and random
+    axes of rational length (retrying until the scene is valid): its JSON form, whose
+    ``"generating_configuration"`` is one of its modes (a slider's two points named
+    ``P9'``, ``P9''``), and the scene.
+
+    >>> from baranov.enumerate import baranov_trusses
+    >>> data, scene = adversarial_slider_scene(baranov_trusses(7)[0], "collinear", np.random.default_rng(3))
+    >>> scene.exact, len(scene.sliders) > 0
+    (True, True)
+    """
+    while True:
+        points = adversarial_configuration(truss, kind, rng, box)
+        coordinates = {joint: (int(x), int(y)) for joint, (x, y) in points.items()}  # integers by construction
+        data = slider_instance_dict(truss, random_slider_set(truss, rng), rng, coordinates=coordinates, rational=True)
+        try:
+            return data, scene_from_dict(data)
+        except SceneError:
+            continue
 
 
 def _scene_or_none(truss: KinematicChain, points: Configuration) -> Scene | None:

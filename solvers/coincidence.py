@@ -38,13 +38,18 @@ from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residual, sa
 
 
 def coincidence_possible(scene: Scene, pair: frozenset[str]) -> bool:
-    """Whether the two joints of ``pair`` can coincide (see the module docstring).
+    """Whether the two joints of ``pair`` can coincide (see the module docstring). A
+    slider is no witness: its known distances are to two different points, one on each of
+    its links (a 7/N3 chain with sliders at P1, P4, P6, P8, P9, drawn with P2 on P7: P1's
+    distances to P2 and to P7 differ, which had ruled the coincidence out, and both
+    backends lost the two modes at s2,7 = 0, the exact one certified).
 
     Cost: O(number of known distances)."""
     if pair in scene.known:
         return scene.known[pair] == 0
     u, v = tuple(pair)
-    for w in {joint for key in scene.known for joint in key} - pair:
+    sliders = {slider.joint for slider in scene.sliders}
+    for w in {joint for key in scene.known for joint in key} - pair - sliders:
         to_u, to_v = scene.known.get(frozenset((u, w))), scene.known.get(frozenset((v, w)))
         if to_u is not None and to_v is not None and to_u != to_v:
             return False

@@ -520,3 +520,22 @@ def _check_plan_against_msolve(chain, sliders: list[str], seed: int):
         assert compare_modes(found, [generating])[0] == 0, method
     assert solution.certificate.complete
     return solution
+
+
+ADVERSARIAL_SLIDER_CHAINS = sorted((Path(__file__).parent / "regressions" / "sliders").glob("adversarial-*.json"))
+
+
+@needs_msolve
+@pytest.mark.parametrize("path", ADVERSARIAL_SLIDER_CHAINS, ids=lambda p: p.stem)
+def test_adversarial_slider_chains_give_msolves_modes(path):
+    """Slider chains drawn as issue 25's adversarial instances (small boxes, joints in
+    line or at one point, modes at a domain edge) that a backend once got wrong: both
+    give msolve's modes, mode for mode, and the generating configuration."""
+    data = json.loads(path.read_text())
+    scene = scene_from_dict({key: value for key, value in data.items() if key != "comment"})
+    oracle = list(msolve_modes(scene).configurations)
+    generating = {name: tuple(map(float, point)) for name, point in data["generating_configuration"].items()}
+    for method in ("numeric", "exact"):
+        found = [mode.joints for mode in solve(scene, method=method).assembly_modes]
+        assert compare_modes(found, oracle)[:2] == (0, 0), method
+        assert compare_modes(found, [generating])[0] == 0, method

@@ -194,9 +194,9 @@ def _undecided_factors(scene: Scene, plan: Plan, polynomial: CharacteristicPolyn
     the factor s itself where the parameter is a squared distance and its joints' meeting
     was examined (``zero_settled``) or cannot happen: its one root, s = 0, is that meeting
     (thesis §5.2.2's robots II and IV, where the slider plan could not decide s1,5 = 0)."""
-    name = parameter_name(plan.parameters[0])
-    pair = frozenset(plan.parameters[0])
     sliders = {slider.joint for slider in scene.sliders}
+    name = parameter_name(plan.parameters[0], sliders)
+    pair = frozenset(plan.parameters[0])
     meeting_known = not pair & sliders and (zero_settled or not coincidence_possible(scene, pair))
     gaps = []
     for factor, coincident in polynomial.degenerate:

@@ -79,10 +79,11 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
     modes = assembly_modes(scene, compiled, candidates, polished)
-    if scene.sliders:  # no polishing on slider constraints yet (docs/sliders.md)
-        return Solution.of_plan("numeric", scene, plan, modes, undecided=tuple(undecided))
     if degree > 0 and coincidences:
-        modes = _modes_of_coincident_joints(scene, plan, samples, modes)
+        modes, unsettled = _modes_of_coincident_joints(scene, plan, samples, modes)
+        undecided += unsettled
+    if scene.sliders:  # no clusters merged nor near misses filtered on slider chains yet (docs/sliders.md)
+        return Solution.of_plan("numeric", scene, plan, modes, undecided=tuple(undecided))
     modes, valleys = merged_clusters(scene, compiled, modes)  # after the coincidences: they may be the mode
     modes, near_misses = _without_near_misses(scene, compiled, modes)
     return Solution.of_plan("numeric", scene, plan, modes, undecided=tuple(undecided) + valleys + near_misses)
@@ -164,19 +165,21 @@ def _unsearched_cells(compiled: CompiledSystem, branches: np.ndarray, cells) -> 
     return sentences
 
 
-def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int,
-                                modes: tuple[AssemblyMode, ...]) -> tuple[AssemblyMode, ...]:
-    """``modes`` and the modes where joints the plan divides by coincide
+def _modes_of_coincident_joints(scene: Scene, plan: Plan, samples: int, modes: tuple[AssemblyMode, ...]
+                                ) -> tuple[tuple[AssemblyMode, ...], list[str]]:
+    """``modes`` and the modes where joints the plan divides by coincide, and what neither
+    msolve nor another plan settled
     (:func:`~baranov.solvers.coincidence.with_modes_where_plan_divides_by_zero`: msolve
     with an exact scene, else another plan, which can itself be undefined elsewhere —
-    issue 25: 9/N3, 9/N5 missed 2-4 modes so); a continuum there raises
-    :class:`MovableLinkageError`."""
-    modes, _, unsettled = with_modes_where_plan_divides_by_zero(
-        scene, plan, modes, lambda other: solve_numeric(scene, other, samples, coincidences=False))
+    issue 25: 9/N3, 9/N5 missed 2-4 modes so; msolve only for a slider chain, whose other
+    plans are not slider plans: a 7/N3 chain drawn with P9 on P1 had four of its six modes
+    at s1,9 = 0); a continuum there raises :class:`MovableLinkageError`."""
+    solver = None if scene.sliders else (lambda other: solve_numeric(scene, other, samples, coincidences=False))
+    modes, _, unsettled = with_modes_where_plan_divides_by_zero(scene, plan, modes, solver)
     movable = [gap for gap in unsettled if "movable" in gap]
     if movable:
         raise MovableLinkageError(movable[0])
-    return modes
+    return modes, list(unsettled)
 
 
 #: Full Gauss–Newton steps (:func:`_polished_on_links`) where the monotone ones stall.
