@@ -226,7 +226,9 @@ class CompiledSystem:
                 columns.append((placement.distance(u, v, computed=True)[0] - target) / target)
         if not columns:
             return np.zeros((*placement.shape, 0))
-        return np.stack(np.broadcast_arrays(*columns), axis=-1)
+        # to the full (B, N) shape: a slider chain's closure can be free of the parameter
+        # (a chain that moves: its residual a constant, which broke the root search)
+        return np.stack([np.broadcast_to(column, placement.shape) for column in columns], axis=-1)
 
     def _slider_closure(self, placement: _Placement, u: str, v: str) -> np.ndarray:
         """The closure s_{i,v} of a slider P_i as δ → ∞

