@@ -522,6 +522,36 @@ exact one 0 / 0 on 49, every list certified, and over the 300 s limit on three c
 instances of 11/N393 (collinear, coincident and domain-edge 0), where the numeric backend
 took 3–9 s.
 
+**Seed 43** (solving code 5da9b3df928e, commit 18a6a0c, `adversarial-18a6a0c` below) ran
+the whole count again after seed 42's three numeric misses were fixed: 6000 seven-link,
+4200 nine-link and 55 eleven-link instances (10 214 finite, 41 movable and said so by both
+backends). The exact backend listed every mode of every finite instance it finished, 0
+missed and 0 spurious, and certified every list (10 207), but ran over the 300 s limit on 7
+coupling-2 eleven-link instances (four of 11/N393, three of 11/N561), where the numeric
+backend took 3.6–9.7 s. The numeric backend missed one mode on one instance, fixed since
+(391df54): 9/N13 domain-edge 1, a simple mode 3.4e-8 inside the domain's edge at s2,3 = 9,
+which `flattened_mode` snapped flat onto the mode at the edge, 0.31 away, because the
+snapped configuration still verified (residual 5.7e-9); a snap may now move no joint by more
+than 1e-4 of the linkage's size. **The numeric time bound holds on every truss: p99/median
+at most 9.6 (target 10).** One nine-link solve exceeded 60 s: 9/N2 domain-edge 13 (coupling
+2) took 118 s, 96 s of it 60 full Gauss–Newton steps on 97 204 stalled boundary samples.
+They now go in rounds that keep only configurations near a mode or still converging, and
+the same solve took 40 s (dd77a65, docs/numeric.md). So this count is not the clean one
+either. The next count runs at the solving code with these fixes.
+
+**Slider chains** (`bench/adversarial.py --sliders`: each kind's configuration with a random
+admissible slider set and axes of rational length; rows in
+bench/results/adversarial-sliders.jsonl, reports `adversarial-sliders-*` below; docs/sliders.md).
+Seed 1 (150 seven-link instances, at f4b650c) found one instance both backends got wrong, the
+exact one certified: two modes of a 7/N2 chain in which two axes that the plan crosses to
+place a joint are parallel, where the plan divides by 0. It also found a numeric crash on a
+chain that moves and 6 exact lists left uncertified. A pilot sweep had found two more misses
+where the parameter's joints coincide. All are fixed (msolve lists the modes where two axes
+the plan crosses are parallel, as where a base pair coincides) and saved in
+tests/regressions/sliders/. Seed 2, after the fixes (at ba5c628: 150 seven-link and 70
+nine-link instances, 219 finite): both backends 0 missed and 0 spurious, 2 exact lists not
+certified, numeric median 0.82 s and max 7.7 s.
+
 {adversarial}
 
 ## Conditioning
