@@ -353,18 +353,16 @@ def with_modes_where_plan_divides_by_zero(scene: Scene, plan: Plan, modes: tuple
 
 
 def parallel_axis_pairs(scene: Scene, plan: Plan) -> set[frozenset[str]]:
-    """The pairs of sliders whose axes ``plan`` intersects: the base of a step located from
-    two sliders (closure/sliders.py: point_on_two_axes, third_axis), and two sliders of a
-    link whose other joints are sliders too (where its slider points are read). Where the
-    two axes are parallel the plan divides by 0, and its modes there are missed: a 7/N2
-    chain with sliders P3, P6, P8, P9 had two of its four modes with the axes of P3 and P9
-    parallel, which both backends missed, the exact one certified. O(steps + links)."""
+    """The pairs of sliders on no common link whose axes ``plan`` crosses: the base of a
+    step located from two sliders (closure/sliders.py: point_on_two_axes). Where the two
+    axes are parallel the plan divides by 0, and its modes there are missed: a 7/N2 chain
+    with sliders P3, P6, P8, P9 had two of its four modes with the axes of P3 and P9
+    parallel, which both backends missed, the exact one certified. (Two sliders of one
+    link keep the angle the link fixes between them; axes fixed parallel in a link make
+    the plan undefined everywhere: :func:`slider_plan_undefined`.) O(steps + links)."""
     sliders = {slider.joint for slider in scene.sliders}
-    pairs = {frozenset(step.base) for step in plan.steps if set(step.base) <= sliders}
-    for link in scene.links:
-        if set(link.joints) <= sliders:
-            pairs.update(frozenset(pair) for pair in combinations(link.joints, 2))
-    return pairs
+    shared = {frozenset(pair) for link in scene.links for pair in combinations(link.joints, 2)}
+    return {frozenset(step.base) for step in plan.steps if set(step.base) <= sliders} - shared
 
 
 def unexamined_coincidences(pairs: set[frozenset[str]]) -> tuple[str, ...]:
