@@ -12,7 +12,8 @@ use, so ``import baranov`` stays cheap):
 * :func:`characteristic_degree` — the number of assembly modes over C for generic
   dimensions (the degree of the characteristic polynomial);
 * :func:`load_scene`, :func:`scene_from_dict` — a linkage with its dimensions (a scene);
-  :func:`solve` — its assembly modes (``method="numeric"`` or ``"exact"``).
+  :func:`solve` — its assembly modes (``method="numeric"`` or ``"exact"``);
+  :func:`solve_many` — those of many instances of it (a sweep of its dimensions).
 
 >>> import baranov
 >>> chain = baranov.truss("7/B1")
@@ -55,6 +56,8 @@ _EXPORTS = {
     "Scene": "baranov.scene",
     "SceneError": "baranov.scene",
     "solve": "baranov.solvers",
+    "solve_many": "baranov.solvers",
+    "with_dimensions": "baranov.scene",
     "Solution": "baranov.solvers",
     "ExactSolution": "baranov.solvers",
     "AssemblyMode": "baranov.solvers",

@@ -104,6 +104,12 @@ def _parser() -> argparse.ArgumentParser:
     solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
     solve.add_argument("--time-limit", type=float, metavar="SECONDS",
                        help="numeric method: stop searching after this long and name what was left undecided")
+    solve.add_argument("--batch", type=Path, metavar="INSTANCES",
+                       help="solve many instances of the scene: a CSV file whose header names dimensions "
+                            "(\"P1,P2\") and whose rows give their squared distances, or JSON lines "
+                            "{\"P1,P2\": 17, ...}; prints one JSON line per instance")
+    solve.add_argument("--out", type=Path, help="--batch: write the JSON lines to this file (atomically) "
+                                                "instead of standard output")
     robot = commands.add_parser("robot", help="forward kinematics of a fully-parallel planar robot given as a file")
     robot.add_argument("robot", type=Path, help="robot JSON file (legs, geometry, actuators; see baranov.robots.model)")
     robot.add_argument("--actuators", help="actuator values, e.g. 1,11,13 (default: the file's)")
@@ -215,6 +221,8 @@ def run_solve(args: argparse.Namespace) -> int:
         raise UsageError(f"--time-limit {args.time_limit:g}: a positive number of seconds, for the numeric method")
     scene = load_scene(args.scene)
     options = {"time_limit": args.time_limit} if args.time_limit is not None else {}
+    if args.batch is not None or args.out is not None:
+        return run_batch(args, scene, options)
     with watching():  # a status line on a terminal while the solve runs
         solution = solve_scene(scene, method=args.method, **options)
     if args.plot is not None:
@@ -244,6 +252,42 @@ def run_solve(args: argparse.Namespace) -> int:
     print("\n".join(mode_table(solution, joints=args.joints, width=width)))
     if not args.joints:
         print("(joint coordinates: --joints, or --format csv / json)")
+    return 0
+
+
+def run_batch(args: argparse.Namespace, scene, options: dict) -> int:
+    """``baranov solve SCENE --batch INSTANCES``: every instance checked first (a bad one
+    stops the batch before any solve, naming its line), then solved in order, one JSON
+    line each (``{"instance": k, "dimensions": {...}, ...}`` with the solution of
+    ``--json``, or ``"error"`` for an instance the backend refuses)."""
+    from baranov.catalog.files import write_atomically
+    from baranov.scene import load_instances
+    from baranov.solvers import SolverError, solve_many
+    from baranov.solvers.progress import watching
+
+    if args.batch is None:
+        raise UsageError("--out: for --batch only (one solve prints to standard output)")
+    if args.plot is not None or args.joints or args.json or args.format != "table":
+        raise UsageError("--batch: prints JSON lines; --plot, --joints, --json and --format are for one solve")
+    if args.out is not None and not args.out.parent.is_dir():
+        raise UsageError(f"--out {args.out}: folder {args.out.parent} does not exist")
+    instances = load_instances(args.batch)  # solve_many checks every instance before the first solve
+    lines: list[str] = []
+
+    def emit(number: int, result) -> None:
+        line = {"instance": number, "dimensions": {k: str(v) for k, v in instances[number - 1].items()}}
+        line.update({"error": str(result)} if isinstance(result, SolverError) else result.to_dict())
+        lines.append(json.dumps(line))
+        if args.out is None:
+            print(lines[-1], flush=True)
+
+    with watching():
+        results = solve_many(scene, instances, method=args.method, return_errors=True, on_solution=emit, **options)
+    if args.out is not None:
+        write_atomically(args.out, "".join(line + "\n" for line in lines))
+    failed = sum(1 for result in results if isinstance(result, SolverError))
+    if failed:
+        print(f"baranov: {failed} of {len(results)} instances not solved (their lines say why)", file=sys.stderr)
     return 0
 
 

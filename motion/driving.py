@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from baranov.scene import Scene, SceneError, SceneInput, scene_from_dict
+from baranov.scene import Scene, SceneError, SceneInput, link_entry, scene_from_dict
 from baranov.solvers.placement import placed_configurations
 
 from .configuration_space import ConfigurationPoint, OneDofSystem, slice_configurations, verified_configurations
@@ -393,13 +393,7 @@ def rigidified(scene: Scene, driver: SceneInput, degrees: float) -> Scene:
     for link in scene.links:
         if link.name in (scene.ground, crank.name):
             continue
-        entry = {"name": link.name, "joints": list(link.joints),
-                 "squared_distances": {f"{a},{b}": str(value) for pair, value in link.squared_distances.items()
-                                       for a, b in [sorted(pair)]}}
-        if len(link.joints) >= 3:
-            (x1, y1), (x2, y2), (x3, y3) = (link.local[name] for name in link.joints[:3])
-            entry["orientation"] = "ccw" if (x2 - x1) * (y3 - y1) - (y2 - y1) * (x3 - x1) > 0 else "cw"
-        links.append(entry)
+        links.append(link_entry(link))
     return scene_from_dict({"ground": scene.ground, "links": links})
 
 

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
+from functools import lru_cache
 from itertools import combinations
 
 from baranov.topology import KinematicChain, TopologyError, require_one_dof_chain, require_rigid_chain
@@ -487,7 +488,32 @@ def bilateration_plans(
     return _ranked_plans(_checked(chain), count, reference, parameters)
 
 
+#: How many (chain, count, constraints) searches the plan cache keeps: a solve of a
+#: topology it has met does no graph search (issue 21: on 7/B1 the search was about 10 ms
+#: of a 70 ms numeric solve, repeated on every call; a batch of one topology pays it once).
+PLAN_CACHE_SIZE = 1024
+
+
 def _ranked_plans(chain: KinematicChain, count: int, reference, parameters) -> list[Plan]:
+    """:func:`_searched_plans`, cached on the exact chain (its joint and link names
+    included: a relabelled chain is searched again) and the constraints. Plans are frozen,
+    so the cached ones are shared; the list is the caller's."""
+    if reference is not None:
+        reference = tuple(reference) if isinstance(reference, list) else reference
+    if parameters is not None:
+        parameters = tuple(tuple(p) if isinstance(p, list) else p for p in parameters)
+    try:
+        return list(_cached_plans(chain, count, reference, parameters))
+    except TypeError:  # an unhashable constraint: searched, and refused there if malformed
+        return list(_searched_plans(chain, count, reference, parameters))
+
+
+@lru_cache(maxsize=PLAN_CACHE_SIZE)
+def _cached_plans(chain: KinematicChain, count: int, reference, parameters) -> tuple[Plan, ...]:
+    return _searched_plans(chain, count, reference, parameters)
+
+
+def _searched_plans(chain: KinematicChain, count: int, reference, parameters) -> tuple[Plan, ...]:
     if count < 1:
         raise ValueError(f"count={count}: ask for at least one plan")
     constraints = _constraints(chain, reference, parameters)
@@ -499,7 +525,7 @@ def _ranked_plans(chain: KinematicChain, count: int, reference, parameters) -> l
     ranked = _branch_and_bound(tables, constraints, degree, count)
     if not ranked:
         raise TopologyError("no bilateration plan meets the given reference/parameter constraints")
-    return ranked
+    return tuple(ranked)
 
 
 def best_plan(chain: KinematicChain) -> Plan:

@@ -3,6 +3,7 @@
 from baranov.scene import Scene
 
 from .backends import available_backends, backend, register_backend
+from .batch import BatchError, instance_scenes, solve_many
 from .exact import solve_exact
 from .exact.characteristic import (
     CharacteristicPolynomial,
@@ -34,8 +35,8 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
 
 
 __all__ = [
-    "AssemblyMode", "Certificate", "CharacteristicPolynomial", "ExactSolution", "ExactMethodError", "MovableLinkageError",
-    "Solution", "SolverError", "available_backends", "characteristic_degree", "characteristic_degree_modulo",
-    "characteristic_polynomial", "register_backend", "solve", "solve_exact",
-    "solve_numeric",
+    "AssemblyMode", "BatchError", "Certificate", "CharacteristicPolynomial", "ExactSolution", "ExactMethodError",
+    "MovableLinkageError", "Solution", "SolverError", "available_backends", "characteristic_degree",
+    "characteristic_degree_modulo", "characteristic_polynomial", "instance_scenes", "register_backend", "solve",
+    "solve_exact", "solve_many", "solve_numeric",
 ]
