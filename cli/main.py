@@ -110,6 +110,8 @@ def _parser() -> argparse.ArgumentParser:
                             "{\"P1,P2\": 17, ...}; prints one JSON line per instance")
     solve.add_argument("--out", type=Path, help="--batch: write the JSON lines to this file (atomically) "
                                                 "instead of standard output")
+    solve.add_argument("--workers", type=int, default=1, help="--batch: solve the instances in this many "
+                                                              "processes (default 1)")
     robot = commands.add_parser("robot", help="forward kinematics of a fully-parallel planar robot given as a file")
     robot.add_argument("robot", type=Path, help="robot JSON file (legs, geometry, actuators; see baranov.robots.model)")
     robot.add_argument("--actuators", help="actuator values, e.g. 1,11,13 (default: the file's)")
@@ -221,7 +223,7 @@ def run_solve(args: argparse.Namespace) -> int:
         raise UsageError(f"--time-limit {args.time_limit:g}: a positive number of seconds, for the numeric method")
     scene = load_scene(args.scene)
     options = {"time_limit": args.time_limit} if args.time_limit is not None else {}
-    if args.batch is not None or args.out is not None:
+    if args.batch is not None or args.out is not None or args.workers != 1:
         return run_batch(args, scene, options)
     with watching():  # a status line on a terminal while the solve runs
         solution = solve_scene(scene, method=args.method, **options)
@@ -266,7 +268,9 @@ def run_batch(args: argparse.Namespace, scene, options: dict) -> int:
     from baranov.solvers.progress import watching
 
     if args.batch is None:
-        raise UsageError("--out: for --batch only (one solve prints to standard output)")
+        raise UsageError(f"--{'out' if args.out is not None else 'workers'}: for --batch only")
+    if args.workers < 1:
+        raise UsageError(f"--workers {args.workers}: must be at least 1")
     if args.plot is not None or args.joints or args.json or args.format != "table":
         raise UsageError("--batch: prints JSON lines; --plot, --joints, --json and --format are for one solve")
     if args.out is not None and not args.out.parent.is_dir():
@@ -282,7 +286,8 @@ def run_batch(args: argparse.Namespace, scene, options: dict) -> int:
             print(lines[-1], flush=True)
 
     with watching():
-        results = solve_many(scene, instances, method=args.method, return_errors=True, on_solution=emit, **options)
+        results = solve_many(scene, instances, method=args.method, return_errors=True, on_solution=emit,
+                             workers=args.workers, **options)
     if args.out is not None:
         write_atomically(args.out, "".join(line + "\n" for line in lines))
     failed = sum(1 for result in results if isinstance(result, SolverError))

@@ -15,6 +15,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 
 from baranov.scene import Scene, SceneError, with_dimensions
 
+from .coincidence import solvable_plan
 from .modes import Solution, SolverError
 
 
@@ -55,7 +56,7 @@ def instance_scenes(scene: Scene, instances: Iterable, columns: Sequence[str] | 
 
 def solve_many(scene: Scene, instances: Iterable, columns: Sequence[str] | None = None, method: str = "numeric", *,
                return_errors: bool = False, on_solution: Callable[[int, Solution | SolverError], None] | None = None,
-               **options) -> list[Solution | SolverError]:
+               workers: int = 1, **options) -> list[Solution | SolverError]:
     """Every assembly mode of every instance of ``scene`` (:func:`instance_scenes` reads
     ``instances`` and ``columns``), by the backend ``method`` with ``options`` as
     :func:`~baranov.solvers.solve` takes them; one :class:`Solution` per instance, in order.
@@ -64,26 +65,52 @@ def solve_many(scene: Scene, instances: Iterable, columns: Sequence[str] | None 
     defined) raises its :class:`SolverError`, or with ``return_errors=True`` stands in the
     list in its place, like ``asyncio.gather(return_exceptions=True)``, so that a sweep
     keeps its other instances. ``on_solution(number, result)`` is called after each
-    instance (counted from 1), e.g. for a progress bar.
+    instance (counted from 1, in order), e.g. for a progress bar. ``workers`` > 1 solves
+    the instances in that many processes (the plan is searched before they start, and
+    each inherits it where processes fork).
 
     Cost: the plan search once, then a single solve's per instance (7/B1: about 70 ms
-    numeric, README "Speed"); the work is not yet shared across instances.
+    numeric, README "Speed"), divided among the workers; the work of one process is not
+    yet shared across instances.
 
     >>> from baranov.scene import load_scene
     >>> scene = load_scene("examples/7-B1.json")
     >>> [len(s.assembly_modes) for s in solve_many(scene, [{"P2,P4": 40}, {"P2,P4": 40}])]
     [8, 8]
     """
+    if not (isinstance(workers, int) and workers >= 1):
+        raise ValueError(f"workers={workers!r}: a number of processes, 1 or more")
+    scenes = instance_scenes(scene, instances, columns)
+    jobs = [(instance, method, return_errors, options) for instance in scenes]
+    if workers == 1 or len(scenes) < 2:
+        return _collected(map(_solved, jobs), on_solution)
+    from baranov.enumerate.parallel import worker_pool
+
+    try:  # the plan searched and cached before the workers fork
+        solvable_plan(scenes[0])
+    except (SolverError, ValueError):
+        pass  # the instance's own solve says why
+    with worker_pool(min(workers, len(scenes))) as pool:
+        return _collected(pool.imap(_solved, jobs, chunksize=max(1, len(jobs) // (8 * workers))), on_solution)
+
+
+def _solved(job) -> Solution | SolverError:
+    """One instance solved (in this process or a worker): its solution, or its error
+    where errors are returned."""
     from . import solve  # the registry: solve() picks the backend and checks it takes the scene
 
-    results: list[Solution | SolverError] = []
-    for number, instance in enumerate(instance_scenes(scene, instances, columns), start=1):
-        try:
-            result: Solution | SolverError = solve(instance, method, **options)
-        except SolverError as error:
-            if not return_errors:
-                raise
-            result = error
+    instance, method, return_errors, options = job
+    try:
+        return solve(instance, method, **options)
+    except SolverError as error:
+        if not return_errors:
+            raise
+        return error
+
+
+def _collected(solved: Iterable, on_solution) -> list[Solution | SolverError]:
+    results = []
+    for number, result in enumerate(solved, start=1):
         results.append(result)
         if on_solution is not None:
             on_solution(number, result)

@@ -185,6 +185,26 @@ def test_cli_batch_bad_input_is_one_line_exit_2_nothing_written(tmp_path, conten
     assert not out.exists() and not list(tmp_path.glob(".*.tmp"))
 
 
-def test_cli_out_without_batch_is_refused(tmp_path):
+def test_cli_out_and_workers_without_batch_are_refused(tmp_path):
     result = run("solve", str(EXAMPLE), "--out", str(tmp_path / "x.jsonl"))
     assert result.returncode == 2 and "--out: for --batch only" in result.stderr
+    assert "--workers: for --batch only" in run("solve", str(EXAMPLE), "--workers", "2").stderr
+
+
+def test_workers_give_the_same_solutions_in_order(tmp_path):
+    """Two processes: the same modes in the same order as one, callbacks in order, an
+    instance's error in its place; and on the command line the same lines."""
+    scene = load_scene(EXAMPLE)
+    rows = [[100], [101], [102], [103], [104]]
+    seen = []
+    together = solve_many(scene, rows, ["P1,P2"], workers=2, on_solution=lambda k, r: seen.append(k))
+    alone = solve_many(scene, rows, ["P1,P2"])
+    assert seen == [1, 2, 3, 4, 5]
+    assert [[m.joints for m in s.assembly_modes] for s in together] == [[m.joints for m in s.assembly_modes]
+                                                                          for s in alone]
+    with pytest.raises(ValueError, match="workers=0"):
+        solve_many(scene, rows, ["P1,P2"], workers=0)
+    csv = tmp_path / "sweep.csv"
+    csv.write_text('"P1,P2"\n100\n101\n102\n')
+    lines = [run("solve", str(EXAMPLE), "--batch", str(csv), *extra).stdout for extra in ((), ("--workers", "2"))]
+    assert lines[0] == lines[1] and lines[0].count("\n") == 3
