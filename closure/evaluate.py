@@ -237,7 +237,8 @@ class CompiledSystem:
         link, sin θ of the error θ of the turn between their axes (θ = π, a reversed axis,
         is a root too: the verification drops it)."""
         slider, joint = (u, v) if u in self.sliders else (v, u)
-        at = {name: x + 1j * y for name, (x, y, _) in placement.points.items() if name == joint}
+        point = placement.points.get(joint)
+        at = {joint: point[0] + 1j * point[1]} if point is not None else {}
         with np.errstate(invalid="ignore"):
             value = placement.sliders.closure(slider, joint, at, placement.s_ref)
         if joint in self.sliders:

@@ -337,10 +337,10 @@ def _slider_closure(sliders: SliderPlacement, u: str, v: str, points: dict, refe
     :class:`Homogeneous` (a height), or for two sliders of one link the complex turn
     mismatch r − 1, whose imaginary part is the condition and which is 0 as a whole only
     where the axis keeps its sense."""
-    joint = v if u in sliders.geometry else u
+    slider, joint = (u, v) if u in sliders.geometry else (v, u)
     at = {joint: Homogeneous(*points[joint], **ring)} if joint in points else {}
     scale = Homogeneous(reference[0], ring["constant"](0), reference[1], **ring)
-    return sliders.closure(u if joint == v else v, joint, at, scale)
+    return sliders.closure(slider, joint, at, scale)
 
 
 def link_area_root(scene: Scene, triangle: tuple[str, str, str]) -> Fraction:
