@@ -36,6 +36,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import lru_cache
 from itertools import combinations, product
 
 import flint
@@ -558,14 +559,13 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
     (9/N24 of the collinear-joints sweep: undecided at 1024 bits).
 
     Cost: O(steps) ball operations."""
-    known = {pair: flint.acb(flint.fmpq(Fraction(v).numerator, Fraction(v).denominator))
-             for pair, v in scene.known.items()}
     values = {frozenset(pair): value for pair, value in zip(plan.parameters, parameters, strict=True)}
 
     def distance(u: str, v: str):
         pair = frozenset((u, v))
-        value = known.get(pair, values.get(pair))
-        return None if value is None else (value, 1)
+        if pair in scene.known:
+            return exact_ball(scene.known[pair]), 1
+        return (values[pair], 1) if pair in values else None
 
     a, b = plan.reference
     sliders, hooks = None, {}
@@ -600,8 +600,27 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
     return points, reference, None
 
 
+def exact_ball(value) -> flint.acb:
+    """A rational (an int or a Fraction) as a complex ball at the current precision, exact
+    where it is dyadic. Cached per precision: the ball placements of one solve read the
+    same dimensions thousands of times, and building them anew (two Fractions and an fmpq
+    per dimension and placement) took 7.5 of the 16 s of the modes of the 11-link
+    Watt–Baranov example (issue 24, cProfile).
+
+    >>> exact_ball(Fraction(9, 4))
+    2.25000000000000
+    """
+    value = value if isinstance(value, Fraction) else Fraction(value)
+    return _rational_ball(value, flint.ctx.prec)
+
+
+@lru_cache(maxsize=8192)
+def _rational_ball(value: Fraction, bits: int) -> flint.acb:
+    return flint.acb(flint.fmpq(value.numerator, value.denominator))  # rounded at the current precision (= bits)
+
+
 #: Ball arithmetic for :class:`Homogeneous` (divided through after every operation).
-_BALLS = {"constant": lambda value: flint.acb(flint.fmpq(Fraction(value).numerator, Fraction(value).denominator)),
+_BALLS = {"constant": exact_ball,
           "reduce": lambda number: Homogeneous(number.x / number.w, number.y / number.w, flint.acb(1), **_BALLS)}
 #: The key under which :func:`placed_points` leaves its slider placement for the closures.
 _SLIDERS = "<sliders>"
@@ -693,8 +712,7 @@ def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb],
             # a height over the link's, relative to 1; or r − 1 of two axes, 0 only with the sense kept
             residuals.append(((value.x + flint.acb(0, 1) * value.y) / value.w, flint.arb(1)))
             continue
-        known = Fraction(scene.known[frozenset((u, v))])
-        target = flint.arb(flint.fmpq(known.numerator, known.denominator))
+        target = exact_ball(scene.known[frozenset((u, v))]).real
         residuals.append((computed_distance(points, u, v, reference) - target, target))
     return residuals, points, None
 
