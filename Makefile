@@ -5,6 +5,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 INSTANCES ?= 6
 INSTANCES_7 ?= $(INSTANCES)
+SEED ?= 44
 FUZZ ?= 10000
 # nauty's geng for the brute-force cross-check; --no-deps keeps it to one ~40 MB wheel.
 GENG_WHEEL := passagemath-nauty==10.8.13
@@ -55,10 +56,10 @@ bench-timing: $(STAMP)  ## timing and memory medians of each stage
 bench-collinear: $(STAMP)  ## both backends on every 9-link truss drawn with joints in line (issue 28): docs/bench/collinear-joints.md, included in docs/stability.md by `make bench` (about 18 min, 2 cores)
 	$(BIN)/python bench/sweep_collinear.py --links 9 --on-line 3,4 --instances 5 --box 4 --workers 2 --out docs/bench/collinear-joints.md
 
-bench-adversarial: $(STAMP)  ## both backends against msolve on adversarial instances (issue 25), 7 and 9 links and every 56th 11-link truss: docs/bench/adversarial.md, included in docs/stability.md by `make bench`; rows accumulate in bench/results/adversarial.jsonl (committed) while the solving code is unchanged, so a rerun resumes; raise INSTANCES (9 links) and INSTANCES_7 to add more: INSTANCES=40 INSTANCES_7=300 is the 10⁴-instance run of issue 25
-	$(BIN)/python bench/adversarial.py --links 7 --seed 26 --instances $(INSTANCES_7) --workers 2 --out bench/results/adversarial.jsonl
-	$(BIN)/python bench/adversarial.py --links 9 --seed 26 --instances $(INSTANCES) --workers 2 --out bench/results/adversarial.jsonl
-	$(BIN)/python bench/adversarial.py --links 11 --every 56 --instances 1 --workers 2 --timeout 300 --out bench/results/adversarial.jsonl --report docs/bench/adversarial.md
+bench-adversarial: $(STAMP)  ## both backends against msolve on adversarial instances (issue 25), 9 and 7 links and every 56th 11-link truss: docs/bench/adversarial.md, included in docs/stability.md by `make bench`; rows accumulate in bench/results/adversarial.jsonl (committed) while the solving code is unchanged, so a rerun resumes; raise INSTANCES (9 links) and INSTANCES_7 to add more: INSTANCES=30 INSTANCES_7=400 SEED=44 is the 10 255-instance run of issue 25 (about 2 h on 2 cores)
+	$(BIN)/python bench/adversarial.py --links 9 --seed $(SEED) --instances $(INSTANCES) --workers 2 --timeout 300 --out bench/results/adversarial.jsonl
+	$(BIN)/python bench/adversarial.py --links 7 --seed $(SEED) --instances $(INSTANCES_7) --workers 2 --timeout 300 --out bench/results/adversarial.jsonl
+	$(BIN)/python bench/adversarial.py --links 11 --seed $(SEED) --every 56 --instances 1 --workers 2 --timeout 300 --out bench/results/adversarial.jsonl --report docs/bench/adversarial.md
 
 clean:
 	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis
