@@ -19,8 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from baranov.enumerate import baranov_trusses
-from baranov.planner import coupling_degree
-from baranov.planner.search import _cached_plans
+from baranov.planner import clear_plan_cache, coupling_degree
 from baranov.scene import load_scene
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import solve
@@ -36,7 +35,7 @@ def median_time(scenes, repeats: int, cached: bool) -> float:
         times = []
         for _ in range(repeats):
             if not cached:
-                _cached_plans.cache_clear()
+                clear_plan_cache()
             start = time.perf_counter()
             solve(scene)
             times.append(time.perf_counter() - start)

@@ -508,6 +508,11 @@ def _ranked_plans(chain: KinematicChain, count: int, reference, parameters) -> l
         return list(_searched_plans(chain, count, reference, parameters))
 
 
+def clear_plan_cache() -> None:
+    """Forget every cached plan search (benchmarks of a topology's first solve; tests)."""
+    _cached_plans.cache_clear()
+
+
 @lru_cache(maxsize=PLAN_CACHE_SIZE)
 def _cached_plans(chain: KinematicChain, count: int, reference, parameters) -> tuple[Plan, ...]:
     return _searched_plans(chain, count, reference, parameters)

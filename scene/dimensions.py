@@ -15,7 +15,6 @@ import json
 from collections.abc import Mapping
 from dataclasses import replace
 from decimal import Decimal
-from fractions import Fraction
 from pathlib import Path
 
 from .model import Scene, SceneError, SceneLink, _number, _parse_link
@@ -84,10 +83,10 @@ def with_dimensions(scene: Scene, dimensions: Mapping) -> Scene:
         entry = link_entry(links[name])
         for pair, value in values.items():
             a, b = (joint for joint in links[name].joints if joint in pair)
-            entry["squared_distances"][f"{a},{b}"] = value if isinstance(value, float) else str(value)
+            entry["squared_distances"][f"{a},{b}"] = value  # a Fraction or a float: the link's own check reads it
         index = [link.name for link in scene.links].index(name)
-        links[name], _, link_exact = _parse_link(entry, index)
-        exact = exact and link_exact and all(isinstance(v, Fraction) for v in values.values())
+        links[name], _, link_exact = _parse_link(entry, index)  # exact: every squared distance a Fraction
+        exact = exact and link_exact
     return replace(scene, links=tuple(links[link.name] for link in scene.links), exact=exact)
 
 

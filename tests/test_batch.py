@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from baranov.enumerate import baranov_trusses
-from baranov.planner import best_plan
+from baranov.planner import best_plan, clear_plan_cache
 from baranov.planner.search import _cached_plans
 from baranov.scene import SceneError, dimension_names, load_scene, scene_from_dict, with_dimensions
 from baranov.scene.instances import generic_integer_configuration, scene_of
@@ -58,7 +58,7 @@ def test_a_batch_finds_each_generating_configuration_and_the_single_solves_modes
     for configuration, row, solution in zip(configurations, rows, solutions, strict=True):
         generating = SimpleNamespace(joints={k: tuple(map(float, v)) for k, v in configuration.items()})
         assert any(same_mode(generating, mode, scene) for mode in solution.assembly_modes)
-        _cached_plans.cache_clear()
+        clear_plan_cache()
         single = solve(with_dimensions(scene, row))
         assert [(m.parameters, m.signs, m.joints) for m in single.assembly_modes] == \
                [(m.parameters, m.signs, m.joints) for m in solution.assembly_modes]
@@ -139,7 +139,7 @@ def test_movable_instance_raises_or_stands_in_the_list():
 
 def test_the_plan_is_searched_once_per_topology():
     truss = baranov_trusses(9)[3]
-    _cached_plans.cache_clear()
+    clear_plan_cache()
     first = best_plan(truss)
     misses = _cached_plans.cache_info().misses
     assert best_plan(truss) is first and _cached_plans.cache_info().misses == misses
