@@ -114,8 +114,17 @@ class CompiledSystem:
         undefined gap between two defined values, as a local minimum of one free-sign
         step's radicand."""
         placement = self._evaluate(parameter_values, signs, profile=True)
-        failures, margins = placement.failures, placement.margins
-        return failures, placement.radicands, np.stack(margins, axis=-1) if margins else np.zeros((*failures.shape, 0))
+        return placement.failures, placement.radicands, placement.stacked_margins()
+
+    def profile(self, parameter_values: np.ndarray, signs: np.ndarray, paired: bool = False) -> Profile:
+        """In one evaluation, :meth:`residuals` and :meth:`failure_profile`: shapes (B, N, c),
+        (B, N), (B, N) and (B, N, free); with ``paired``, point n on branch ``signs[n]``
+        and shapes (N, c), (N,), (N,), (N, free). The values are those of the separate
+        calls, bit for bit (the same arithmetic element by element)."""
+        placement = self._evaluate(parameter_values, signs, profile=True, paired=paired)
+        profile = Profile(self._closure_residuals(placement), placement.failures, placement.radicands,
+                          placement.stacked_margins())
+        return Profile(*(part[0] for part in profile)) if paired else profile
 
     def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> dict[str, np.ndarray]:
         """M_k for every joint, point n on branch ``signs[n]``; shape (N,)."""
@@ -248,6 +257,16 @@ class CompiledSystem:
         return value.real / size
 
 
+class Profile(NamedTuple):
+    """Closure residuals and the failure profile of the same placements
+    (:meth:`CompiledSystem.profile`)."""
+
+    residuals: np.ndarray
+    failures: np.ndarray
+    radicands: np.ndarray
+    margins: np.ndarray
+
+
 class _Placement(NamedTuple):
     """A plan placed in numpy floats (:meth:`CompiledSystem._evaluate`): points (x, y, 1)
     in the frame M_a = 0, M_b = 1, the kernel's distance function, s_ref, the (B, N)
@@ -261,6 +280,10 @@ class _Placement(NamedTuple):
     radicands: np.ndarray
     margins: list
     sliders: SliderPlacement | None = None
+
+    def stacked_margins(self) -> np.ndarray:
+        """The free-sign steps' relative radicands, shape (B, N, free)."""
+        return np.stack(self.margins, axis=-1) if self.margins else np.zeros((*self.failures.shape, 0))
 
     def matrices(self) -> dict[str, np.ndarray]:
         """M_k = x + i y for every joint, and for every slider its points P_i', P_i''

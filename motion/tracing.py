@@ -40,6 +40,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from baranov.solvers.numeric.lockstep import paired_profile, run_alone
 from baranov.solvers.numeric.one_parameter import window_samples
 from baranov.solvers.placement import placed_configurations
 from baranov.solvers.verification import distance_bound
@@ -120,10 +121,8 @@ def _ranges(system: OneDofSystem, jump: float) -> list[tuple[tuple[int, ...], li
     for b, branch in enumerate(system.branches):
         # a window of the domain narrower than the samples (eight-bar 12 of docs/stability.md:
         # 0.0011 of s2,10 wide, between the crank in line and a domain edge)
-        added, _ = window_samples(uniform, failures[b], radicands[b], margins[b],
-                                  lambda values, branch=branch: system.compiled.first_failures(values[:, None],
-                                                                                              branch[None, :])[0],
-                                  len(system.plan.steps))
+        added, _, _ = run_alone(window_samples(uniform, failures[b], radicands[b], margins[b], len(system.plan.steps)),
+                                paired_profile(system.compiled), branch)
         grid = np.union1d(uniform, added)
         defined = _placed(system, grid, branch)
         edges = np.flatnonzero(np.diff(defined.astype(int)))

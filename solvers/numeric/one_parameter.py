@@ -20,18 +20,20 @@ docs/numeric.md explains each rule with the miss that required it.
 from __future__ import annotations
 
 import math
-import time
 from itertools import combinations
+from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
 
 from baranov.closure import CompiledSystem, sign_branches
+from baranov.closure.evaluate import Profile
 from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
 from ..modes import MovableLinkageError, signs_text
 from ..progress import report_stage
+from .brent import UndefinedInside, brent_minimum, brent_root
+from .lockstep import Samples, Together, paired_profile, run_lockstep
 
 #: A local minimum of |f| below this but not below 1e-7 (a root where f is not smooth:
 #: f ≈ c√|s − s0| at a singular mode, issue 25's 7/N3 instance at s1,9 = 13 with P6 = P9
@@ -146,7 +148,9 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
     """Candidate roots ``(array([s]), branch)`` of the closure condition on every branch,
     and the approximate roots to polish on the link constraints; a sentence for each
     stretch where f is flat to rounding, and for the branches left at the ``deadline``
-    (``time.monotonic()``), is appended to ``undecided``."""
+    (``time.monotonic()``), is appended to ``undecided``. The branches are searched side
+    by side (:func:`~.lockstep.run_lockstep`: one evaluation of the plan per round for
+    all their pending searches)."""
     grid = (np.linspace(0, math.sqrt(upper), samples + 1)[1:]) ** 2
     # below the first sample, samples even in √s down to joints 1e-7 of the largest
     # distance apart (closer, they coincide to same_mode's resolution: coincidence.py):
@@ -154,62 +158,85 @@ def one_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: f
     # first sample, 1e-4
     below = grid[0] * 4.0 ** -np.arange(EDGE_LEVELS, 0, -1)
     grid = np.concatenate([below[below >= 1e-14 * upper], grid])
-    failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
-    flattened = _flat_along_branches(branches, margins)
+    coarse = compiled.profile(grid[:, None], branches)
+    flattened = _flat_along_branches(branches, coarse.margins)
     if flattened.shape != branches.shape or (flattened != branches).any():
         branches = flattened
-        failures, radicands, margins = compiled.failure_profile(grid[:, None], branches)
-    table = compiled.residuals(grid[:, None], branches)[:, :, 0]
-    _require_isolated_roots(compiled, branches, grid, table)
+        coarse = compiled.profile(grid[:, None], branches)
+    _require_isolated_roots(compiled, branches, grid, coarse.residuals[:, :, 0])
+    tasks = [(_branch_roots(compiled, grid, Profile(*(part[b] for part in coarse)), branch, RESOLUTION * upper), branch)
+             for b, branch in enumerate(branches)]
+
+    def progress(finished: int, total: int) -> None:
+        report_stage(f"numeric: {finished} of {total} sign branches searched")
+
+    results, _ = run_lockstep(paired_profile(compiled), tasks, deadline, progress)
     candidates, near_roots, left = [], [], []
-    for b, branch in enumerate(branches):
-        if time.monotonic() > deadline:
+    for branch, result in zip(branches, results, strict=True):
+        if result is None:
             left.append(signs_text(branch))
             continue
-        report_stage(f"numeric: sign branch {b + 1} of {len(branches)}")
-
-        def sampled(points: np.ndarray, branch=branch) -> np.ndarray:
-            return compiled.residuals(points[:, None], branch[None, :])[0, :, 0]
-
-        def f(s: float, sampled=sampled) -> float:
-            return float(sampled(np.array([s]))[0])
-
-        def failing(points: np.ndarray, branch=branch) -> np.ndarray:
-            return compiled.first_failures(points[:, None], branch[None, :])[0]
-
-        points, values, narrow = _with_windows(grid, table[b], failures[b], radicands[b], margins[b], sampled,
-                                               failing, len(compiled.plan.steps))
-        points, values, edges = _with_edges(points, values, sampled)
-        roots = [edge for edge, value in edges if abs(value) < 1e-7]
-        near: list[float] = []
-        noise: list[tuple[float, float, int]] = []
-        roots += _scan(f, points, values, sampled, near, noise, RESOLUTION * upper)
-        for low, high in _next_to_roots(points, roots) + _suspicious_minima(points, values)[:MAX_MINIMA]:
-            fine = np.linspace(low, high, REFINEMENT)
-            roots += _scan(f, fine, sampled(fine), sampled, near, noise, RESOLUTION * upper, refined=True)
-        roots, valleys = _merged_flat_valleys(sampled, roots, RESOLUTION * upper)
-        # one sentence per stretch: around one singular mode the runs of noise roots give
-        # overlapping valleys (issue 25's 7/N1 double-root 131, seed 42: 88 sentences)
-        valleys = [(low, high) for low, high, _ in _merged_stretches([(low, high, 0) for low, high in valleys])]
-        stretches = _merged_stretches(noise)
-        roots = _one_per_noise_stretch(roots, stretches)
-        name = parameter_name(compiled.parameters[0])
-        undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition "
-                      "is flat to rounding there; reported as one mode (a singular mode, or modes closer than "
-                      "floating point separates)" for low, high in valleys]
-        undecided += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition's "
-                      f"sign is rounding noise there ({changes} sign changes); reported as one mode"
-                      for low, high, changes in stretches
-                      if not any(a <= low and high <= b for a, b in valleys)]  # said already
-        for root in roots:
-            candidates.append((np.array([root]), branch))
-        candidates += _roots_at_folds(compiled, branch, edges)
-        candidates += _roots_at_touching_radicands(compiled, branch, grid, failures[b], radicands[b])
-        candidates += _roots_at_crossing_radicands(compiled, branch, narrow)
-        near_roots += [(np.array([x]), branch) for x in near]
+        found, near, sentences = result
+        candidates += found
+        near_roots += near
+        undecided += sentences
     if left:
         undecided.append(f"branches {', '.join(left)}: not searched, the time limit was reached")
     return candidates, near_roots
+
+
+def _branch_roots(compiled: CompiledSystem, grid: np.ndarray, coarse: Profile, branch: np.ndarray,
+                  resolution: float):
+    """Lock-step search: the candidates of one branch from its ``coarse`` samples on
+    ``grid``, the approximate roots to polish and the sentences for ``undecided``
+    (:func:`one_parameter_roots`; ``resolution``: the parameter's, RESOLUTION × its upper
+    bound)."""
+    points, values, narrow = yield from _with_windows(grid, coarse, len(compiled.plan.steps))
+    points, values, edges = yield from _with_edges(points, values)
+    roots = [edge for edge, value in edges if abs(value) < 1e-7]
+    scans = [(yield from _scan(points, values, resolution))]
+    cells = _next_to_roots(points, roots + scans[0].roots) + _suspicious_minima(points, values)[:MAX_MINIMA]
+    scans += yield Together([_refined_scan(low, high, resolution) for low, high in cells])
+    roots += [root for scan in scans for root in scan.roots]
+    near = [x for scan in scans for x in scan.near]
+    noise = [stretch for scan in scans for stretch in scan.noise]
+    roots, valleys = yield from _merged_flat_valleys(roots, resolution)
+    # one sentence per stretch: around one singular mode the runs of noise roots give
+    # overlapping valleys (issue 25's 7/N1 double-root 131, seed 42: 88 sentences)
+    valleys = [(low, high) for low, high, _ in _merged_stretches([(low, high, 0) for low, high in valleys])]
+    stretches = _merged_stretches(noise)
+    roots = _one_per_noise_stretch(roots, stretches)
+    name = parameter_name(compiled.parameters[0])
+    sentences = [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition "
+                 "is flat to rounding there; reported as one mode (a singular mode, or modes closer than "
+                 "floating point separates)" for low, high in valleys]
+    sentences += [f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branch)}: the closure condition's "
+                  f"sign is rounding noise there ({changes} sign changes); reported as one mode"
+                  for low, high, changes in stretches
+                  if not any(a <= low and high <= b for a, b in valleys)]  # said already
+    candidates = [(np.array([root]), branch) for root in roots]
+    for found in (yield Together([_roots_at_folds(branch, edges),
+                                  _roots_at_touching_radicands(compiled, branch, grid, coarse.failures,
+                                                               coarse.radicands),
+                                  _roots_at_crossing_radicands(branch, narrow)])):
+        candidates += found
+    return candidates, [(np.array([x]), branch) for x in near], sentences
+
+
+def _refined_scan(low: float, high: float, resolution: float):
+    """Lock-step search: :func:`_scan` of REFINEMENT samples over [low, high]."""
+    fine = np.linspace(low, high, REFINEMENT)
+    return (yield from _scan(fine, (yield from _values(fine)), resolution, refined=True))
+
+
+def _values(points) -> np.ndarray:
+    """Lock-step search: f at ``points`` (NaN where undefined)."""
+    return (yield Samples(np.asarray(points, dtype=float))).residuals[:, 0]
+
+
+def _value(reply: Profile) -> float:
+    """f at the one point of a reply."""
+    return float(reply.residuals[0, 0])
 
 
 def _merged_stretches(stretches: list[tuple[float, float, int]]) -> list[tuple[float, float, int]]:
@@ -247,9 +274,8 @@ def _one_per_noise_stretch(roots: list[float], stretches: list[tuple[float, floa
 VALLEY_SAMPLES = 64
 
 
-def _merged_flat_valleys(sampled, roots: list[float], resolution: float = 0.0
-                         ) -> tuple[list[float], list[tuple[float, float]]]:
-    """``roots`` with each run of neighbours between which |f| stays below FLAT_NOISE
+def _merged_flat_valleys(roots: list[float], resolution: float = 0.0):
+    """Lock-step search: ``roots`` with each run of neighbours between which |f| stays below FLAT_NOISE
     replaced by the middle of that flat stretch, and the stretches. Next to a singular
     mode of high multiplicity f ≈ c (s − s0)^m is flat to rounding over a whole stretch,
     its sign flips with the noise and every flip brackets a "root": issue 25's 9/N15
@@ -261,13 +287,15 @@ def _merged_flat_valleys(sampled, roots: list[float], resolution: float = 0.0
     :func:`~baranov.solvers.mode_clusters.merged_clusters`."""
     ordered = sorted(roots)
     roots = [r for n, r in enumerate(ordered) if n == 0 or r - ordered[n - 1] > 1e-12 * abs(r)]
+    flat = yield Together([_flat(roots[n - 1], roots[n], resolution) for n in range(1, len(roots))])
     kept, valleys, start = [], [], 0
     for n in range(1, len(roots) + 1):
-        if n < len(roots) and _flat(sampled, roots[n - 1], roots[n], resolution):
+        if n < len(roots) and flat[n - 1]:
             continue
         if n - start > 1:
-            level = _flat_level(sampled, roots[start], roots[n - 1], resolution)
-            (low, high), (low_cut, high_cut) = _flat_stretch(sampled, roots[start], roots[n - 1], level)
+            level = _flat_level((yield from _values(
+                _jittered(roots[start], roots[n - 1], resolution))))
+            (low, high), (low_cut, high_cut) = yield from _flat_stretch(roots[start], roots[n - 1], level)
             # cut off by the domain on one side: the mode is at that edge, not in the middle
             # (issue 25's 9/N19 drawn at a double root: flat on [8.9899, 9], the domain ends
             # at 9, where the mode is; the middle, 8.99495, was a spurious mode on 2 branches)
@@ -279,59 +307,71 @@ def _merged_flat_valleys(sampled, roots: list[float], resolution: float = 0.0
     return kept, valleys
 
 
-def _flat_level(sampled, low: float, high: float, resolution: float = 0.0) -> float:
-    """The |f| below which f counts as flat around [low, high]: FLAT_NOISE, or, given the
-    parameter's ``resolution``, VALLEY_NOISE times f's own rounding noise there (its spread
-    at offsets JITTER × resolution from the middle) if that is lower: a hump of 8e-13
-    between a double root at s2,7 = 5 and a simple one at 5.0016916 is no noise where that
-    spread is 1e-15 (issue 25, seed 38: 7/N1 collinear 324, the two modes reported as one
-    valley's middle)."""
+def _jittered(low: float, high: float, resolution: float) -> np.ndarray:
+    """The points at offsets JITTER × ``resolution`` (at most an eighth of the middle)
+    from the middle of [low, high] (none where ``resolution`` is 0)."""
     if resolution <= 0:
-        return FLAT_NOISE
+        return np.zeros(0)
     middle = (low + high) / 2
-    noise = float(np.ptp(sampled(middle + JITTER * min(resolution, abs(middle) / 8))))
-    return min(FLAT_NOISE, VALLEY_NOISE * noise)
+    return middle + JITTER * min(resolution, abs(middle) / 8)
 
 
-def _flat(sampled, low: float, high: float, resolution: float = 0.0) -> bool:
-    """Whether |f| stays below the flat level (:func:`_flat_level`) between two roots."""
-    values = sampled(np.linspace(low, high, VALLEY_SAMPLES))
-    return bool(np.isfinite(values).all() and (np.abs(values) <= _flat_level(sampled, low, high, resolution)).all())
+def _flat_level(jittered: np.ndarray) -> float:
+    """The |f| below which f counts as flat around two roots: FLAT_NOISE, or, given f at
+    the :func:`_jittered` points of their middle (the parameter's resolution), VALLEY_NOISE times f's own
+    rounding noise there (its spread at offsets JITTER × resolution from the middle) if
+    that is lower: a hump of 8e-13 between a double root at s2,7 = 5 and a simple one at
+    5.0016916 is no noise where that spread is 1e-15 (issue 25, seed 38: 7/N1 collinear
+    324, the two modes reported as one valley's middle)."""
+    if len(jittered) == 0:
+        return FLAT_NOISE
+    return min(FLAT_NOISE, VALLEY_NOISE * float(np.ptp(jittered)))
+
+
+def _flat(low: float, high: float, resolution: float = 0.0):
+    """Lock-step search: whether |f| stays below the flat level (:func:`_flat_level`)
+    between two roots. One evaluation."""
+    jittered = _jittered(low, high, resolution)
+    values = yield from _values(np.concatenate([np.linspace(low, high, VALLEY_SAMPLES), jittered]))
+    values, jittered_values = values[:VALLEY_SAMPLES], values[VALLEY_SAMPLES:]
+    return bool(np.isfinite(values).all() and (np.abs(values) <= _flat_level(jittered_values)).all())
 
 
 #: Between two roots, |f| up to this many times its rounding noise is a flat valley.
 VALLEY_NOISE = 100
 
 
-def _flat_stretch(sampled, low: float, high: float, level: float = FLAT_NOISE
-                  ) -> tuple[tuple[float, float], tuple[bool, bool]]:
-    """The stretch around [low, high] (flat) where |f| stays below ``level``, sampled
-    outwards over windows of growing width, then across the last sample step twice more
-    (to VALLEY_SAMPLES⁻³ of the last window: the middle of the stretch is the mode's
-    estimate, and a coarse end moved it by 2e-4 on 9/N15); and for each end, whether the
-    domain ends there (f undefined just beyond) rather than |f| rising."""
-    ends, cut = [], []
-    for direction, end in ((-1, low), (1, high)):
-        width = high - low
-        for _ in range(8):
-            end, width, inside, undefined = _last_flat(sampled, end, direction, width, level)
-            if not inside:
-                break
-        for _ in range(2):
-            end, width, inside, finer = _last_flat(sampled, end, direction, width / (VALLEY_SAMPLES - 1), level)
-            undefined = finer if not inside else undefined
-        ends.append(end)
-        cut.append(bool(undefined))
-    return (ends[0], ends[1]), (cut[0], cut[1])
+def _flat_stretch(low: float, high: float, level: float = FLAT_NOISE):
+    """Lock-step search: the stretch around [low, high] (flat) where |f| stays below
+    ``level``, sampled outwards over windows of growing width, then across the last
+    sample step twice more (to VALLEY_SAMPLES⁻³ of the last window: the middle of the
+    stretch is the mode's estimate, and a coarse end moved it by 2e-4 on 9/N15); and for
+    each end, whether the domain ends there (f undefined just beyond) rather than |f|
+    rising. Returns ((low end, high end), (low cut, high cut)); both ends side by side."""
+    (low_end, low_cut), (high_end, high_cut) = yield Together([_flat_end(-1, low, high - low, level),
+                                                              _flat_end(1, high, high - low, level)])
+    return (low_end, high_end), (low_cut, high_cut)
 
 
-def _last_flat(sampled, start: float, direction: int, width: float,
-               level: float = FLAT_NOISE) -> tuple[float, float, bool, bool]:
-    """The last of VALLEY_SAMPLES samples from ``start`` over ``width`` in ``direction``
-    before |f| first exceeds ``level``, whether none did (then the next window is 4
-    times wider), and whether the first sample that did is undefined (the domain's end)."""
+def _flat_end(direction: int, end: float, width: float, level: float):
+    """Lock-step search: one end of :func:`_flat_stretch`, and whether it is cut."""
+    for _ in range(8):
+        end, width, inside, undefined = yield from _last_flat(end, direction, width, level)
+        if not inside:
+            break
+    for _ in range(2):
+        end, width, inside, finer = yield from _last_flat(end, direction, width / (VALLEY_SAMPLES - 1), level)
+        undefined = finer if not inside else undefined
+    return end, bool(undefined)
+
+
+def _last_flat(start: float, direction: int, width: float, level: float = FLAT_NOISE):
+    """Lock-step search: the last of VALLEY_SAMPLES samples from ``start`` over ``width``
+    in ``direction`` before |f| first exceeds ``level``, whether none did (then the next
+    window is 4 times wider), and whether the first sample that did is undefined (the
+    domain's end)."""
     points = start + direction * np.linspace(0, width, VALLEY_SAMPLES)
-    values = sampled(points)
+    values = yield from _values(points)
     flat = np.abs(np.nan_to_num(values, nan=np.inf)) <= level
     if flat.all():
         return float(points[-1]), width * 4, True, False
@@ -348,113 +388,124 @@ TOUCH_TOLERANCE = 1e-12
 
 def _roots_at_touching_radicands(compiled: CompiledSystem, branch: np.ndarray, grid: np.ndarray,
                                  failures: np.ndarray, radicands: np.ndarray):
-    """Candidates where a free-sign radicand touches 0 from below: the branch's feasible
-    domain there is a single point, which no sample can hit (joints in line: on 9/N6 the
-    triangle P11 P1 P2 is flat only at s3,10 = 26 and its radicand ≈ −c(s − 26)² around,
-    docs/stability.md; thesis §5.1.3.1's T = 49 is the case with known sides, handled by
-    :func:`critical_values`). At every local maximum of a failing free-sign radicand
-    among the coarse samples (above −TOUCH_SEARCH, both neighbours failing at the same
-    step, or at an earlier one up to where they fail at it: :func:`_failing_at`; a
-    parabola through the three reaching near 0: :func:`_may_touch_zero`), the
-    radicand is maximised (bounded Brent); where the maximum reaches −TOUCH_TOLERANCE the point is a candidate with that
-    triangle flat (sign 0), verified like every other."""
+    """Lock-step search: candidates where a free-sign radicand touches 0 from below: the
+    branch's feasible domain there is a single point, which no sample can hit (joints in
+    line: on 9/N6 the triangle P11 P1 P2 is flat only at s3,10 = 26 and its radicand ≈
+    −c(s − 26)² around, docs/stability.md; thesis §5.1.3.1's T = 49 is the case with
+    known sides, handled by :func:`critical_values`). At every local maximum of a failing
+    free-sign radicand among the coarse samples (above −TOUCH_SEARCH, both neighbours
+    failing at the same step, or at an earlier one up to where they fail at it:
+    :func:`_failing_at`; a parabola through the three reaching near 0:
+    :func:`_may_touch_zero`), the radicand is maximised (bounded Brent); where the
+    maximum reaches −TOUCH_TOLERANCE the point is a candidate with that triangle flat
+    (sign 0), verified like every other. The bumps are searched side by side."""
     free_index = {}
     for index, step in enumerate(compiled.plan.steps):
         if step.free_sign:
             free_index[index] = len(free_index)
-    found = []
-    for i in _radicand_bumps(failures, radicands, len(compiled.plan.steps)):
-        step = int(failures[i])
-        if step not in free_index or radicands[i] < -TOUCH_SEARCH:
-            continue
-        sides = [_failing_at(compiled, branch, step, float(grid[i]), float(grid[n]), int(failures[n]), float(radicands[n]))
-                 for n in (i - 1, i + 1)]
-        if None in sides:
-            continue  # a bump next to a defined sample is a domain edge, the edge search's business
-        (low, left), (high, right) = sides
-        if not _may_touch_zero(np.array([low, grid[i], high]), np.array([left, radicands[i], right]), 1):
-            continue
-        k = free_index[step]
+    bumps = [i for i in _radicand_bumps(failures, radicands, len(compiled.plan.steps))
+             if int(failures[i]) in free_index and radicands[i] >= -TOUCH_SEARCH]
+    found = yield Together([_root_at_touching_radicand(branch, grid, failures, radicands, i, free_index[int(failures[i])])
+                            for i in bumps])
+    return [candidate for candidate in found if candidate is not None]
 
-        def negative_margin(s: float, k=k) -> float:
-            margin = compiled.failure_profile(np.array([[s]]), branch[None, :])[2][0, 0, k]
-            return -margin if np.isfinite(margin) else 10.0  # |relative radicand| ≤ 3: 10 is "undefined"
 
-        best = minimize_scalar(negative_margin, bounds=(low, high), method="bounded", options={"xatol": 1e-14 * high})
-        if best.success and best.fun <= TOUCH_TOLERANCE:
-            flat = branch.copy()
-            flat[k] = 0
-            # another free-sign triangle may turn flat at the same point (a domain edge:
-            # issue 25's 9/N21, where P11 P3 P4 touches flat at s8,10 = 10 exactly as
-            # P9 P5 P6 folds); by a rounding error it fails there, so it is taken flat too
-            margins = compiled.failure_profile(np.array([[best.x]]), flat[None, :])[2][0, 0]
-            flat[np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN] = 0
-            found.append((np.array([float(best.x)]), flat))
-    return found
+def _root_at_touching_radicand(branch: np.ndarray, grid: np.ndarray, failures: np.ndarray, radicands: np.ndarray,
+                               i: int, k: int):
+    """Lock-step search: the candidate of :func:`_roots_at_touching_radicands` at the
+    bump at sample ``i`` of free-sign step ``k``, or None."""
+    step = int(failures[i])
+    sides = yield Together([_failing_at(step, float(grid[i]), float(grid[n]), int(failures[n]), float(radicands[n]))
+                            for n in (i - 1, i + 1)])
+    if None in sides:
+        return None  # a bump next to a defined sample is a domain edge, the edge search's business
+    (low, left), (high, right) = sides
+    if not _may_touch_zero(np.array([low, grid[i], high]), np.array([left, radicands[i], right]), 1):
+        return None
+
+    def negative_margin(reply: Profile) -> float:
+        margin = reply.margins[0, k]
+        return -float(margin) if np.isfinite(margin) else 10.0  # |relative radicand| ≤ 3: 10 is "undefined"
+
+    x, value, success = yield from brent_minimum(negative_margin, low, high, 1e-14 * high)
+    if not (success and value <= TOUCH_TOLERANCE):
+        return None
+    flat = branch.copy()
+    flat[k] = 0
+    # another free-sign triangle may turn flat at the same point (a domain edge: issue
+    # 25's 9/N21, where P11 P3 P4 touches flat at s8,10 = 10 exactly as P9 P5 P6 folds);
+    # by a rounding error it fails there, so it is taken flat too
+    margins = (yield Samples(np.array([x]), flat)).margins[0]
+    flat[np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN] = 0
+    return np.array([float(x)]), flat
 
 
 #: At most this many of the narrowest windows are searched for a one-point domain.
 MAX_NARROW = 16
 
 
-def _roots_at_crossing_radicands(compiled: CompiledSystem, branch: np.ndarray, cells: list[tuple[float, float]]):
-    """Candidates where the branch's feasible domain is a single point at which one
-    free-sign radicand turns negative as another turns positive: left of it one step
-    fails, right of it another, and window refinement narrows the cell forever without
-    a sample landing on the point (issue 25's 9/N17 drawn at a double root, seed 28:
-    P11 P4 P3 and P12 P5 P6 both flat at s1,10 = 1 exactly, the generating mode, missed).
-    Of the first MAX_NARROW cells left by :func:`_with_windows`, those across which one
-    free-sign radicand turns negative and another positive (one vectorised evaluation of
-    their ends: a window edge between two failing steps, two per branch on 7-B1, has no
-    such pair) have the largest negated relative radicand of the free-sign steps
-    minimised (bounded Brent); where the minimum is at most TOUCH_TOLERANCE the point is
-    a candidate with every nearly flat triangle (FLAT_MARGIN) flat, verified like every
-    other."""
+def _roots_at_crossing_radicands(branch: np.ndarray, cells: list[tuple[float, float]]):
+    """Lock-step search: candidates where the branch's feasible domain is a single point
+    at which one free-sign radicand turns negative as another turns positive: left of it
+    one step fails, right of it another, and window refinement narrows the cell forever
+    without a sample landing on the point (issue 25's 9/N17 drawn at a double root, seed
+    28: P11 P4 P3 and P12 P5 P6 both flat at s1,10 = 1 exactly, the generating mode,
+    missed). Of the first MAX_NARROW cells left by :func:`_with_windows`, those across
+    which one free-sign radicand turns negative and another positive (one vectorised
+    evaluation of their ends: a window edge between two failing steps, two per branch on
+    7-B1, has no such pair) have the largest negated relative radicand of the free-sign
+    steps minimised (bounded Brent, the cells side by side); where the minimum is at most
+    TOUCH_TOLERANCE the point is a candidate with every nearly flat triangle
+    (FLAT_MARGIN) flat, verified like every other."""
     cells = cells[:MAX_NARROW]
     if not cells:
         return []
     ends = np.array(cells, dtype=float).ravel()
-    at_ends = compiled.failure_profile(ends[:, None], branch[None, :])[2][0].reshape(len(cells), 2, -1)
+    at_ends = (yield Samples(ends)).margins.reshape(len(cells), 2, -1)
     left, right = np.nan_to_num(at_ends[:, 0], nan=-1.0), np.nan_to_num(at_ends[:, 1], nan=-1.0)
     # a one-point domain needs one radicand turning negative and another turning positive
     crossing = ((left >= 0) & (right < 0)).any(axis=1) & ((left < 0) & (right >= 0)).any(axis=1)
-    found = []
-    for low, high in (cell for cell, keep in zip(cells, crossing, strict=True) if keep):
-
-        def infeasibility(s: float) -> float:
-            margins = compiled.failure_profile(np.array([[s]]), branch[None, :])[2][0, 0]
-            return float(np.max(-np.nan_to_num(margins, nan=-10.0))) if margins.size else 10.0
-
-        best = minimize_scalar(infeasibility, bounds=(low, high), method="bounded",
-                               options={"xatol": 1e-15 * max(abs(high), 1e-300)})
-        if best.success and best.fun <= TOUCH_TOLERANCE:
-            margins = compiled.failure_profile(np.array([[best.x]]), branch[None, :])[2][0, 0]
-            flat = branch.copy()
-            flat[np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN] = 0
-            found.append((np.array([float(best.x)]), flat))
-    return found
+    found = yield Together([_root_at_crossing_radicands(branch, low, high)
+                            for (low, high), keep in zip(cells, crossing, strict=True) if keep])
+    return [candidate for candidate in found if candidate is not None]
 
 
-def _failing_at(compiled: CompiledSystem, branch: np.ndarray, step: int, inside: float, outside: float,
-                failure: int, radicand: float) -> tuple[float, float] | None:
-    """The neighbour of a radicand bump at ``inside`` on the side of ``outside`` (which
-    fails at step ``failure`` with relative radicand ``radicand``): itself if it fails at
-    ``step`` too; if an earlier step fails there, the farthest of WINDOW_SAMPLES samples
-    towards it that still fails at ``step`` (issue 25's 9/N4 drawn at a domain edge: P12
-    P8 P7 touches flat at s1,4 = 58, the sample before it, 57.84, fails at an earlier
-    step, and the bump at 58.06 was skipped); None if it is defined or fails later (an
-    edge, the edge search's business)."""
+def _root_at_crossing_radicands(branch: np.ndarray, low: float, high: float):
+    """Lock-step search: the candidate of :func:`_roots_at_crossing_radicands` in the
+    cell [low, high], or None."""
+
+    def infeasibility(reply: Profile) -> float:
+        margins = reply.margins[0]
+        return float(np.max(-np.nan_to_num(margins, nan=-10.0))) if margins.size else 10.0
+
+    x, value, success = yield from brent_minimum(infeasibility, low, high, 1e-15 * max(abs(high), 1e-300))
+    if not (success and value <= TOUCH_TOLERANCE):
+        return None
+    margins = (yield Samples(np.array([x]))).margins[0]
+    flat = branch.copy()
+    flat[np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN] = 0
+    return np.array([float(x)]), flat
+
+
+def _failing_at(step: int, inside: float, outside: float, failure: int, radicand: float):
+    """Lock-step search: the neighbour of a radicand bump at ``inside`` on the side of
+    ``outside`` (which fails at step ``failure`` with relative radicand ``radicand``):
+    itself if it fails at ``step`` too; if an earlier step fails there, the farthest of
+    WINDOW_SAMPLES samples towards it that still fails at ``step`` (issue 25's 9/N4 drawn
+    at a domain edge: P12 P8 P7 touches flat at s1,4 = 58, the sample before it, 57.84,
+    fails at an earlier step, and the bump at 58.06 was skipped); None if it is defined
+    or fails later (an edge, the edge search's business)."""
     if failure == step:
         return outside, radicand
     if failure > step:
         return None
     points = np.linspace(inside, outside, WINDOW_SAMPLES)
-    codes, radicands, _ = compiled.failure_profile(points[:, None], branch[None, :])
-    same = np.flatnonzero(codes[0] == step)
+    reply = yield Samples(points)
+    same = np.flatnonzero(reply.failures == step)
     same = same[same == np.arange(len(same))]  # the run from ``inside``
     if len(same) < 2:
         return None
-    return float(points[same[-1]]), float(radicands[0, same[-1]])
+    return float(points[same[-1]]), float(reply.radicands[same[-1]])
 
 
 #: A free-sign triangle counts as flat at a domain edge when its radicand, relative to its
@@ -463,22 +514,23 @@ def _failing_at(compiled: CompiledSystem, branch: np.ndarray, step: int, inside:
 FLAT_MARGIN = 1e-4
 
 
-def _roots_at_folds(compiled: CompiledSystem, branch: np.ndarray, edges: list[tuple[float, float]]):
-    """Candidates at domain edges where free-sign triangles are flat and the residual has
-    opposite signs on branches that differ only in those triangles' signs. Across the
-    fold those branches are one curve, f(e ± δ) ≈ V ± W√δ, so opposite signs at the edge
-    found (δ ≈ 1e-14 of the cell) mean V ≈ 0: a mode with those triangles flat, where no
-    branch changes sign and none reaches |f| < 1e-7 at δ (joints in line: docs/stability.md;
-    on 9/N1 two triangles were flat at once). A candidate is placed with each non-empty
-    subset of the nearly flat triangles' signs 0 (their joints on the line) and verified
-    and polished like every other. Two vectorised evaluations for all edges."""
+def _roots_at_folds(branch: np.ndarray, edges: list[tuple[float, float]]):
+    """Lock-step search: candidates at domain edges where free-sign triangles are flat
+    and the residual has opposite signs on branches that differ only in those
+    triangles' signs. Across the fold those branches are one curve, f(e ± δ) ≈ V ± W√δ,
+    so opposite signs at the edge found (δ ≈ 1e-14 of the cell) mean V ≈ 0: a mode with
+    those triangles flat, where no branch changes sign and none reaches |f| < 1e-7 at δ
+    (joints in line: docs/stability.md; on 9/N1 two triangles were flat at once). A
+    candidate is placed with each non-empty subset of the nearly flat triangles' signs 0
+    (their joints on the line) and verified and polished like every other. Two
+    vectorised evaluations for all edges."""
     if not edges:
         return []
     points = np.array([edge for edge, _ in edges])
-    _, _, margins = compiled.failure_profile(points[:, None], branch[None, :])  # all edges at once
+    margins = (yield Samples(points)).margins  # all edges at once, (edges, free)
     folds, rows, variant_signs = [], [], []
     for i, (edge, value) in enumerate(edges):
-        flat = np.flatnonzero(np.abs(margins[0, i]) < FLAT_MARGIN) if margins.size else []
+        flat = np.flatnonzero(np.abs(margins[i]) < FLAT_MARGIN) if margins.size else []
         if not len(flat) or not np.isfinite(value):
             continue
         variants = np.repeat(branch[None, :], 2 ** len(flat), axis=0)
@@ -488,7 +540,7 @@ def _roots_at_folds(compiled: CompiledSystem, branch: np.ndarray, edges: list[tu
         variant_signs.append(variants)
     if not folds:
         return []
-    others = compiled.paired_residuals(np.array(rows)[:, None], np.concatenate(variant_signs))[:, 0]
+    others = (yield Samples(np.array(rows), np.concatenate(variant_signs))).residuals[:, 0]
     found = []
     for edge, flat, start, stop in folds:
         near = others[start:stop][np.isfinite(others[start:stop])]
@@ -564,28 +616,31 @@ def _radicand_dips(codes: np.ndarray, margins: np.ndarray, feasible: int) -> np.
     return np.flatnonzero(around & minimum) + 1
 
 
-def _with_windows(grid, values, failures, radicands, margins, sampled, failing, feasible):
-    """The grid plus :func:`window_samples`, with the values there; and the cells still
-    failing at different steps on both sides after WINDOW_DEPTH levels."""
-    added, cells = window_samples(grid, failures, radicands, margins, failing, feasible)
+def _with_windows(grid: np.ndarray, coarse: Profile, feasible: int):
+    """Lock-step search: the grid plus :func:`window_samples`, with f there; and the
+    cells still failing at different steps on both sides after WINDOW_DEPTH levels."""
+    added, residuals, cells = yield from window_samples(grid, coarse.failures, coarse.radicands, coarse.margins,
+                                                        feasible)
+    values = coarse.residuals[:, 0]
     if len(added) == 0:
         return grid, values, cells
-    return (*_merge(grid, values, added, sampled(added)), cells)
+    return (*_merge(grid, values, added, residuals[:, 0]), cells)
 
 
 def window_samples(grid: np.ndarray, failures: np.ndarray, radicands: np.ndarray, margins: np.ndarray,
-                   failing, feasible: int) -> tuple[np.ndarray, list[tuple[float, float]]]:
-    """Dense samples (sorted, without repeats) of one parameter wherever a feasible window
-    may hide between the samples ``grid`` of one branch: neighbours failing at different
-    steps, a local maximum of a failing radicand, or a local minimum of a free-sign one
+                   feasible: int):
+    """Lock-step search (:func:`~.lockstep.run_alone` runs it alone): dense samples
+    (sorted, without repeats) of one parameter wherever a feasible window may hide
+    between the samples ``grid`` of one branch: neighbours failing at different steps, a
+    local maximum of a failing radicand, or a local minimum of a free-sign one
     (``failures``, ``radicands``, ``margins``:
-    :meth:`~baranov.closure.CompiledSystem.failure_profile`); refined level by level with
-    ``failing`` (the first failing steps at given values), all cells of a level in one
-    vectorised evaluation. Also returns the cells still failing at different steps on
-    both sides after WINDOW_DEPTH levels: windows narrower than 64^-6 of a cell, possibly
-    a single point (:func:`_roots_at_crossing_radicands`). Cost: WINDOW_SAMPLES
+    :meth:`~baranov.closure.CompiledSystem.failure_profile`); refined level by level,
+    all cells of a level in one vectorised evaluation. Returns the samples, the closure
+    residuals there (shape (N, c)), and the cells still failing at different steps on
+    both sides after WINDOW_DEPTH levels: windows narrower than 64^-6 of a cell,
+    possibly a single point (:func:`_roots_at_crossing_radicands`). Cost: WINDOW_SAMPLES
     placements per suspect cell and level."""
-    extra = []
+    extra, residuals = [], []
     cells = [(grid[i], grid[i + 1]) for i in _window_cells(failures, feasible)]
     cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_bumps(failures, radicands, feasible)]
     cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_dips(failures, margins, feasible)]
@@ -593,8 +648,10 @@ def window_samples(grid: np.ndarray, failures: np.ndarray, radicands: np.ndarray
         if not cells:
             break
         points = np.concatenate([np.linspace(low, high, WINDOW_SAMPLES) for low, high in cells])
-        codes = failing(points)
+        reply = yield Samples(points)
+        codes = reply.failures
         extra.append(points)
+        residuals.append(reply.residuals)
         following = []
         for c in range(len(cells)):
             part = slice(c * WINDOW_SAMPLES, (c + 1) * WINDOW_SAMPLES)
@@ -603,7 +660,10 @@ def window_samples(grid: np.ndarray, failures: np.ndarray, radicands: np.ndarray
             cells = []
             break
         cells = following
-    return (np.unique(np.concatenate(extra)) if extra else np.zeros(0)), cells
+    if not extra:
+        return np.zeros(0), np.zeros((0, 0)), cells
+    points, first = np.unique(np.concatenate(extra), return_index=True)
+    return points, np.concatenate(residuals)[first], cells
 
 
 def _merge(points: np.ndarray, values: np.ndarray, more_points: np.ndarray, more_values: np.ndarray):
@@ -690,8 +750,8 @@ EDGE_LEVELS = 24
 EDGE_FLOOR = 1e-10
 
 
-def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
-    """Add the ends of the feasible domain (one per defined/undefined neighbour pair), and
+def _with_edges(points: np.ndarray, values: np.ndarray):
+    """Lock-step search: add the ends of the feasible domain (one per defined/undefined neighbour pair), and
     the defined samples the edge search made on the way, to the samples: f often turns
     quickly near an edge, and two roots between the last coarse sample and the edge show
     no sign change there (tests/regressions/11-missed-21.json); a root 3e-7 from an edge at
@@ -704,70 +764,99 @@ def _with_edges(points: np.ndarray, values: np.ndarray, sampled):
     cells = np.flatnonzero(finite[:-1] != finite[1:])
     if cells.size == 0:
         return points, values, []
-    found, seen_points, seen_values = _domain_edges(sampled, points[cells], points[cells + 1], finite[cells])
+    found, seen_points, seen_values = yield from _domain_edges(points[cells], points[cells + 1], finite[cells])
     inside = np.where(finite[cells], points[cells], points[cells + 1])[~np.isnan(found)]
     found = found[~np.isnan(found)]
     steps = found[:, None] + (inside - found)[:, None] * 4.0 ** -np.arange(1, EDGE_LEVELS + 1)
     steps = steps[np.abs(steps - found[:, None]) >= EDGE_FLOOR * np.abs(found[:, None])]
-    edge_values = sampled(found)
+    edge_values, step_values = np.split((yield from _values(np.concatenate([found, steps]))), [len(found)])
     edges = list(zip(found.tolist(), edge_values.tolist(), strict=True))
     # the edges are samples too: a root within 1e-10 (relative) of an edge changes sign only there
     more_points = np.concatenate([seen_points, steps, found])
-    more_values = np.concatenate([seen_values, sampled(steps), edge_values])
+    more_values = np.concatenate([seen_values, step_values, edge_values])
     return (*_merge(points, values, more_points, more_values), edges)
 
 
-def _scan(f, grid: np.ndarray, values: np.ndarray, sampled, near: list | None = None,
-          noise: list | None = None, resolution: float = 0.0, resample: bool = True, refined: bool = False) -> list[float]:
-    """Roots of f on sampled ``grid``: exact zeros, sign changes (Brent), and tangential
-    roots at local minima of |f| (bounded minimisation). A sign change across an
-    undefined gap narrower than the cell (Brent meets NaN) is re-sampled finely, with its
-    domain edges, once (``resample``). A run of sign changes across samples whose sign is
-    rounding noise at the parameter's ``resolution`` (:func:`_noise_runs`) gives one
-    root, the run's middle, and its stretch is appended to ``noise``."""
+class Scan(NamedTuple):
+    """What :func:`_scan` finds: roots, approximate roots (minima of |f| below NEAR_ROOT,
+    to polish) and stretches (low, high, sign changes) where f's sign is noise."""
+
+    roots: list[float]
+    near: list[float]
+    noise: list[tuple[float, float, int]]
+
+
+def _scan(grid: np.ndarray, values: np.ndarray, resolution: float = 0.0, resample: bool = True,
+          refined: bool = False):
+    """Lock-step search: the :class:`Scan` of f on sampled ``grid``: exact zeros, sign
+    changes (Brent), and tangential roots at local minima of |f| (bounded minimisation),
+    the brackets and minima side by side. A sign change across an undefined gap narrower
+    than the cell (Brent meets NaN) is re-sampled finely, with its domain edges, once
+    (``resample``). A run of sign changes across samples whose sign is rounding noise at
+    the parameter's ``resolution`` (:func:`_noise_runs`) gives one root, the run's
+    middle, and its stretch."""
     finite = np.isfinite(values)
     both = finite[:-1] & finite[1:]
     roots: list[float] = [float(grid[i]) for i in np.flatnonzero(finite & (values == 0))]
     cells = np.flatnonzero(both & (values[:-1] * values[1:] < 0))
-    single, runs = _noise_runs(sampled, grid, values, cells, resolution)
+    single, runs = yield from _noise_runs(grid, values, cells, resolution)
+    noise = []
     for first, last in runs:
         low, high = float(grid[first]), float(grid[last + 1])
         roots.append((low + high) / 2)
-        if noise is not None:
-            noise.append((low, high, last - first + 1))
-    for i in single:
-        try:
-            roots.append(brentq(f, grid[i], grid[i + 1], xtol=1e-14 * grid[i + 1], rtol=1e-15, maxiter=200))
-        except ValueError:  # f is undefined somewhere inside the bracket
-            if resample:
-                fine = np.linspace(grid[i], grid[i + 1], REFINEMENT)
-                points, fine_values, edges = _with_edges(fine, sampled(fine), sampled)
-                roots += [edge for edge, value in edges if abs(value) < 1e-7]
-                roots += _scan(f, points, fine_values, sampled, near, noise, resolution, resample=False)
+        noise.append((low, high, last - first + 1))
     minima = _suspicious_minima(grid, values)
     if refined:  # a fine re-sampling is quadratic between samples: only minima that may reach 0
         minima = [cell for cell in minima if _may_reach_zero(grid, values, cell)]
-    for low, high in _above_noise(sampled, grid, values, minima, resolution):
-        found = minimize_scalar(lambda s: abs(f(s)), bounds=(low, high), method="bounded",
-                                options={"xatol": 1e-14 * high})
-        if found.success and abs(f(found.x)) < 1e-7:
-            roots.append(_crossing_beside(f, low, float(found.x), high))
-        elif near is not None and found.success and abs(f(found.x)) < NEAR_ROOT:
-            near.append(float(found.x))
-    return roots
+    minima = yield from _above_noise(grid, values, minima, resolution)
+    found = yield Together([_bracketed(grid, values, i, resolution, resample) for i in single]
+                           + [_tangential(low, high) for low, high in minima])
+    return Scan(roots + [root for scan in found for root in scan.roots], [x for scan in found for x in scan.near],
+                noise + [stretch for scan in found for stretch in scan.noise])
 
 
-def _crossing_beside(f, low: float, at: float, high: float) -> float:
-    """``at``, a minimum of |f| below 1e-7 in (low, high), or the simple root next to it
-    where f changes sign between it and an end of the cell (Brent): where f is shallow
-    |f| < 1e-7 holds far from the root (a family-I robot of issue 18: slope 6.7e-5 at
-    s1,5 = 1044, the minimum accepted at 1043.9999929, which the clustering then kept
-    over Brent's 1044.00000000002)."""
-    value = f(at)
-    for a, b in ((low, at), (at, high)):
-        fa, fb = (f(a), value) if b == at else (value, f(b))
+def _bracketed(grid: np.ndarray, values: np.ndarray, i: int, resolution: float, resample: bool):
+    """Lock-step search: the :class:`Scan` of the sign-change cell i: Brent's root, or,
+    where f is undefined inside, the cell re-sampled finely with its domain edges
+    (``resample``)."""
+    low, high = float(grid[i]), float(grid[i + 1])
+    try:
+        return Scan([(yield from brent_root(low, high, float(values[i]), float(values[i + 1]), _value,
+                                            1e-14 * high, 1e-15))], [], [])
+    except UndefinedInside:
+        if not resample:
+            return Scan([], [], [])
+    fine = np.linspace(low, high, REFINEMENT)
+    points, fine_values, edges = yield from _with_edges(fine, (yield from _values(fine)))
+    inner = yield from _scan(points, fine_values, resolution, resample=False)
+    return Scan([edge for edge, value in edges if abs(value) < 1e-7] + inner.roots, inner.near, inner.noise)
+
+
+def _tangential(low: float, high: float):
+    """Lock-step search: the :class:`Scan` of a local minimum of |f| in (low, high): a
+    root where bounded minimisation brings |f| below 1e-7 (:func:`_crossing_beside`), an
+    approximate root below NEAR_ROOT, or nothing."""
+    x, value, success = yield from brent_minimum(lambda reply: abs(_value(reply)), low, high, 1e-14 * high)
+    if success and value < 1e-7:
+        return Scan([(yield from _crossing_beside(low, x, high))], [], [])
+    if success and value < NEAR_ROOT:
+        return Scan([], [x], [])
+    return Scan([], [], [])
+
+
+def _crossing_beside(low: float, at: float, high: float):
+    """Lock-step search: ``at``, a minimum of |f| below 1e-7 in (low, high), or the
+    simple root next to it where f changes sign between it and an end of the cell
+    (Brent): where f is shallow |f| < 1e-7 holds far from the root (a family-I robot of
+    issue 18: slope 6.7e-5 at s1,5 = 1044, the minimum accepted at 1043.9999929, which
+    the clustering then kept over Brent's 1044.00000000002)."""
+    f_low, value, f_high = (yield from _values(np.array([low, at, high]))).tolist()
+    for a, b, fa, fb in ((low, at, f_low, value), (at, high, value, f_high)):
         if np.isfinite(fa) and np.isfinite(fb) and fa * fb < 0:
-            return float(brentq(f, a, b, xtol=1e-14 * b, rtol=1e-15, maxiter=200))
+            try:
+                return (yield from brent_root(a, b, fa, fb, _value, 1e-14 * b, 1e-15))
+            except UndefinedInside:  # a gap of the domain between: the minimum stands
+                return at
     return at
 
 
@@ -802,9 +891,8 @@ def _may_reach_zero(grid: np.ndarray, values: np.ndarray, cell: tuple[float, flo
 SHARP_DIP = 0.1
 
 
-def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tuple[float, float]],
-                 resolution: float) -> list[tuple[float, float]]:
-    """The first MAX_MINIMA of ``minima`` (cells around a local minimum of |f| at their
+def _above_noise(grid: np.ndarray, values: np.ndarray, minima: list[tuple[float, float]], resolution: float):
+    """Lock-step search: the first MAX_MINIMA of ``minima`` (cells around a local minimum of |f| at their
     middle sample) whose dip below both neighbours exceeds the spread of f re-evaluated at
     offsets JITTER × ``resolution`` from the minimum: where f is rounding noise every
     other sample is a "minimum" (issue 25's 9/N10: 972 bounded minimisations near s5,10 =
@@ -814,7 +902,7 @@ def _above_noise(sampled, grid: np.ndarray, values: np.ndarray, minima: list[tup
     minima = minima[:4 * MAX_MINIMA]
     index = np.searchsorted(grid, [low for low, _ in minima]) + 1  # a cell is (grid[i − 1], grid[i + 1])
     centres = grid[index][:, None]
-    jittered = sampled((centres + JITTER * np.minimum(resolution, np.abs(centres) / 8)).ravel())
+    jittered = yield from _values((centres + JITTER * np.minimum(resolution, np.abs(centres) / 8)).ravel())
     spread = np.ptp(jittered.reshape(len(index), len(JITTER)), axis=1)
     magnitude = np.abs(values)
     dip = np.minimum(magnitude[index - 1], magnitude[index + 1]) - magnitude[index]
@@ -833,8 +921,8 @@ NOISE_CROWD = 24
 NOISE_GAP = 8
 
 
-def _noise_runs(sampled, grid: np.ndarray, values: np.ndarray, cells: np.ndarray, resolution: float):
-    """Split the sign-change cells ``cells`` (f(grid[i]) f(grid[i+1]) < 0) into lone cells,
+def _noise_runs(grid: np.ndarray, values: np.ndarray, cells: np.ndarray, resolution: float):
+    """Lock-step search: split the sign-change cells ``cells`` (f(grid[i]) f(grid[i+1]) < 0) into lone cells,
     to bracket, and stretches of cells whose sign rounding decides: f re-evaluated at
     offsets JITTER × ``resolution`` (at most an eighth of the sample) from an end of the
     cell takes both signs. Noisy cells at most NOISE_GAP cells apart form one stretch;
@@ -850,7 +938,7 @@ def _noise_runs(sampled, grid: np.ndarray, values: np.ndarray, cells: np.ndarray
     ends = np.unique(np.concatenate([cells, cells + 1]))
     centres = grid[ends][:, None]
     points = (centres + JITTER * np.minimum(resolution, np.abs(centres) / 8)).ravel()
-    jittered = sampled(points).reshape(len(ends), len(JITTER))
+    jittered = (yield from _values(points)).reshape(len(ends), len(JITTER))
     noisy_ends = ends[~(np.sign(jittered) == np.sign(values[ends])[:, None]).all(axis=1)]
     noisy = np.isin(cells, noisy_ends) | np.isin(cells + 1, noisy_ends)
     if len(cells) > NOISE_CROWD:  # more sign changes than a closure condition has roots here: noise
@@ -869,15 +957,15 @@ def _noise_runs(sampled, grid: np.ndarray, values: np.ndarray, cells: np.ndarray
     return sorted(single), runs
 
 
-def _domain_edges(sampled, lows: np.ndarray, highs: np.ndarray, inside_low: np.ndarray):
-    """The boundaries of the feasible domain in the cells (``lows``, ``highs``), each on
+def _domain_edges(lows: np.ndarray, highs: np.ndarray, inside_low: np.ndarray):
+    """Lock-step search: the boundaries of the feasible domain in the cells (``lows``, ``highs``), each on
     its defined side (``inside_low``: the low end is defined): 7 rounds of 64 samples per
     cell (resolution 64^-7 of the cell), each round one vectorised evaluation for all
     cells. Returns the edges (NaN where the search ends undefined) and the defined samples
     of the first two rounds (spread over the cells and over their last 64th; the later
     rounds crowd at the edges, where rounding noise would only add spurious minima:
     keeping all seven made the 5/B1 example 300 times slower). Cost: 7 × 64 evaluations
-    per cell, in 8 calls of ``sampled`` (one call per cell per round made issue 25's
+    per cell, in 8 requests (one evaluation per cell per round made issue 25's
     9/N9, whose domain flickers with rounding along a stretch, spend 56 s in 17 900
     searches)."""
     inside = np.where(inside_low, lows, highs).astype(float)
@@ -890,7 +978,7 @@ def _domain_edges(sampled, lows: np.ndarray, highs: np.ndarray, inside_low: np.n
         if rows.size == 0:
             break
         points = inside[rows, None] + (outside[rows] - inside[rows])[:, None] * fractions
-        values = sampled(points.ravel()).reshape(points.shape)
+        values = (yield from _values(points.ravel())).reshape(points.shape)
         defined = np.isfinite(values)
         if round_number < 2:
             kept_points.append(points[defined])
@@ -902,5 +990,5 @@ def _domain_edges(sampled, lows: np.ndarray, highs: np.ndarray, inside_low: np.n
         rows, first = rows[moving], first[moving]
         inside[rows] = points[moving, first - 1]
         outside[rows] = points[moving, first]
-    edges = np.where(np.isfinite(sampled(inside)), inside, np.nan)
+    edges = np.where(np.isfinite((yield from _values(inside))), inside, np.nan)
     return edges, np.concatenate(kept_points), np.concatenate(kept_values)
