@@ -90,12 +90,12 @@ def roots_at_critical_values(compiled: CompiledSystem, branches: np.ndarray, val
     _, _, margins = compiled.failure_profile(points, branches)  # (B, N, free)
     flat = np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_MARGIN
     variants = np.where(flat, 0, branches[:, None, :])  # (B, N, free)
-    found = []
-    for n, value in enumerate(values):
-        tried = np.unique(np.concatenate([branches, variants[:, n]]), axis=0)
-        residuals = np.abs(compiled.residuals(points[n:n + 1], tried)[:, 0, 0])
-        found += [(np.array([value]), tried[b]) for b in np.flatnonzero(residuals < 1e-9)]
-    return found
+    tried = [np.unique(np.concatenate([branches, variants[:, n]]), axis=0) for n in range(len(values))]
+    rows = np.repeat(np.array(values), [len(signs) for signs in tried])
+    residuals = np.abs(compiled.paired_residuals(rows[:, None], np.concatenate(tried))[:, 0])  # all in one evaluation
+    closing = np.split(residuals < 1e-9, np.cumsum([len(signs) for signs in tried])[:-1])
+    return [(np.array([value]), signs[b]) for value, signs, closes in zip(values, tried, closing, strict=True)
+            for b in np.flatnonzero(closes)]
 
 
 #: A free-sign triangle whose relative radicand is within FLAT_NOISE of 0 at FLAT_SAMPLES
@@ -190,9 +190,25 @@ def _branch_roots(compiled: CompiledSystem, grid: np.ndarray, coarse: Profile, b
     """Lock-step search: the candidates of one branch from its ``coarse`` samples on
     ``grid``, the approximate roots to polish and the sentences for ``undecided``
     (:func:`one_parameter_roots`; ``resolution``: the parameter's, RESOLUTION × its upper
-    bound)."""
+    bound). The roots of f and the one-point domains (folds, touching and crossing
+    radicands) are searched side by side."""
     points, values, narrow = yield from _with_windows(grid, coarse, len(compiled.plan.steps))
     points, values, edges = yield from _with_edges(points, values)
+    (roots, near, sentences), *one_point = yield Together([
+        _roots_of_condition(compiled, points, values, edges, branch, resolution),
+        _roots_at_folds(branch, edges),
+        _roots_at_touching_radicands(compiled, branch, grid, coarse.failures, coarse.radicands),
+        _roots_at_crossing_radicands(branch, narrow)])
+    candidates = [(np.array([root]), branch) for root in roots] + [found for part in one_point for found in part]
+    return candidates, [(np.array([x]), branch) for x in near], sentences
+
+
+def _roots_of_condition(compiled: CompiledSystem, points: np.ndarray, values: np.ndarray,
+                        edges: list[tuple[float, float]], branch: np.ndarray, resolution: float):
+    """Lock-step search: the roots of f on one branch from its samples (windows and edges
+    included), the approximate roots to polish, and the sentences on flat valleys and
+    noise stretches: roots at edges, :func:`_scan`, the cells next to roots and around
+    minima re-sampled (side by side), flat valleys and noise stretches merged."""
     roots = [edge for edge, value in edges if abs(value) < 1e-7]
     scans = [(yield from _scan(points, values, resolution))]
     cells = _next_to_roots(points, roots + scans[0].roots) + _suspicious_minima(points, values)[:MAX_MINIMA]
@@ -214,13 +230,7 @@ def _branch_roots(compiled: CompiledSystem, grid: np.ndarray, coarse: Profile, b
                   f"sign is rounding noise there ({changes} sign changes); reported as one mode"
                   for low, high, changes in stretches
                   if not any(a <= low and high <= b for a, b in valleys)]  # said already
-    candidates = [(np.array([root]), branch) for root in roots]
-    for found in (yield Together([_roots_at_folds(branch, edges),
-                                  _roots_at_touching_radicands(compiled, branch, grid, coarse.failures,
-                                                               coarse.radicands),
-                                  _roots_at_crossing_radicands(branch, narrow)])):
-        candidates += found
-    return candidates, [(np.array([x]), branch) for x in near], sentences
+    return roots, near, sentences
 
 
 def _refined_scan(low: float, high: float, resolution: float):
@@ -647,19 +657,18 @@ def window_samples(grid: np.ndarray, failures: np.ndarray, radicands: np.ndarray
     for _ in range(WINDOW_DEPTH):
         if not cells:
             break
-        points = np.concatenate([np.linspace(low, high, WINDOW_SAMPLES) for low, high in cells])
-        reply = yield Samples(points)
-        codes = reply.failures
-        extra.append(points)
+        ends = np.array(cells, dtype=float)
+        points = np.linspace(ends[:, 0], ends[:, 1], WINDOW_SAMPLES, axis=1)  # (cells, WINDOW_SAMPLES)
+        reply = yield Samples(points.ravel())
+        extra.append(points.ravel())
         residuals.append(reply.residuals)
-        following = []
-        for c in range(len(cells)):
-            part = slice(c * WINDOW_SAMPLES, (c + 1) * WINDOW_SAMPLES)
-            following += [(points[part][i], points[part][i + 1]) for i in _window_cells(codes[part], feasible)]
-        if len(following) > WINDOW_CROWD:  # the failing step flickers at rounding noise: no window converges
+        codes = reply.failures.reshape(points.shape)
+        # _window_cells within each cell's samples, all cells at once
+        cell, i = np.nonzero((codes[:, :-1] != codes[:, 1:]) & (codes[:, :-1] < feasible) & (codes[:, 1:] < feasible))
+        if len(cell) > WINDOW_CROWD:  # the failing step flickers at rounding noise: no window converges
             cells = []
             break
-        cells = following
+        cells = list(zip(points[cell, i].tolist(), points[cell, i + 1].tolist(), strict=True))
     if not extra:
         return np.zeros(0), np.zeros((0, 0)), cells
     points, first = np.unique(np.concatenate(extra), return_index=True)
@@ -764,12 +773,12 @@ def _with_edges(points: np.ndarray, values: np.ndarray):
     cells = np.flatnonzero(finite[:-1] != finite[1:])
     if cells.size == 0:
         return points, values, []
-    found, seen_points, seen_values = yield from _domain_edges(points[cells], points[cells + 1], finite[cells])
-    inside = np.where(finite[cells], points[cells], points[cells + 1])[~np.isnan(found)]
-    found = found[~np.isnan(found)]
+    inside = np.where(finite[cells], points[cells], points[cells + 1])
+    found, edge_values, seen_points, seen_values = yield from _domain_edges(
+        points[cells], points[cells + 1], finite[cells], np.where(finite[cells], values[cells], values[cells + 1]))
     steps = found[:, None] + (inside - found)[:, None] * 4.0 ** -np.arange(1, EDGE_LEVELS + 1)
     steps = steps[np.abs(steps - found[:, None]) >= EDGE_FLOOR * np.abs(found[:, None])]
-    edge_values, step_values = np.split((yield from _values(np.concatenate([found, steps]))), [len(found)])
+    step_values = yield from _values(steps)
     edges = list(zip(found.tolist(), edge_values.tolist(), strict=True))
     # the edges are samples too: a root within 1e-10 (relative) of an edge changes sign only there
     more_points = np.concatenate([seen_points, steps, found])
@@ -799,16 +808,16 @@ def _scan(grid: np.ndarray, values: np.ndarray, resolution: float = 0.0, resampl
     both = finite[:-1] & finite[1:]
     roots: list[float] = [float(grid[i]) for i in np.flatnonzero(finite & (values == 0))]
     cells = np.flatnonzero(both & (values[:-1] * values[1:] < 0))
-    single, runs = yield from _noise_runs(grid, values, cells, resolution)
+    minima = _suspicious_minima(grid, values)
+    if refined:  # a fine re-sampling is quadratic between samples: only minima that may reach 0
+        minima = [cell for cell in minima if _may_reach_zero(grid, values, cell)]
+    (single, runs), minima = yield Together([_noise_runs(grid, values, cells, resolution),
+                                             _above_noise(grid, values, minima, resolution)])
     noise = []
     for first, last in runs:
         low, high = float(grid[first]), float(grid[last + 1])
         roots.append((low + high) / 2)
         noise.append((low, high, last - first + 1))
-    minima = _suspicious_minima(grid, values)
-    if refined:  # a fine re-sampling is quadratic between samples: only minima that may reach 0
-        minima = [cell for cell in minima if _may_reach_zero(grid, values, cell)]
-    minima = yield from _above_noise(grid, values, minima, resolution)
     found = yield Together([_bracketed(grid, values, i, resolution, resample) for i in single]
                            + [_tangential(low, high) for low, high in minima])
     return Scan(roots + [root for scan in found for root in scan.roots], [x for scan in found for x in scan.near],
@@ -957,18 +966,19 @@ def _noise_runs(grid: np.ndarray, values: np.ndarray, cells: np.ndarray, resolut
     return sorted(single), runs
 
 
-def _domain_edges(lows: np.ndarray, highs: np.ndarray, inside_low: np.ndarray):
-    """Lock-step search: the boundaries of the feasible domain in the cells (``lows``, ``highs``), each on
-    its defined side (``inside_low``: the low end is defined): 7 rounds of 64 samples per
-    cell (resolution 64^-7 of the cell), each round one vectorised evaluation for all
-    cells. Returns the edges (NaN where the search ends undefined) and the defined samples
-    of the first two rounds (spread over the cells and over their last 64th; the later
-    rounds crowd at the edges, where rounding noise would only add spurious minima:
-    keeping all seven made the 5/B1 example 300 times slower). Cost: 7 × 64 evaluations
-    per cell, in 8 requests (one evaluation per cell per round made issue 25's
-    9/N9, whose domain flickers with rounding along a stretch, spend 56 s in 17 900
-    searches)."""
+def _domain_edges(lows: np.ndarray, highs: np.ndarray, inside_low: np.ndarray, inside_values: np.ndarray):
+    """Lock-step search: the boundaries of the feasible domain in the cells (``lows``,
+    ``highs``), each on its defined side (``inside_low``: the low end is defined, f there
+    ``inside_values``): 7 rounds of 64 samples per cell (resolution 64^-7 of the cell),
+    each round one vectorised evaluation for all cells. Returns the edges and f there
+    (each edge is a defined sample), and the defined samples of the first two rounds
+    (spread over the cells and over their last 64th; the later rounds crowd at the
+    edges, where rounding noise would only add spurious minima: keeping all seven made
+    the 5/B1 example 300 times slower). Cost: 7 × 64 evaluations per cell, in 7 requests
+    (one evaluation per cell per round made issue 25's 9/N9, whose domain flickers with
+    rounding along a stretch, spend 56 s in 17 900 searches)."""
     inside = np.where(inside_low, lows, highs).astype(float)
+    inside_values = np.array(inside_values, dtype=float)
     outside = np.where(inside_low, highs, lows).astype(float)
     active = np.ones(len(inside), dtype=bool)
     kept_points, kept_values = [], []
@@ -989,6 +999,6 @@ def _domain_edges(lows: np.ndarray, highs: np.ndarray, inside_low: np.ndarray):
         active[rows[~moving]] = False
         rows, first = rows[moving], first[moving]
         inside[rows] = points[moving, first - 1]
+        inside_values[rows] = values[moving, first - 1]
         outside[rows] = points[moving, first]
-    edges = np.where(np.isfinite((yield from _values(inside))), inside, np.nan)
-    return edges, np.concatenate(kept_points), np.concatenate(kept_values)
+    return inside, inside_values, np.concatenate(kept_points), np.concatenate(kept_values)
