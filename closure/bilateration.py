@@ -225,8 +225,10 @@ def signed_root(radicand, sides, sign):
     triangle taken flat)."""
     s_ij, s_ik, s_jk = sides
     noise = -RADICAND_NOISE * np.maximum(np.maximum(s_ij, s_ik), s_jk) ** 2
-    with np.errstate(invalid="ignore"):
-        root = sign * np.sqrt(np.where(radicand >= noise, np.maximum(radicand, 0.0), np.nan))
+    # no errstate needed: the square root sees only values ≥ 0 and NaN, which raise nothing
+    root = sign * np.sqrt(np.where(radicand >= noise, np.maximum(radicand, 0.0), np.nan))
+    if type(sign) is int:  # a link step's fixed orientation
+        return root if sign != 0 else np.zeros_like(root)
     flat = np.asarray(sign) == 0
     if not flat.any():  # the usual case: no flat triangle asked for
         return root
