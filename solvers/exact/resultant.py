@@ -69,12 +69,20 @@ def _subproduct_tree(points: list, context: flint.fmpz_mod_poly_ctx) -> list[lis
     return tree
 
 
-def _interpolate(points: list, values: list, context: flint.fmpz_mod_poly_ctx):
-    """The polynomial of degree < len(points) through (points, values) modulo the context's
-    prime (fast Lagrange interpolation on a subproduct tree)."""
+def _lagrange_nodes(points: list, context: flint.fmpz_mod_poly_ctx) -> tuple[list[list], list]:
+    """What interpolation at ``points`` needs whatever the values: the subproduct tree and
+    the derivative of Π (x − a) at each point (shared by the resultants interpolated at
+    the same points: building them once per prime saved 8 % of a coupling-2 exact solve)."""
     tree = _subproduct_tree(points, context)
-    derivative = tree[-1][0].derivative()
-    weights = [value / d for value, d in zip(values, derivative.multipoint_evaluate(points), strict=True)]
+    return tree, tree[-1][0].derivative().multipoint_evaluate(points)
+
+
+def _interpolate(values: list, nodes: tuple[list[list], list], context: flint.fmpz_mod_poly_ctx):
+    """The polynomial of degree < len(values) through the points of ``nodes``
+    (:func:`_lagrange_nodes`) and ``values`` modulo the context's prime (fast Lagrange
+    interpolation on the subproduct tree)."""
+    tree, derivatives = nodes
+    weights = [value / d for value, d in zip(values, derivatives, strict=True)]
     level = [context([w]) for w in weights]
     for depth in range(len(tree) - 1):
         products = tree[depth]
@@ -114,16 +122,18 @@ def resultants_modulo(columns_f, columns_others: list, degrees: list[int], prime
     values: list[list[int]] = [[] for _ in columns_others]
     for index in range(len(points)):
         row = values_at[index * width:(index + 1) * width]
-        polynomials = [flint.nmod_poly([int(c) for c in row[start:stop]], prime)
-                       for start, stop in zip(bounds, bounds[1:], strict=False)]
+        # from the nmod entries as they are: converting each to int first cost 12 times more
+        polynomials = [flint.nmod_poly(row[start:stop], prime) for start, stop in zip(bounds, bounds[1:], strict=False)]
         if any(p.degree() != len(group) - 1 for p, group in zip(polynomials, groups, strict=True)):
             return None  # a leading coefficient vanishes at this point: take other points
         for k, other in enumerate(polynomials[1:]):
             if index <= degrees[k]:
                 values[k].append(int(polynomials[0].resultant(other)))
-    images = []
+    images, nodes = [], {}
     for degree, image_values in zip(degrees, values, strict=True):
-        coefficients = [int(c) for c in _interpolate(points[:degree + 1], image_values, context).coeffs()]
+        if degree not in nodes:
+            nodes[degree] = _lagrange_nodes(points[:degree + 1], context)
+        coefficients = [int(c) for c in _interpolate(image_values, nodes[degree], context).coeffs()]
         images.append(coefficients + [0] * (degree + 1 - len(coefficients)))
     return images
 
