@@ -148,9 +148,9 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     values, failures = compiled.paired_residuals_and_failures(grid.reshape(-1, 2) ** 2,
                                                              np.repeat(signs, side * side, axis=0))
     values, failures = values.reshape(count, side, side, 2), failures.reshape(count, side, side)
-    along_first = _boundary(compiled, signs, grid[:, :-1, :, :], grid[:, 1:, :, :], failures[:, :-1], failures[:, 1:])
-    along_second = _boundary(compiled, signs, grid[:, :, :-1, :], grid[:, :, 1:, :], failures[:, :, :-1],
-                             failures[:, :, 1:])
+    along_first, along_second = _boundary(compiled, signs, [
+        (grid[:, :-1, :, :], grid[:, 1:, :, :], failures[:, :-1], failures[:, 1:]),
+        (grid[:, :, :-1, :], grid[:, :, 1:, :], failures[:, :, :-1], failures[:, :, 1:])])
     # the values seen by cell (i, j): four corners and the boundary points on its four
     # edges, as eight views (C, n, n, 2) — not stacked: reducing a stacked (C, n, n, 8, 2)
     # array over its sample axis took 1.1 of a 1.2 s first level (16 branches, 160²)
@@ -295,7 +295,7 @@ def _paired(compiled: CompiledSystem, roots_of_parameters: np.ndarray, signs: np
     return compiled.paired_residuals(roots_of_parameters**2, signs)
 
 
-def _boundary(compiled, signs, first, second, first_failures, second_failures):
+def _boundary(compiled, signs, sides: list[tuple]) -> list[tuple]:
     """Where the first failing step changes along each grid edge (first → second), found
     by bisection (BOUNDARY_STEPS steps) and kept on the side that fails later, with the
     values there: where the feasible domain begins on an edge with one end defined, and
@@ -311,35 +311,62 @@ def _boundary(compiled, signs, first, second, first_failures, second_failures):
     between the boundary and the nearest grid point they can dip to 0 and back unseen
     (issue 25, seed 41: 9/N27 drawn at a domain edge, a mode 0.0125 inside the edge line
     of s1,11 in a cell 0.058 tall; f_2 is 3.5 on the boundary, 3.4 at the corners and
-    negative on an interval 0.004 wide beside the mode)."""
-    crossing = first_failures != second_failures
-    points, far = np.full(first.shape, np.nan), np.full(first.shape, np.nan)
-    values = np.full((*first.shape[:-1], 2), np.nan)
-    inner = _EdgeSamples.empty(first.shape[:-1])
-    index = np.nonzero(crossing)
-    if len(index[0]) == 0:
-        return points, values, far, inner
-    first_later = (first_failures[index] > second_failures[index])[:, None]
-    beyond = np.where(first_later, first[index], second[index])
-    earlier = np.where(first_later, second[index], first[index])
-    later_failure = np.maximum(first_failures[index], second_failures[index])
-    edge_signs = signs[index[0]]
+    negative on an interval 0.004 wide beside the mode).
+
+    ``sides``: (first, second, first_failures, second_failures) of each set of grid edges
+    (the edges along each axis of a level), searched together — one bisection for all
+    (sequential rounds halved against a search per axis, the same values) — and returned
+    apart: (points, values, far, inner samples) per set."""
+    selected = []
+    for first, second, first_failures, second_failures in sides:
+        index = np.nonzero(first_failures != second_failures)
+        first_later = (first_failures[index] > second_failures[index])[:, None]
+        selected.append((index, np.where(first_later, first[index], second[index]),
+                         np.where(first_later, second[index], first[index]),
+                         np.maximum(first_failures[index], second_failures[index]), signs[index[0]]))
+    beyond, earlier, later_failure, edge_signs = (np.concatenate([part[k] for part in selected])
+                                                  for k in range(1, 5))
+    if len(later_failure):  # else nothing to search (and 30 rounds of empty evaluations to spare)
+        later, values, far, inner = _boundary_points(compiled, edge_signs, beyond, earlier, later_failure)
+    found, start = [], 0
+    for (first, _, _, _), (index, *_) in zip(sides, selected, strict=True):
+        mine = slice(start, start + len(index[0]))
+        start = mine.stop
+        points, far_points = np.full(first.shape, np.nan), np.full(first.shape, np.nan)
+        at_points = np.full((*first.shape[:-1], 2), np.nan)
+        if len(later_failure):
+            points[index], at_points[index], far_points[index] = later[mine], values[mine], far[mine]
+        samples = _EdgeSamples.empty(first.shape[:-1])
+        edges = np.flatnonzero(inner[0][mine]) if len(later_failure) else []
+        if len(edges):
+            samples.record(tuple(axis[edges] for axis in index), inner[1][mine][edges], inner[2][mine][edges])
+        found.append((points, at_points, far_points, samples))
+    return found
+
+
+def _boundary_points(compiled, edge_signs, beyond, earlier, later_failure):
+    """For grid edges from ``beyond`` (failing later, at ``later_failure``) to ``earlier``
+    (:func:`_boundary`): where the failing step changes, f there, where a strip found
+    there ends (NaN where none), and (which edges have a defined end, their EDGE_SAMPLES
+    points, f there)."""
     later = _bisection(compiled, edge_signs, beyond, earlier, lambda failure: failure >= later_failure)
-    points[index] = later
-    values[index] = _paired(compiled, later, edge_signs)
+    values = _paired(compiled, later, edge_signs)
     feasible = len(compiled.plan.steps)
-    in_strip = np.flatnonzero((later_failure < feasible) & np.isfinite(values[index]).all(axis=-1))
+    far = np.full(later.shape, np.nan)
+    in_strip = np.flatnonzero((later_failure < feasible) & np.isfinite(values).all(axis=-1))
     if len(in_strip):
-        end = _bisection(compiled, edge_signs[in_strip], later[in_strip], beyond[in_strip],
-                         lambda failure: failure == feasible)
-        far[tuple(axis[in_strip] for axis in index)] = end
-    edge = np.flatnonzero(later_failure == feasible)
-    if len(edge):
-        fractions = (np.arange(1, EDGE_SAMPLES + 1) / (EDGE_SAMPLES + 1)) ** 2
-        samples = later[edge, None] + (beyond[edge] - later[edge])[:, None] * fractions[:, None]
-        sampled = _paired(compiled, samples.reshape(-1, 2), np.repeat(edge_signs[edge], EDGE_SAMPLES, axis=0))
-        inner.record(tuple(axis[edge] for axis in index), samples, sampled.reshape(samples.shape))
-    return points, values, far, inner
+        far[in_strip] = _bisection(compiled, edge_signs[in_strip], later[in_strip], beyond[in_strip],
+                                   lambda failure: failure == feasible)
+    edge = later_failure == feasible
+    fractions = (np.arange(1, EDGE_SAMPLES + 1) / (EDGE_SAMPLES + 1)) ** 2
+    samples = later[edge, None] + (beyond[edge] - later[edge])[:, None] * fractions[:, None]
+    sampled = np.full((len(later), EDGE_SAMPLES, 2), np.nan)
+    if edge.any():
+        sampled[edge] = _paired(compiled, samples.reshape(-1, 2),
+                                np.repeat(edge_signs[edge], EDGE_SAMPLES, axis=0)).reshape(samples.shape)
+    points = np.full((len(later), EDGE_SAMPLES, 2), np.nan)
+    points[edge] = samples
+    return later, values, far, (edge, points, sampled)
 
 
 def _bisection(compiled, signs, good, bad, is_good):
