@@ -33,7 +33,7 @@ from baranov.scene import Scene
 from ..modes import MovableLinkageError, signs_text
 from ..progress import report_stage
 from .brent import UndefinedInside, brent_minimum, brent_root
-from .lockstep import Samples, Together, paired_profile, run_lockstep
+from .lockstep import Samples, Search, Together, paired_profile, run_lockstep
 
 #: A local minimum of |f| below this but not below 1e-7 (a root where f is not smooth:
 #: f ≈ c√|s − s0| at a singular mode, issue 25's 7/N3 instance at s1,9 = 13 with P6 = P9
@@ -239,8 +239,8 @@ def _refined_scan(low: float, high: float, resolution: float):
     return (yield from _scan(fine, (yield from _values(fine)), resolution, refined=True))
 
 
-def _values(points) -> np.ndarray:
-    """Lock-step search: f at ``points`` (NaN where undefined)."""
+def _values(points) -> Search:
+    """Lock-step search: f at ``points`` (NaN where undefined), an array."""
     return (yield Samples(np.asarray(points, dtype=float))).residuals[:, 0]
 
 
