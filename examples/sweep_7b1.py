@@ -9,7 +9,6 @@ It prints the instances, the modes per instance and the seconds per instance.
 
 from __future__ import annotations
 
-import io
 import sys
 import time
 from fractions import Fraction
@@ -22,6 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import baranov  # noqa: E402
 from baranov.catalog.files import write_atomically  # noqa: E402
+from baranov.solvers.drawing import png_bytes  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -50,9 +50,7 @@ def main(count: int = 401) -> None:
     axes.set_ylabel(f"{name} of each assembly mode")
     axes.set_title(f"7/B1: assembly modes along a sweep of link b12 ({count} instances, baranov.solve_many)")
     axes.legend(title="signs", fontsize=8, markerscale=3)
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=110, bbox_inches="tight")
-    write_atomically(ROOT / "docs" / "images" / "sweep-7-B1.png", buffer.getvalue())
+    write_atomically(ROOT / "docs" / "images" / "sweep-7-B1.png", png_bytes(figure, tight=True))
     print("wrote docs/images/sweep-7-B1.png")
 
 

@@ -17,7 +17,6 @@ Run from the repository's root: ``.venv/bin/python examples/workspace_3rpr.py [S
 
 from __future__ import annotations
 
-import io
 import sys
 import time
 from collections import Counter
@@ -33,6 +32,7 @@ from matplotlib.colors import BoundaryNorm, ListedColormap  # noqa: E402
 import baranov  # noqa: E402
 from baranov.catalog.files import write_atomically  # noqa: E402
 from baranov.robots import load_robot, locked_scene  # noqa: E402
+from baranov.solvers.drawing import png_bytes  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 #: Leg lengths swept (ρ1, ρ2 from 0 to LONGEST, the first sample excluded) and the third.
@@ -64,9 +64,7 @@ def main(side: int = 160) -> None:
     axes.set_title(f"3-RPR of thesis §5.1.3.1, ρ3 = {THIRD}: poses over {side}×{side} leg lengths\n"
                    "(baranov.solve_many on the locked robot)", fontsize=10)
     axes.legend(loc="upper left", fontsize=8)
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=110, bbox_inches="tight")
-    write_atomically(ROOT / "docs" / "images" / "workspace-3-RPR-I.png", buffer.getvalue())
+    write_atomically(ROOT / "docs" / "images" / "workspace-3-RPR-I.png", png_bytes(figure, tight=True))
     print("wrote docs/images/workspace-3-RPR-I.png")
 
 

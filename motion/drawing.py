@@ -4,8 +4,6 @@ curves, the path of a tracer joint along every piece, in the same colours."""
 
 from __future__ import annotations
 
-import io
-
 from .configuration_space import OneDofSystem, sign_index
 from .tracing import Trace
 
@@ -22,6 +20,8 @@ def render_trace(system: OneDofSystem, traced: Trace, tracers: list[str],
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from baranov.solvers.drawing import png_bytes
 
     names = system.parameter_names
     colours = plt.get_cmap("tab20")
@@ -56,7 +56,6 @@ def render_trace(system: OneDofSystem, traced: Trace, tracers: list[str],
     paths.set_aspect("equal")
     paths.set_title(f"coupler curves of {', '.join(tracers)} (fixed joints ▲)")
     figure.tight_layout()
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=110)
+    image = png_bytes(figure)
     plt.close(figure)
-    return buffer.getvalue()
+    return image

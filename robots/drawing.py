@@ -4,11 +4,10 @@ leg's length is what the actuator sets."""
 
 from __future__ import annotations
 
-import io
 import math
 
 from baranov.solvers import Solution
-from baranov.solvers.drawing import modes_figure
+from baranov.solvers.drawing import modes_figure, png_bytes
 
 from .model import Robot
 
@@ -38,9 +37,7 @@ def render_robot(robot: Robot, scene, solution: Solution) -> bytes:
             corners = [(cx + a * ux * half_long - b * uy * half_wide, cy + a * uy * half_long + b * ux * half_wide)
                        for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
             axis.add_patch(Polygon(corners, closed=True, facecolor="white", edgecolor="black", lw=1.2, zorder=5))
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=110)
-    return buffer.getvalue()
+    return png_bytes(figure)
 
 
 def _place(joints: dict, name: str):

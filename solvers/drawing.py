@@ -38,11 +38,17 @@ def _hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
     return lower[:-1] + upper[:-1]
 
 
+def png_bytes(figure: Figure, tight: bool = False) -> bytes:
+    """The PNG image (bytes, 110 dpi) of a matplotlib figure, for an atomic write; with
+    ``tight``, cropped to what is drawn."""
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=110, **({"bbox_inches": "tight"} if tight else {}))
+    return buffer.getvalue()
+
+
 def render_modes(scene: Scene, solution: Solution, columns: int | None = None) -> bytes:
     """A PNG image (bytes) of :func:`modes_figure`."""
-    buffer = io.BytesIO()
-    modes_figure(scene, solution, columns).savefig(buffer, format="png", dpi=110)
-    return buffer.getvalue()
+    return png_bytes(modes_figure(scene, solution, columns))
 
 
 def modes_figure(scene: Scene, solution: Solution, columns: int | None = None) -> Figure:

@@ -39,8 +39,9 @@ class UndefinedInside(ValueError):
     holds a gap of the feasible domain."""
 
 
-def _at(x: float) -> Samples:
-    return Samples(np.array([x]))
+def _at(x: float, signs: np.ndarray | None = None) -> Samples:
+    """The request for f at the one point x."""
+    return Samples(np.array([x]), signs)
 
 
 def brent_root(a: float, b: float, fa: float, fb: float, value: Callable[[Any], float], xtol: float,
@@ -111,7 +112,7 @@ def brent_minimum(objective: Callable[[Any], float], low: float, high: float, xa
     sqrt_eps = math.sqrt(2.2e-16)
     a, b = low, high
     x = w = v = a + GOLDEN * (b - a)
-    fx = objective((yield Samples(np.array([x]), signs)))
+    fx = objective((yield _at(x, signs)))
     fw = fv = fx
     d = e = 0.0
     fu = math.inf
@@ -123,7 +124,7 @@ def brent_minimum(objective: Callable[[Any], float], low: float, high: float, xa
             break
         d, e = _minimum_step(a, b, x, w, v, fx, fw, fv, d, e, middle, tolerance)
         u = x + math.copysign(max(abs(d), tolerance), d if d != 0 else 1.0)
-        fu = objective((yield Samples(np.array([u]), signs)))
+        fu = objective((yield _at(u, signs)))
         evaluations += 1
         if fu <= fx:
             a, b = (x, b) if u >= x else (a, x)

@@ -592,9 +592,10 @@ def _parabola_minimum(x: np.ndarray, y: np.ndarray) -> float | None:
 
 
 def _window_cells(codes: np.ndarray, feasible: int) -> np.ndarray:
-    """Indices i where samples i and i+1 both fail, at different steps: a feasible window
-    may hide between them. (A defined/undefined boundary is left to the edge search.)"""
-    return np.flatnonzero((codes[:-1] != codes[1:]) & (codes[:-1] < feasible) & (codes[1:] < feasible))
+    """Where samples i and i+1 (along the last axis) both fail, at different steps: a
+    feasible window may hide between them (a defined/undefined boundary is left to the
+    edge search); a mask of shape (..., n − 1)."""
+    return (codes[..., :-1] != codes[..., 1:]) & (codes[..., :-1] < feasible) & (codes[..., 1:] < feasible)
 
 
 def _radicand_bumps(codes: np.ndarray, radicands: np.ndarray, feasible: int) -> np.ndarray:
@@ -651,7 +652,7 @@ def window_samples(grid: np.ndarray, failures: np.ndarray, radicands: np.ndarray
     possibly a single point (:func:`_roots_at_crossing_radicands`). Cost: WINDOW_SAMPLES
     placements per suspect cell and level."""
     extra, residuals = [], []
-    cells = [(grid[i], grid[i + 1]) for i in _window_cells(failures, feasible)]
+    cells = [(grid[i], grid[i + 1]) for i in np.flatnonzero(_window_cells(failures, feasible))]
     cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_bumps(failures, radicands, feasible)]
     cells += [(grid[i - 1], grid[i + 1]) for i in _radicand_dips(failures, margins, feasible)]
     for _ in range(WINDOW_DEPTH):
@@ -663,8 +664,7 @@ def window_samples(grid: np.ndarray, failures: np.ndarray, radicands: np.ndarray
         extra.append(points.ravel())
         residuals.append(reply.residuals)
         codes = reply.failures.reshape(points.shape)
-        # _window_cells within each cell's samples, all cells at once
-        cell, i = np.nonzero((codes[:, :-1] != codes[:, 1:]) & (codes[:, :-1] < feasible) & (codes[:, 1:] < feasible))
+        cell, i = np.nonzero(_window_cells(codes, feasible))  # within each cell's samples, all cells at once
         if len(cell) > WINDOW_CROWD:  # the failing step flickers at rounding noise: no window converges
             cells = []
             break

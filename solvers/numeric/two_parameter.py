@@ -162,12 +162,9 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     changes, suspect, distance = _classify(seen, near_boundary)
     defined = [_both(np.isfinite(part)) for part in seen]
     inside = defined[0] & defined[1] & defined[2] & defined[3]
-    # the sample of the smallest max(|f_1|, |f_2|) (the first of equals, as argmin)
-    best, smallest = points[0], np.where(defined[0], _larger(seen[0]), np.inf)
-    for part, at, known in zip(seen[1:], points[1:], defined[1:], strict=True):
-        size = np.where(known, _larger(part), np.inf)
-        better = size < smallest
-        best, smallest = np.where(better[..., None], at, best), np.where(better, size, smallest)
+    # the sample of the smallest max(|f_1|, |f_2|)
+    best, smallest = _smallest(points, [np.where(known, _larger(part), np.inf) for part, known in zip(seen, defined,
+                                                                                                        strict=True)])
     best = np.where((near_boundary.size < smallest)[..., None], near_boundary.best, best)
 
     def cells_of(mask: np.ndarray) -> tuple[Cells, np.ndarray]:
@@ -229,10 +226,7 @@ class _EdgeSamples:
         def sides(name: str) -> list[np.ndarray]:
             first, second = getattr(along_first, name), getattr(along_second, name)
             return [first[:, :, :-1], first[:, :, 1:], second[:, :-1, :], second[:, 1:, :]]
-        best, size = sides("best")[0], sides("size")[0]
-        for at, other in zip(sides("best")[1:], sides("size")[1:], strict=True):  # the first of equals, as argmin
-            better = other < size
-            best, size = np.where(better[..., None], at, best), np.where(better, other, size)
+        best, size = _smallest(sides("best"), sides("size"))
         return _EdgeSamples(np.minimum.reduce(sides("low")), np.maximum.reduce(sides("high")), best, size)
 
 
@@ -378,6 +372,17 @@ def _bisection(compiled, signs, good, bad, is_good):
         good = np.where(ok, middle, good)
         bad = np.where(ok, bad, middle)
     return good
+
+
+def _smallest(points: list[np.ndarray], sizes: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """Elementwise over parallel arrays of candidates: the point (..., 2) of the smallest
+    size (...), the first of equals as ``argmin`` takes it, and that size — without
+    stacking them (a reduction over a stacked small axis is slow in numpy)."""
+    best, smallest = points[0], sizes[0]
+    for at, size in zip(points[1:], sizes[1:], strict=True):
+        better = size < smallest
+        best, smallest = np.where(better[..., None], at, best), np.where(better, size, smallest)
+    return best, smallest
 
 
 def _both(pairs: np.ndarray) -> np.ndarray:
