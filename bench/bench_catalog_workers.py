@@ -23,7 +23,7 @@ JOB = (
     "from baranov.catalog.tasks import dask_client\n"
     "links, workers = int(sys.argv[1]), int(sys.argv[2])\n"
     "with tempfile.TemporaryDirectory() as out, dask_client(workers) as client:\n"
-    "    catalog_links(links, 1, False, client, pathlib.Path(out) / 'shards')\n"
+    "    catalog_links(links, False, client, pathlib.Path(out) / 'shards')\n"
 )
 
 

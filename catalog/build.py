@@ -12,13 +12,21 @@ from typing import Any
 
 from tqdm import tqdm
 
-from baranov.enumerate import baranov_link_graphs
-from baranov.enumerate.crosscheck import baranov_link_graphs_by_filter, find_geng
+from baranov.enumerate.crosscheck import find_geng
 from baranov.enumerate.trusses import canonical_trusses
 from baranov.planner import best_plan
 from baranov.topology import adjacency_masks, chain_from_link_graph
-from baranov.topology.automorphisms import link_graph_certificate
 
+from .census import (
+    FILTER_PARTS,
+    census_path,
+    dump_census,
+    enumerate_in_tasks,
+    filter_in_tasks,
+    load_census,
+    truss_census,
+    truss_digest,
+)
 from .entries import (
     ASSEMBLY_MODES_MAX_LINKS,
     COMPACT_FROM_LINKS,
@@ -33,15 +41,19 @@ from .summary import render_summary
 from .tasks import dask_client, run_in_shards, shard_folder
 
 Progress = Callable[[str], None]
+#: From this link count on, the catalog holds a census (counts, invariants, a sample)
+#: instead of one entry per truss: 15 links have about a million trusses.
+CENSUS_FROM_LINKS = 15
 
 
-def catalog_links(links: int, workers: int, show_progress: bool, client: Any = None,
+def catalog_links(links: int, show_progress: bool, client: Any = None,
                   folder: Path | None = None, assembly_modes: int = ASSEMBLY_MODES_MAX_LINKS) -> list[dict]:
     """Enumerate the trusses with ``links`` links and compute every catalog entry, with
     assembly-mode counts if ``links`` ≤ ``assembly_modes``: on ``client`` (Dask,
     :mod:`.tasks`) if given, else here; finished shards saved in ``folder`` (a temporary
     one if None) and reused by a rerun."""
-    trusses = canonical_trusses(baranov_link_graphs(links, workers))
+    with shard_folder(None) as where:  # seconds up to 13 links: nothing to resume
+        trusses = canonical_trusses(enumerate_in_tasks(links, where, client))
     count_modes = links <= assembly_modes
     items = [(f"{links}/N{i + 1}", graph6, count_modes) for i, (graph6, _) in enumerate(trusses)]
     costs = None
@@ -56,15 +68,17 @@ def catalog_links(links: int, workers: int, show_progress: bool, client: Any = N
     return entries
 
 
-def crosscheck_links(links: int, entries: list[dict], workers: int) -> dict:
-    """Run the brute-force enumeration and compare its classes with the catalog's."""
-    candidates, graphs = baranov_link_graphs_by_filter(links, workers)
-    ours = {link_graph_certificate(adjacency_masks(chain_from_link_graph(e["link_graph6"]))) for e in entries}
-    theirs = {link_graph_certificate(masks) for masks in graphs}
+def crosscheck_links(links: int, entries: list[dict], client: Any) -> dict:
+    """Run the brute-force enumeration (as tasks, :mod:`.census`) and compare its classes
+    with the catalog's."""
+    parts = FILTER_PARTS if links >= 13 else 1
+    with shard_folder(None) as where:  # 2 s for 13 links
+        candidates, theirs = filter_in_tasks(links, where, client, parts)
+    ours = {truss_digest(adjacency_masks(chain_from_link_graph(e["link_graph6"]))) for e in entries}
     return {
         "method": "geng -c -d2 L J:J, filtered by the Baranov predicate, deduplicated with pynauty",
         "candidates": candidates,
-        "trusses": len(graphs),
+        "trusses": len(theirs),
         "same_isomorphism_classes": ours == theirs,
     }
 
@@ -80,6 +94,18 @@ def _reused(path: Path, load: Callable[[Path], list[dict] | None]) -> list[dict]
     return objects
 
 
+def _census(links: int, out: Path, client: Any, force: bool, crosscheck: bool, show_progress: bool,
+            log: Progress) -> None:
+    """Write (or reuse) ``census-<L>.json``: counts without entries (:mod:`.census`)."""
+    path = census_path(out, links)
+    if not force and load_census(path) is not None:
+        log(f"{links} links: reusing {path}")
+        return
+    log(f"{links} links: census (counts only, no entries)")
+    census = truss_census(links, out / ".shards" / path.stem, client, show_progress, crosscheck=crosscheck)
+    write_atomically(path, dump_census(census))
+
+
 def build_catalog(
     link_counts: Iterable[int],
     out: Path,
@@ -92,7 +118,8 @@ def build_catalog(
     log: Progress = lambda message: None,
     scheduler: str | None = None,
 ) -> str:
-    """Regenerate (or reuse) the catalog files for ``link_counts`` in ``out``, with the
+    """Regenerate (or reuse) the catalog files for ``link_counts`` in ``out`` (from
+    CENSUS_FROM_LINKS links on, a census of counts instead of entries), with the
     slider chains' assembly modes up to ``slider_modes`` links and the trusses' up to
     ``assembly_modes``; return the summary. The
     entries are computed as Dask tasks (:mod:`.tasks`): on an embedded cluster of
@@ -110,6 +137,9 @@ def build_catalog(
     geng = find_geng() if crosscheck else None
     with dask_client(workers, scheduler) as client:
         for links in sorted(set(link_counts)):
+            if links >= CENSUS_FROM_LINKS:
+                _census(links, out, client, force, crosscheck, show_progress, log)
+                continue
             path = out / f"trusses-{links}.jsonl"
             entries = None if force else _reused(path, load_entries)
             if entries and links <= assembly_modes and any(
@@ -117,7 +147,7 @@ def build_catalog(
                 entries = None  # written without the counts now asked for
             if entries is None:
                 log(f"{links} links: enumerating")
-                entries = catalog_links(links, workers, show_progress, client, out / ".shards" / path.stem,
+                entries = catalog_links(links, show_progress, client, out / ".shards" / path.stem,
                                         assembly_modes)
                 write_atomically(path, dump_entries(entries))
             else:
@@ -126,7 +156,7 @@ def build_catalog(
                 write_atomically(path.with_name(path.name + ".gz"), gzipped(dump_entries(compact_entries(entries))))
             if geng and (force or links not in checks or checks[links].get("trusses") != len(entries)):
                 log(f"{links} links: brute-force cross-check")
-                checks[links] = crosscheck_links(links, entries, workers)
+                checks[links] = crosscheck_links(links, entries, client)
                 write_atomically(crosscheck_path, json.dumps({str(k): checks[k] for k in sorted(checks)}, indent=2) + "\n")
             if links <= slider_modes:
                 path = out / f"slider-chains-{links}.jsonl"

@@ -14,6 +14,7 @@ from baranov.literature.counts import (
 )
 from baranov.literature.trusses import APPENDIX_A_ASSEMBLY_MODES
 
+from .census import load_census
 from .entries import ASSEMBLY_MODES_MAX_LINKS, load_entries
 from .slider_chains import load_slider_chains
 
@@ -37,22 +38,29 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
         "library's generator; method B: brute force over nauty's geng output.",
         "",
     ]
-    lines += _counts(catalogs, checks) + _invariants(catalogs) + _coupling(catalogs) + _assembly_modes(catalogs)
+    censuses = {census["links"]: census for path in sorted(out.glob("census-*.json"))
+                if (census := load_census(path)) is not None}
+    lines += _counts(catalogs, checks, censuses) + _invariants(catalogs, censuses)
+    lines += _coupling(catalogs, censuses) + _assembly_modes(catalogs)
     lines += _slider_chains(out)
     lines += ["", "## Where this differs from the literature", "", *DISCREPANCY_NOTE, ""]
     return "\n".join(lines)
 
 
-def _counts(catalogs: dict[int, list[dict]], checks: dict[int, dict]) -> list[str]:
+def _counts(catalogs: dict[int, list[dict]], checks: dict[int, dict], censuses: dict[int, dict]) -> list[str]:
     """Trusses (both methods), Assur groups and slider chains per link count, beside Table 3.1."""
     lines = ["| links | trusses (method A) | trusses (method B) | trusses (literature) | Assur groups "
              "| Assur groups (literature) | slider chains | slider chains (literature) |",
              "|---|---|---|---|---|---|---|---|"]
-    for links in sorted(set(catalogs) | set(LITERATURE)):
+    for links in sorted(set(catalogs) | set(LITERATURE) | set(censuses)):
         entries = catalogs.get(links)
         literature = LITERATURE.get(links, {})
         check = checks.get(links)
-        if entries is None:
+        if links in censuses:  # counts only (catalog/census.py)
+            census = censuses[links]
+            a_count, assur, sliders = census["trusses"], census["assur_groups"], None
+            check = census["method_b"]
+        elif entries is None:
             a_count = assur = sliders = None
         else:
             a_count = len(entries)
@@ -71,25 +79,29 @@ def _counts(catalogs: dict[int, list[dict]], checks: dict[int, dict]) -> list[st
     return lines
 
 
-def _invariants(catalogs: dict[int, list[dict]]) -> list[str]:
+def _invariants(catalogs: dict[int, list[dict]], censuses: dict[int, dict]) -> list[str]:
     lines = ["", "## Invariants per link count", "",
              "| links | non-planar | automorphism group orders (order: trusses) "
              "| largest link degree (degree: trusses) |",
              "|---|---|---|---|"]
-    for links, entries in sorted(catalogs.items()):
-        orders = Counter(e["automorphism_group_order"] for e in entries)
-        degrees = Counter(max(e["link_degrees"]) for e in entries)
-        lines.append(
-            f"| {links} | {sum(not e['planar'] for e in entries)} | "
-            + ", ".join(f"{k}: {v}" for k, v in sorted(orders.items()))
-            + " | "
-            + ", ".join(f"{k}: {v}" for k, v in sorted(degrees.items()))
-            + " |"
-        )
+    rows = {links: (sum(not e["planar"] for e in entries),
+                    Counter(e["automorphism_group_order"] for e in entries),
+                    Counter(max(e["link_degrees"]) for e in entries)) for links, entries in catalogs.items()}
+    for links, census in censuses.items():
+        rows[links] = (census["non_planar"],
+                       Counter({int(k): v for k, v in census["automorphism_group_orders"].items()}),
+                       Counter({int(k): v for k, v in census["largest_link_degree"].items()}))
+    for links, (non_planar, orders, degrees) in sorted(rows.items()):
+        lines.append(f"| {links} | {non_planar} | {_listed(orders)} | {_listed(degrees)} |")
     return lines
 
 
-def _coupling(catalogs: dict[int, list[dict]]) -> list[str]:
+def _listed(counts: Counter) -> str:
+    """key: count, ascending by key."""
+    return ", ".join(f"{k}: {v}" for k, v in sorted(counts.items()))
+
+
+def _coupling(catalogs: dict[int, list[dict]], censuses: dict[int, dict]) -> list[str]:
     lines = ["", "## Coupling degree", "",
              "Fewest unknown distances of a bilateration plan (`baranov.planner`), as trusses per degree.", "",
              "| links | this catalog | Yang & Yao (thesis Table 3.1) |", "|---|---|---|"]
@@ -100,6 +112,12 @@ def _coupling(catalogs: dict[int, list[dict]]) -> list[str]:
             f"| {links} | " + ", ".join(f"{d}: {n}" for d, n in sorted(ours.items())) + " | "
             + (", ".join(f"{d}: {n}" for d, n in sorted(theirs.items())) if theirs else "—") + " |"
         )
+    for links, census in sorted(censuses.items()):
+        sample = census["coupling_degree_sample"]
+        shares = ", ".join(f"{d}: {sample['counts'].get(d, 0)} ({100 * low:.1f}–{100 * high:.1f} %)"
+                           for d, (low, high) in sample["wilson_95"].items())
+        lines.append(f"| {links} | random sample of {sample['size']} trusses ({sample['rule']}), degree: trusses "
+                     f"(95 % Wilson interval of the share): {shares} | — |")
     return lines
 
 
@@ -116,8 +134,7 @@ def _assembly_modes(catalogs: dict[int, list[dict]]) -> list[str]:
         counted = Counter(e["realization_count"] for e in entries if e["realization_count"] is not None)
         both = [e for e in entries if e["assembly_modes"] is not None]
         lines.append(
-            f"| {links} | " + (", ".join(f"{k}: {v}" for k, v in sorted(derived.items())) or "—") + " | "
-            + (", ".join(f"{k}: {v}" for k, v in sorted(counted.items())) or "—") + f" | {len(both)} | "
+            f"| {links} | " + (_listed(derived) or "—") + " | " + (_listed(counted) or "—") + f" | {len(both)} | "
             + f"{sum(e['assembly_modes'] == e['realization_count'] for e in both)} |"
         )
     if 9 in catalogs:
@@ -136,7 +153,7 @@ def _assembly_modes(catalogs: dict[int, list[dict]]) -> list[str]:
 
 def _histogram(values) -> str:
     """count: how many, ascending by count."""
-    return ", ".join(f"{k}: {v}" for k, v in sorted(Counter(values).items())) or "—"
+    return _listed(Counter(values)) or "—"
 
 
 def _slider_chains(out: Path) -> list[str]:

@@ -22,8 +22,9 @@ from .trace import add_trace_parser, run_trace
 #: ``--slider-modes`` goes up to this many links (the slider sets are tabulated over 2^J
 #: joint subsets; 11 links would mean millions of chains).
 SLIDER_MODES_LIMIT = 9
-#: The catalog command accepts link counts up to this one (13 links: about 10 s).
-CATALOG_MAX_LINKS = 13
+#: The catalog command accepts link counts up to this one (13 links: entries; 15 links: a
+#: census of counts, about half an hour on two cores; docs/catalog-15.md).
+CATALOG_MAX_LINKS = 15
 
 
 class UsageError(Exception):
@@ -67,7 +68,9 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"baranov {_version()}")
     commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     catalog = commands.add_parser("catalog", help="regenerate the catalog of Baranov trusses")
-    catalog.add_argument("--links", default="3-11", help="odd link counts, e.g. 3,5,7 or 3-11 (default 3-11; 13 is opt-in)")
+    catalog.add_argument("--links", default="3-11",
+                         help="odd link counts, e.g. 3,5,7 or 3-11 (default 3-11; 13 and 15 are opt-in, 15 as counts "
+                              "only)")
     catalog.add_argument("--out", default="catalog", type=Path, help="output folder (default: catalog/)")
     catalog.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="worker processes (default: all cores)")
     catalog.add_argument("--scheduler", metavar="ADDRESS",

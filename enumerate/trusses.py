@@ -78,7 +78,7 @@ def edge_bounds(links: int) -> list[tuple[int, int]]:
     return bounds
 
 
-def _children(parent: Masks, links: int, bounds: Sequence[tuple[int, int]]) -> list[Masks]:
+def children(parent: Masks, links: int, bounds: Sequence[tuple[int, int]]) -> list[Masks]:
     """All children of ``parent`` (k vertices) obtained by adding a min-degree vertex."""
     k = len(parent)
     final = k + 1 == links
@@ -116,7 +116,7 @@ def _expand(job: tuple[list[Masks], int]) -> dict[bytes, Masks]:
     bounds = edge_bounds(links)
     found: dict[bytes, Masks] = {}
     for parent in parents:
-        for child in _children(parent, links, bounds):
+        for child in children(parent, links, bounds):
             found.setdefault(link_graph_certificate(child), child)
     return found
 

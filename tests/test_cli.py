@@ -130,7 +130,7 @@ def test_summary_is_printed(tmp_path):
         (["--links", "1"], "--links 1: a Baranov truss has an odd number of links"),
         (["--links", "x"], "--links x: expected odd link counts"),
         (["--links", "3,x"], "--links 3,x: expected odd link counts"),
-        (["--links", "15"], "--links 15: the catalog goes up to 13 links"),
+        (["--links", "17"], "--links 17: the catalog goes up to 15 links"),
         (["--workers", "0"], "--workers 0: must be at least 1"),
         (["--bogus"], "unrecognized arguments: --bogus"),
     ],

@@ -5,21 +5,33 @@ verified value differs from the published one, the test checks the verified valu
 the published one beside it (see docs/enumeration.md for the explanation).
 """
 
+import random
+import subprocess
 from itertools import combinations
 
 import networkx as nx
 import pynauty
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from baranov.enumerate import baranov_link_graphs, baranov_trusses
 from baranov.enumerate.assur import assur_groups
-from baranov.enumerate.crosscheck import baranov_link_graphs_by_filter, find_geng
+from baranov.enumerate.augmentation import augmentation_roots, is_canonical_extension, subtree_link_graphs
+from baranov.enumerate.crosscheck import (
+    baranov_link_graphs_by_filter,
+    baranov_rows,
+    find_geng,
+    graph6_block_masks,
+    graph6_masks,
+)
 from baranov.enumerate.sliders import admissible_slider_sets, count_slider_chains
 from baranov.enumerate.trusses import edge_bounds
 from baranov.topology import (
     adjacency_masks,
     automorphism_group,
     certificate,
+    is_baranov_link_graph,
     is_baranov_truss,
     link_graph,
 )
@@ -98,13 +110,105 @@ def test_thirteen_links_by_the_generator():
     assert orbits == VERIFIED_ASSUR_GROUPS[13] == PUBLISHED_ASSUR_GROUPS[13]
 
 
-@pytest.mark.slow
 @needs_geng
 def test_thirteen_links_by_brute_force():
     candidates, graphs = baranov_link_graphs_by_filter(13, workers=2)
     assert candidates == 1567236
     ours = {link_graph_certificate(masks) for masks in baranov_link_graphs(13, workers=2)}
     assert {link_graph_certificate(masks) for masks in graphs} == ours
+
+
+@pytest.mark.parametrize("links", [3, 5, 7, 9, 11])
+def test_canonical_augmentation_finds_each_class_once(links):
+    """Every level of the tree holds each class of the level-by-level search exactly once,
+    and the subtrees of any split level together hold each truss exactly once."""
+    reference = {link_graph_certificate(masks) for masks in baranov_link_graphs(links)}
+    for level in range(1, links + 1):
+        roots = augmentation_roots(links, level)
+        assert len({link_graph_certificate(root) for root in roots}) == len(roots)
+        found = [masks for root in roots for masks in subtree_link_graphs(root, links)]
+        assert len(found) == len(reference) == VERIFIED_TRUSSES[links]
+        assert {link_graph_certificate(masks) for masks in found} == reference
+
+
+@pytest.mark.slow
+def test_thirteen_links_by_canonical_augmentation():
+    found = [masks for root in augmentation_roots(13, 8) for masks in subtree_link_graphs(root, 13)]
+    assert len(found) == VERIFIED_TRUSSES[13]
+    assert {link_graph_certificate(masks) for masks in found} == {
+        link_graph_certificate(masks) for masks in baranov_link_graphs(13, workers=2)}
+
+
+@st.composite
+def graphs_with_a_last_vertex(draw):
+    """A random graph (as masks) and one of its minimum-degree vertices."""
+    n = draw(st.integers(2, 9))
+    pairs = [(i, j) for j in range(n) for i in range(j)]
+    edges = draw(st.lists(st.sampled_from(pairs), unique=True, max_size=len(pairs)))
+    masks = [0] * n
+    for i, j in edges:
+        masks[i] |= 1 << j
+        masks[j] |= 1 << i
+    return masks, draw(st.randoms(use_true_random=False))
+
+
+def _moved_last(masks: list[int], vertex: int) -> tuple[int, ...]:
+    order = [v for v in range(len(masks)) if v != vertex] + [vertex]
+    position = {v: k for k, v in enumerate(order)}
+    return tuple(sum(1 << position[u] for u in range(len(masks)) if masks[v] >> u & 1) for v in order)
+
+
+@settings(max_examples=300, deadline=None)
+@given(graphs_with_a_last_vertex())
+def test_the_accepted_last_vertices_are_one_orbit(case):
+    """McKay's acceptance: of the minimum-degree vertices, exactly one Aut(C)-orbit is
+    accepted as the last vertex, whatever the labelling of C."""
+    masks, rnd = case
+    relabel = list(range(len(masks)))
+    rnd.shuffle(relabel)
+    shuffled = [0] * len(masks)
+    for v, mask in enumerate(masks):
+        shuffled[relabel[v]] = sum(1 << relabel[u] for u in range(len(masks)) if mask >> u & 1)
+    lowest = min(mask.bit_count() for mask in masks)
+    orbits = pynauty.autgrp(pynauty.Graph(len(masks), adjacency_dict={
+        i: [j for j in range(len(masks)) if masks[i] >> j & 1] for i in range(len(masks))}))[3]
+    accepted = {v for v in range(len(masks)) if masks[v].bit_count() == lowest
+                and is_canonical_extension(_moved_last(masks, v))}
+    assert len({orbits[v] for v in accepted}) == 1
+    assert accepted == {v for v in range(len(masks)) if orbits[v] == orbits[next(iter(accepted))]}
+    # the same orbit in another labelling
+    again = {v for v in range(len(masks)) if shuffled[v].bit_count() == lowest
+             and is_canonical_extension(_moved_last(shuffled, v))}
+    assert again == {relabel[v] for v in accepted}
+
+
+@needs_geng
+@pytest.mark.parametrize("links", [7, 9])
+def test_batch_filter_is_the_baranov_predicate(links):
+    """Block decoding and the vectorised predicate against the one-graph versions, on every
+    candidate (the 707 of 9 links) and on candidates of 11 links drawn at random."""
+    joints = 3 * (links - 1) // 2
+    output = subprocess.run([find_geng(), "-c", "-d2", "-q", str(links), f"{joints}:{joints}"],
+                            check=True, capture_output=True).stdout
+    masks = graph6_block_masks(output, links)
+    lines = output.split()
+    assert [tuple(row) for row in masks.tolist()] == [graph6_masks(line) for line in lines]
+    assert baranov_rows(masks).tolist() == [is_baranov_link_graph(graph6_masks(line)) for line in lines]
+
+
+@needs_geng
+def test_batch_filter_on_eleven_link_candidates():
+    output = subprocess.run([find_geng(), "-c", "-d2", "-q", "11", "15:15", "3/16"], check=True,
+                            capture_output=True).stdout
+    kept = baranov_rows(graph6_block_masks(output, 11))
+    lines = output.split()
+    for index in random.Random(1).sample(range(len(lines)), 1500) + [int(i) for i in kept.nonzero()[0]]:
+        assert kept[index] == is_baranov_link_graph(graph6_masks(lines[index]))
+
+
+def test_graph6_blocks_of_another_vertex_count_are_refused():
+    with pytest.raises(ValueError, match="5 vertices"):
+        graph6_block_masks(b"Bw\n", 5)
 
 
 def marked_link_classes(links: int) -> int:

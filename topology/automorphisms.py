@@ -123,12 +123,12 @@ def automorphism_group(chain: KinematicChain) -> AutomorphismGroup:
         tuple(names[k] for k in orbit)
         for orbit in _orbits_from_representatives([r - n for r in orbits[n:]], range(len(names)))
     )
-    order = _group_order(mantissa, exponent) or (int(_permutation_group(generators, n, names).order())
+    order = group_order(mantissa, exponent) or (int(_permutation_group(generators, n, names).order())
                                                  if generators else 1)
     return AutomorphismGroup(order, generators, link_orbits, joint_orbits, names, n)
 
 
-def _group_order(mantissa: float, exponent: int) -> int | None:
+def group_order(mantissa: float, exponent: int) -> int | None:
     """nauty's group order, mantissa · 10^exponent, as an integer where the float holds it
     exactly (an integer below 2^53 and exponent 0: every chain of the catalog); None
     otherwise (then Schreier–Sims in sympy decides)."""
@@ -177,10 +177,11 @@ def are_isomorphic(first: KinematicChain, second: KinematicChain) -> bool:
 
 def link_graph_certificate(masks: Sequence[int]) -> bytes:
     """nauty certificate of a link graph given as adjacency bit masks (enumeration hot path)."""
-    return pynauty.certificate(_nauty_link_graph(masks))
+    return pynauty.certificate(nauty_link_graph(masks))
 
 
-def _nauty_link_graph(masks: Sequence[int]) -> pynauty.Graph:
+def nauty_link_graph(masks: Sequence[int]) -> pynauty.Graph:
+    """The link graph given as adjacency bit masks, as a pynauty graph."""
     n = len(masks)
     return pynauty.Graph(n, adjacency_dict={i: [j for j in range(i + 1, n) if masks[i] >> j & 1] for i in range(n)})
 
@@ -189,7 +190,7 @@ def canonical_labelling(chain: KinematicChain) -> tuple[int, ...]:
     """nauty's canonical order of the links of the link graph (joint kinds ignored):
     position i of the canonical form holds link ``result[i]``.
     """
-    return tuple(pynauty.canon_label(_nauty_link_graph(adjacency_masks(chain))))
+    return tuple(pynauty.canon_label(nauty_link_graph(adjacency_masks(chain))))
 
 
 def canonical_link_graph6(chain: KinematicChain) -> str:
