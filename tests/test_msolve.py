@@ -121,3 +121,60 @@ def test_the_msolve_method_returns_the_exact_backends_modes(example):
     by_msolve, exact = solve(scene, method="msolve"), solve(scene, method="exact")
     assert same_modes(scene, by_msolve.assembly_modes, exact.assembly_modes)
     assert by_msolve.parameters == exact.parameters
+
+
+#: Issue 24's slow check: (links, coupling degree, instances) per row of its table, 200 in
+#: all; trusses taken in turn from the catalog's trusses of that row (11 links: a seeded
+#: random choice of them).
+MODE_FOR_MODE_ROWS = [(7, 1, 60), (9, 1, 60), (9, 2, 40), (11, 1, 30), (11, 2, 10)]
+
+
+def _mode_for_mode_tasks() -> list[tuple[int, str, int]]:
+    """(links, truss graph6, instance seed) for each of the 200 instances."""
+    from baranov.catalog.entries import load_entries
+
+    rng = np.random.default_rng(24)
+    tasks = []
+    for links, coupling, instances in MODE_FOR_MODE_ROWS:
+        entries = load_entries(Path(__file__).resolve().parents[1] / "catalog" / f"trusses-{links}.jsonl")
+        graphs = [e["link_graph6"] for e in entries if e["coupling_degree"] == coupling]
+        if links == 11:
+            graphs = [graphs[i] for i in rng.choice(len(graphs), instances, replace=False)]
+        tasks += [(links, graphs[k % len(graphs)], 1000 * links + k) for k in range(instances)]
+    return tasks
+
+
+def _mode_for_mode(task: tuple[int, str, int]) -> str | None:
+    """None if msolve's modes are the exact backend's on this instance, else a message
+    with its coordinates."""
+    from baranov.scene.instances import generic_integer_configuration
+    from baranov.solvers.verification import same_mode
+    from baranov.topology import chain_from_link_graph
+
+    links, graph6, seed = task
+    truss = chain_from_link_graph(graph6)
+    coordinates = generic_integer_configuration(truss, np.random.default_rng(seed))
+    scene = scene_of(truss, coordinates)
+    exact, by_msolve = solve(scene, method="exact"), solve(scene, method="msolve")
+    missed = [m for m in exact.assembly_modes if not any(same_mode(m, n, scene) for n in by_msolve.assembly_modes)]
+    extra = [n for n in by_msolve.assembly_modes if not any(same_mode(n, m, scene) for m in exact.assembly_modes)]
+    if not missed and not extra and len(exact.assembly_modes) == len(by_msolve.assembly_modes):
+        return None
+    return (f"{links} links, {graph6}, seed {seed}: exact {len(exact.assembly_modes)}, msolve "
+            f"{len(by_msolve.assembly_modes)} modes ({len(missed)} not in msolve's, {len(extra)} not in exact's); "
+            + repr({j: (str(x), str(y)) for j, (x, y) in coordinates.items()}))
+
+
+@pytest.mark.slow
+@needs_msolve
+def test_exact_and_msolve_agree_mode_for_mode_on_200_random_instances():
+    """Issue 24: the exact backend's modes are msolve's on 200 random integer instances
+    across the rows of the issue's table (7 links; 9 and 11 links of coupling 1 and 2),
+    in two worker processes."""
+    import multiprocessing
+
+    tasks = _mode_for_mode_tasks()
+    assert len(tasks) == 200
+    with multiprocessing.get_context("spawn").Pool(2) as pool:
+        failures = [message for message in pool.imap_unordered(_mode_for_mode, tasks) if message]
+    assert not failures, "\n".join(failures)
