@@ -7,6 +7,8 @@ time on N workers can be computed (docs/catalog-13.md).
 
     python bench/bench_catalog_costs.py --links 13 --sample 40 --seed 1
     python bench/bench_catalog_costs.py --links 11 --sample 20 --out bench/results/costs-11.jsonl
+    python bench/bench_catalog_costs.py --links 13 --coupling 3 --sample 45 \
+        --out bench/results/catalog-costs-13-coupling-3.jsonl   # all 45: realization counts only
 
 Rows (one JSON object per truss) are appended to ``--out`` and a rerun skips the trusses
 already there, so a long sample can be stopped and resumed. Timings beside another job
@@ -26,7 +28,7 @@ import time
 from pathlib import Path
 
 from baranov.enumerate import baranov_trusses
-from baranov.planner import best_plan
+from baranov.planner import best_plan, coupling_degree
 from baranov.solvers.mode_counts import characteristic_degree
 from baranov.topology.realizations import realization_count
 
@@ -105,7 +107,7 @@ def main() -> None:
             identifier = f"{args.links}/N{index + 1}"
             row = done.get(identifier)
             if row is None:
-                if args.coupling is not None and best_plan(trusses[index]).number_of_parameters != args.coupling:
+                if args.coupling is not None and coupling_degree(trusses[index]) != args.coupling:
                     continue
                 row = measure(args.links, index, trusses[index], not args.no_modes)
                 out.write(json.dumps(row) + "\n")
