@@ -1,7 +1,7 @@
 """Speed-up of the catalog job on Dask (issue 20): the entries of one link count computed
 with 1 worker (in process) and with N (an embedded LocalCluster), each in a fresh
 process and a fresh folder: median wall times and their ratio from one run. (The
-per-task cost histogram by coupling degree that issue 20 also asks for is not here yet.)
+per-task cost histograms by coupling degree are bench/bench_catalog_costs.py's.)
 
     python bench/bench_catalog_workers.py                    # 9 links, 1 and 2 workers, 3 repeats
     python bench/bench_catalog_workers.py --links 7 --workers 1,2 --repeats 5
