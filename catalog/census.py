@@ -49,9 +49,11 @@ SAMPLE_BITS = 9
 Z_95 = 1.959963984540054
 
 
-def truss_digest(masks: Masks) -> str:
-    """96-bit hex digest of the nauty certificate of a link graph (isomorphism invariant)."""
-    return hashlib.blake2b(pynauty.certificate(nauty_link_graph(masks)), digest_size=12).hexdigest()
+def truss_digest(masks: Masks, graph: pynauty.Graph | None = None) -> str:
+    """96-bit hex digest of the nauty certificate of a link graph (isomorphism invariant);
+    ``graph``: its pynauty graph, if already built."""
+    graph = graph or nauty_link_graph(masks)
+    return hashlib.blake2b(pynauty.certificate(graph), digest_size=12).hexdigest()
 
 
 def in_sample(digest: str, sample_bits: int) -> bool:
@@ -69,13 +71,14 @@ def subtree_census(job: tuple[Masks, int, int]) -> dict:
     assur_groups = non_planar = 0
     digests, sample = [], []
     for masks in subtree_link_graphs(root, links):
-        _, mantissa, exponent, _, orbit_count = pynauty.autgrp(nauty_link_graph(masks))
+        nauty_graph = nauty_link_graph(masks)  # one for the group and the digest
+        _, mantissa, exponent, _, orbit_count = pynauty.autgrp(nauty_graph)
         orders[group_order(mantissa, exponent)] += 1
         degrees[max(mask.bit_count() for mask in masks)] += 1
         assur_groups += orbit_count
         graph = nx.Graph((i, j) for i, mask in enumerate(masks) for j in range(i) if mask >> j & 1)
         non_planar += not nx.check_planarity(graph)[0]
-        digest = truss_digest(masks)
+        digest = truss_digest(masks, nauty_graph)
         digests.append(digest)
         if in_sample(digest, sample_bits):
             sample.append(masks)
