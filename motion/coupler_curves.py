@@ -31,7 +31,7 @@ from pathlib import Path
 import flint
 
 from baranov.scene import Scene, SceneError
-from baranov.solvers.msolve import MsolveUnavailable, cartesian_system, find_msolve, msolve_text
+from baranov.solvers.msolve import MsolveUnavailable, cartesian_system, find_msolve, msolve_input
 
 #: The field of the elimination: the largest prime msolve takes (below 2^31).
 PRIME = 2147483629
@@ -139,8 +139,7 @@ def _eliminated(variables: list[str], polynomials: list[dict], prime: int, timeo
     order = [*variables, *TRACER]
     with tempfile.TemporaryDirectory(prefix="baranov-coupler-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "basis.ms"
-        source.write_text(",".join(order) + f"\n{prime}\n" + ",\n".join(msolve_text(p) for p in polynomials)
-                          + "\n")
+        source.write_text(msolve_input(order, polynomials, prime))
         done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-g", "2", "-e", str(len(variables)),
                                "-t", "1"], capture_output=True, text=True, timeout=timeout)
         output = target.read_text() if target.exists() else ""

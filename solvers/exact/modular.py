@@ -60,14 +60,14 @@ from .resultant import chinese_remainder, coefficients_in_v, resultants_modulo
 PRIME_BITS = 62
 
 
-def random_prime(rng: random.Random) -> int:
-    """A random prime of :data:`PRIME_BITS` bits.
+def random_prime(rng: random.Random, bits: int = PRIME_BITS) -> int:
+    """A random prime of ``bits`` bits (default :data:`PRIME_BITS`).
 
-    >>> random_prime(random.Random(0)).bit_length()
-    62
+    >>> random_prime(random.Random(0)).bit_length(), random_prime(random.Random(0), bits=30).bit_length()
+    (62, 30)
     """
     while True:
-        candidate = rng.getrandbits(PRIME_BITS) | (1 << (PRIME_BITS - 1)) | 1
+        candidate = rng.getrandbits(bits) | (1 << (bits - 1)) | 1
         if flint.fmpz(candidate).is_prime():
             return candidate
 
