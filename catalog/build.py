@@ -143,7 +143,8 @@ def build_catalog(
             path = out / f"trusses-{links}.jsonl"
             entries = None if force else _reused(path, load_entries)
             if entries and links <= assembly_modes and any(
-                    e["assembly_modes"] is None and e["coupling_degree"] <= 2 for e in entries):
+                    e["assembly_modes"] is None and e["assembly_modes_evidence"].startswith(f"not derived: {links} links")
+                    for e in entries):
                 entries = None  # written without the counts now asked for
             if entries is None:
                 log(f"{links} links: enumerating")

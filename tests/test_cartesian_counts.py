@@ -15,7 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from baranov.catalog.entries import assembly_mode_count
+from baranov.catalog.entries import assembly_mode_count, realization_sampled
 from baranov.enumerate import baranov_trusses
 from baranov.planner import best_plan
 from baranov.scene import load_scene
@@ -32,6 +32,7 @@ needs_msolve = pytest.mark.skipif(find_msolve() is None, reason="msolve binary n
 #: The first coupling-3 truss of 13 links in catalog order, and its realization count
 #: (pyrigi's lnumber, bench/results/catalog-costs-13-coupling-3.jsonl).
 THIRTEEN_N3 = ("L??????opd@k~?", 376)
+THIRTEEN_N6601 = "L???Z?O?KooiWg"  # coupling degree 2, 390 modes
 
 
 def test_coefficients_are_written_reduced_modulo_the_prime():
@@ -103,6 +104,32 @@ def test_a_coupling_three_truss_has_its_realization_count():
     modes, evidence = assembly_mode_count(chain, plan, True)
     assert modes == realizations
     assert "Cartesian system" in evidence and f"{realizations}, {realizations}" in evidence
+
+
+@needs_msolve
+def test_thirteen_link_coupling_two_is_counted_on_the_cartesian_system():
+    """From 13 links on, coupling degree 2 is counted on the Cartesian system (2.4 s
+    median against 112 s for the characteristic degree); 13/N6601 has 390 modes by the
+    characteristic degree and by the realization count
+    (bench/results/catalog-costs-13.jsonl)."""
+    chain = chain_from_link_graph(THIRTEEN_N6601)
+    plan = best_plan(chain)
+    assert plan.number_of_parameters == 2
+    modes, evidence = assembly_mode_count(chain, plan, True)
+    assert modes == 390 and evidence.startswith("coupling degree 2: distinct solutions of the Cartesian system")
+
+
+def test_realization_counts_are_sampled_from_thirteen_links():
+    """Every truss up to 11 links and every coupling-3 truss has one; of the 20 437
+    thirteen-link trusses, those whose graph6 digest falls in 1 class of 32."""
+    nine = baranov_trusses(9)[0]
+    assert realization_sampled(nine, "any", best_plan(nine))
+    three = chain_from_link_graph(THIRTEEN_N3[0])
+    assert realization_sampled(three, THIRTEEN_N3[0], best_plan(three))
+    two = chain_from_link_graph(THIRTEEN_N6601)
+    plan = best_plan(two)
+    drawn = [realization_sampled(two, f"{THIRTEEN_N6601}{n}", plan) for n in range(3200)]
+    assert 60 <= sum(drawn) <= 140  # 100 expected
 
 
 def test_without_msolve_coupling_three_says_why_it_has_no_count(monkeypatch):
