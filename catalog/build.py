@@ -29,6 +29,7 @@ from .census import (
 )
 from .entries import (
     ASSEMBLY_MODES_MAX_LINKS,
+    CHARACTERISTIC_COUPLING_TWO_MAX_LINKS,
     COMPACT_FROM_LINKS,
     compact_entries,
     dump_entries,
@@ -57,9 +58,10 @@ def catalog_links(links: int, show_progress: bool, client: Any = None,
     count_modes = links <= assembly_modes
     items = [(f"{links}/N{i + 1}", graph6, count_modes) for i, (graph6, _) in enumerate(trusses)]
     costs = None
-    if count_modes and client is not None:
-        # coupling-2 counts cost ~10x coupling-1 ones: the costliest shards first, so that
-        # no worker is left with a long tail
+    if count_modes and client is not None and links <= CHARACTERISTIC_COUPLING_TWO_MAX_LINKS:
+        # coupling-2 counts by the characteristic degree cost ~10x coupling-1 ones: the
+        # costliest shards first, so that no worker is left with a long tail (beyond, they
+        # cost alike, and finding the plans here would take the client 50 min at 13 links)
         costs = [10.0 ** best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6, _ in items]
     bar = tqdm(total=len(items), desc=f"{links} links", unit="truss", disable=not show_progress, file=sys.stderr)
     with shard_folder(folder) as where:

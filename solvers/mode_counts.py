@@ -25,10 +25,10 @@ from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.scene.slider_instances import slider_instance_dict
 from baranov.topology import KinematicChain
 
-from .exact.characteristic import characteristic_polynomial
+from .exact.characteristic import ExactMethodError, characteristic_polynomial
 from .exact.coupling_two import characteristic_polynomial_two
 from .exact.modular import characteristic_degree_modulo, random_prime
-from .msolve import cartesian_jacobian_rank, msolve_solution_count, msolve_solution_count_modulo
+from .msolve import cartesian_jacobian_rank, msolve_solution_count_modulo
 
 #: Instances that must agree, and the most that are drawn.
 AGREEING_INSTANCES = 2
@@ -100,7 +100,7 @@ def cartesian_degree(chain: KinematicChain, seed: int | None = None) -> tuple[in
 
     def count(instance: int) -> int:
         scene = scene_of(chain, generic_integer_configuration(chain, rng))
-        solutions = msolve_solution_count_modulo(scene, random_prime(primes, bits=CARTESIAN_PRIME_BITS))
+        solutions, _ = msolve_solution_count_modulo(scene, random_prime(primes, bits=CARTESIAN_PRIME_BITS))
         return 0 if solutions is None else solutions  # positive dimension: no generic instance
 
     return largest_agreeing(count)
@@ -144,10 +144,16 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
       method's factor test tells them apart; modulo p there is no root to test), so it
       is divided by 2 per such closure pair; msolve's count on another instance checks
       it (the catalog's ``msolve_agrees``: every chain of 3–7 links);
-    * ``"msolve"``: where no plan suits the sliders, the complex solutions of the
-      Cartesian system counted by msolve over Q
-      (:func:`~baranov.solvers.msolve.msolve_solution_count`, divided by 2 per auxiliary
-      root).
+    * ``"msolve"``: where no plan suits the sliders, or the plan's closure conditions
+      vanish identically modulo p on an instance (9/N25 with eight sliders P2, P4, P5,
+      P6, P8, P9, P10, P12), or its characteristic polynomial has no root left — which
+      cannot be, since each instance is drawn around a configuration — because the
+      saturations by undefined points removed every mode (9/N27 with sliders P3, P4, P7,
+      P9, P10, P11: 4 modes by msolve, the exact and the numeric backend), the complex
+      solutions of the
+      Cartesian system counted by msolve modulo a random prime below 2³⁰
+      (:func:`~baranov.solvers.msolve.msolve_solution_count_modulo`, divided by 2 per
+      auxiliary root; over Q until 2026-11-26, the same counts, slower).
 
     ``seed`` defaults to a checksum of the chain and the sliders. An admissible slider set
     (no loop closed by sliders only) can still give a chain that moves: one whose sliders
@@ -182,14 +188,24 @@ def slider_chain_degree(truss: KinematicChain, sliders: Sequence[str], seed: int
     primes = random.Random(seed)
     reversible = 0 if plan is None else sum(set(pair) <= set(sliders) for pair in plan.closure_pairs)
 
-    def degree(instance: int) -> int:
+    def by_plan(instance: int) -> int:
         scene = scene_from_dict(slider_instance_dict(truss, list(sliders), rng, rational=True))
-        if plan is not None:
-            return characteristic_degree_modulo(scene, plan, random_prime(primes), seed=instance) // 2 ** reversible
-        count, auxiliaries = msolve_solution_count(scene)
+        degree = characteristic_degree_modulo(scene, plan, random_prime(primes), seed=instance) // 2 ** reversible
+        if degree == 0:  # the instance was drawn around a configuration: the saturations removed every mode
+            raise ExactMethodError("no mode left in the plan's characteristic polynomial")
+        return degree
+
+    def by_msolve(instance: int) -> int:
+        scene = scene_from_dict(slider_instance_dict(truss, list(sliders), rng, rational=True))
+        count, auxiliaries = msolve_solution_count_modulo(scene, random_prime(primes, bits=CARTESIAN_PRIME_BITS))
         return 0 if count is None else count // 2 ** auxiliaries
 
-    return (*largest_agreeing(degree), "modular" if plan is not None else "msolve")
+    if plan is not None:
+        try:
+            return (*largest_agreeing(by_plan), "modular")
+        except ExactMethodError:  # the plan's conditions vanish identically: count without it
+            pass
+    return (*largest_agreeing(by_msolve), "msolve")
 
 
 def slider_chain_is_rigid(truss: KinematicChain, sliders: Sequence[str], rng: np.random.Generator) -> bool:

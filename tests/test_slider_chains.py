@@ -111,3 +111,25 @@ def test_the_committed_slider_catalog_is_consistent():
         assert all((c["assembly_modes"] is None) == (c["method"] == "moves") for c in chains)
         revolute = {c["truss"]: c["assembly_modes"] for c in chains if not c["sliders"]}
         assert revolute == {t["id"]: t["assembly_modes"] for t in trusses}
+
+
+@needs_msolve
+@pytest.mark.parametrize("sliders, modes", [
+    (["P2", "P4", "P5", "P6", "P8", "P9", "P10", "P12"], 1),  # 9/N25: the plan's conditions vanish identically
+])
+def test_a_plan_whose_conditions_vanish_is_not_used(sliders, modes):
+    truss = baranov_trusses(9)[24]
+    assert slider_chain_degree(truss, sliders) == (modes, [modes, modes], "msolve")
+
+
+@needs_msolve
+@pytest.mark.parametrize("sliders, modes", [(["P3", "P4", "P7", "P9", "P10", "P11"], 4),
+                                            (["P1", "P3", "P7", "P8", "P10", "P11", "P12"], 2)])
+def test_a_plan_whose_saturations_remove_every_mode_is_not_used(sliders, modes):
+    """9/N27 with these sliders: its slider plan's characteristic polynomial modulo p is
+    constant after the saturations, though the instance was drawn around a configuration;
+    msolve, the exact and the numeric backend find 4 (and 2) modes, the committed 9-link
+    file (msolve over Q) says so too."""
+    truss = baranov_trusses(9)[26]
+    count, _, method = slider_chain_degree(truss, sliders)
+    assert (count, method) == (modes, "msolve")

@@ -138,7 +138,8 @@ def characteristic_polynomial_modulo(scene: Scene, plan: Plan, prime: int, seed:
     of the exact method, for 2 square-free (each genuine factor once, as in
     :func:`~baranov.solvers.exact.coupling_two.characteristic_polynomial_two`). ``seed`` draws
     the constant c and the evaluation points of the coupling-2 resultants. Raises
-    :class:`ExactMethodError` if ``prime`` divides a denominator of the dimensions.
+    :class:`ExactMethodError` if ``prime`` divides a denominator of the dimensions, or if
+    the result is the zero polynomial (the conditions vanish identically on the instance).
 
     ``saturated=False`` (coupling degree 2) keeps the roots u that the saturations by
     undefined points and points at infinity would remove: those saturations remove a
@@ -179,6 +180,9 @@ def characteristic_polynomial_modulo(scene: Scene, plan: Plan, prime: int, seed:
 
 
 def _monic(polynomial: flint.nmod_poly) -> flint.nmod_poly:
+    if polynomial.is_zero():  # e.g. a slider chain whose plan's condition holds for every u
+        raise ExactMethodError("the closure conditions vanish identically modulo the prime: no characteristic "
+                               "polynomial in this plan")
     return polynomial * pow(int(polynomial.coeffs()[-1]), -1, polynomial.modulus())
 
 
