@@ -3,8 +3,9 @@ admissible set of its joints into slider joints (thesis ch. 4), one per isomorph
 class (:func:`~baranov.enumerate.sliders.slider_chains`), with its generic number of
 assembly modes (:func:`~baranov.solvers.mode_counts.slider_chain_degree`) and msolve's
 count of the complex solutions of its Cartesian system on another random instance as an
-independent check (:func:`~baranov.solvers.msolve.msolve_solution_count`: the modes, times
-2 per auxiliary root of the system). The literature has no such table; thesis Tables 5.4–5.6 give the
+independent check (:func:`~baranov.solvers.msolve.msolve_solution_count_modulo`, modulo a
+random prime below 2³⁰: the modes, times 2 per auxiliary root of the system; over Q until
+2026-11-26, every 25th nine-link chain, now every chain). The literature has no such table; thesis Tables 5.4–5.6 give the
 counts of the pentad's ten (the fully-parallel robot families I–X: 6, 6, 6, 4, 4, 2, 2,
 2, 1, 1 assembly modes).
 
@@ -20,6 +21,7 @@ counts of earlier check instances that came out special, where there were any).
 
 from __future__ import annotations
 
+import random
 import sys
 import zlib
 from pathlib import Path
@@ -31,8 +33,9 @@ from tqdm import tqdm
 from baranov.enumerate.sliders import slider_chains
 from baranov.scene import scene_from_dict
 from baranov.scene.slider_instances import slider_instance_dict
-from baranov.solvers.mode_counts import slider_chain_degree
-from baranov.solvers.msolve import MsolveUnavailable, msolve_solution_count
+from baranov.solvers.exact.modular import random_prime
+from baranov.solvers.mode_counts import CARTESIAN_PRIME_BITS, slider_chain_degree
+from baranov.solvers.msolve import MsolveUnavailable, msolve_solution_count_modulo
 from baranov.topology import chain_from_link_graph
 
 from .files import load_complete_objects
@@ -43,8 +46,9 @@ from .tasks import run_in_shards, shard_folder
 SLIDER_MODES_MAX_LINKS = 7
 #: Instances msolve may draw for one check before it disagrees.
 MSOLVE_CHECK_INSTANCES = 3
-#: msolve checks every chain up to 7 links, and every this many-th chain of 9 links.
-MSOLVE_CHECK_EVERY = {3: 1, 5: 1, 7: 1, 9: 25}
+#: msolve checks every this many-th chain (every chain: modulo a prime a check takes
+#: milliseconds to a second at 9 links; the plans' counts can lose modes, docs/sliders.md).
+MSOLVE_CHECK_EVERY = {3: 1, 5: 1, 7: 1, 9: 1}
 
 
 def slider_chain_entry(job: tuple[str, tuple[str, ...], bool]) -> dict:
@@ -67,7 +71,8 @@ def slider_chain_entry(job: tuple[str, tuple[str, ...], bool]) -> dict:
             scene = scene_from_dict(slider_instance_dict(truss, list(sliders), np.random.default_rng(seed),
                                                          rational=True))
             try:
-                solutions, auxiliaries = msolve_solution_count(scene)
+                solutions, auxiliaries = msolve_solution_count_modulo(
+                    scene, random_prime(random.Random(seed), bits=CARTESIAN_PRIME_BITS))
             except MsolveUnavailable:
                 return entry
             if solutions == 2 ** auxiliaries * modes:
@@ -86,7 +91,7 @@ def slider_chain_entries(entries: list[dict], show_progress: bool, client: Any =
     computed as Dask tasks on ``client`` (here if None), shards saved in ``folder``
     until done (:func:`~baranov.catalog.tasks.run_in_shards`, :func:`~baranov.catalog.tasks.shard_folder`)."""
     links = entries[0]["links"]
-    every = MSOLVE_CHECK_EVERY.get(links, 25)
+    every = MSOLVE_CHECK_EVERY.get(links, 1)
     jobs, owners = [], []
     for index, entry in enumerate(entries):
         for sliders in slider_chains(chain_from_link_graph(entry["link_graph6"])):
