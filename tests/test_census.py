@@ -96,3 +96,19 @@ def test_the_summary_has_a_row_for_a_census(tmp_path):
     assert "| 7 | 3 | — | 3 | 10 | 10 | — | — |" in summary
     assert "| 7 | random sample of 3 trusses" in summary
     assert "1: 3 (" in summary
+
+
+def test_the_summary_reads_a_compact_file_without_its_full_one(tmp_path):
+    """13 links commit only ``trusses-13.jsonl.gz``: its coupling degrees and assembly
+    modes reach the summary (here the 9-link entries, cut to the compact fields)."""
+    from baranov.catalog.entries import compact_entries, dump_entries
+    from baranov.catalog.files import gzipped
+
+    entries = load_entries(CATALOG / "trusses-9.jsonl")
+    compact = compact_entries(entries)
+    (tmp_path / "trusses-9.jsonl.gz").write_bytes(gzipped(dump_entries(compact)))
+    summary = render_summary(tmp_path, {})
+    assert "| 9 | 1: 24, 2: 4 | 1: 24, 2: 4 |" in summary  # coupling degrees, beside Yang & Yao's
+    modes = Counter(e["assembly_modes"] for e in entries)
+    row = "| 9 | " + ", ".join(f"{k}: {v}" for k, v in sorted(modes.items())) + " | "
+    assert row in summary and summary.split(row)[1].split("\n")[0].endswith("| 28 | 28 |")
