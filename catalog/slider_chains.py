@@ -16,7 +16,10 @@ line, in the order of the catalog's trusses and then of
 (None for a chain that moves), ``method`` (``modular``, ``coupling 0``, ``msolve`` where
 no plan suits the sliders, or ``moves``), ``degrees`` (seen on the instances) and, where
 checked, ``msolve_solutions`` and ``msolve_agrees`` (with ``msolve_special_instances``, the
-counts of earlier check instances that came out special, where there were any).
+counts of earlier check instances that came out special, where there were any). Where
+every check instance finds the same number of modes, more than the plan's count, that
+number is the chain's (``method`` ``msolve``, ``degrees`` the check instances' counts) and
+the plan's degrees are kept as ``plan_degrees`` (:func:`_plan_lost_modes`).
 """
 
 from __future__ import annotations
@@ -78,11 +81,23 @@ def slider_chain_entry(job: tuple[str, tuple[str, ...], bool]) -> dict:
             if solutions == 2 ** auxiliaries * modes:
                 break
             special.append(solutions)
+        if len(special) == MSOLVE_CHECK_INSTANCES and len(set(special)) == 1 and special[0] > 2 ** auxiliaries * modes:
+            return _plan_lost_modes(entry, [count // 2 ** auxiliaries for count in special])
         entry["msolve_solutions"] = solutions
         entry["msolve_agrees"] = solutions == 2 ** auxiliaries * modes
         if special:
             entry["msolve_special_instances"] = special
     return entry
+
+
+def _plan_lost_modes(entry: dict, counts: list[int]) -> dict:
+    """The entry of a chain whose plan counted fewer modes than msolve finds on every
+    check instance, all alike: the plan's saturations removed modes (docs/sliders.md; 16
+    chains of 9/B26-B28 with five to seven sliders). Each count can only fall below the
+    generic one, so msolve's is the chain's; the plan's degrees are kept as
+    ``plan_degrees``."""
+    return {**entry, "assembly_modes": counts[0], "method": "msolve", "degrees": counts,
+            "plan_degrees": entry["degrees"]}
 
 
 def slider_chain_entries(entries: list[dict], show_progress: bool, client: Any = None,

@@ -550,3 +550,24 @@ def test_adversarial_slider_chains_give_msolves_modes(path):
         assert compare_modes(found, oracle)[:2] == (0, 0), method
         assert compare_modes(found, [generating])[0] == 0, method
     assert solution.certificate.complete, solution.certificate.gaps
+
+
+@needs_msolve
+@pytest.mark.parametrize("truss_index, sliders", [(27, ("P1", "P2", "P7", "P8", "P11")),
+                                                  (17, ("P1", "P2", "P4", "P5", "P6", "P10", "P11"))])
+def test_a_negative_second_slider_parameter_keeps_its_modes(truss_index, sliders):
+    """9/B28 (9/N28) with sliders P1, P2, P7, P8, P11: the plan's second parameter t10,1
+    is an oriented distance, negative in all four modes; the exact backend kept only
+    positive second parameters and certified 0 modes (2026-11-26). Now its modes are
+    msolve's, mode for mode, as the numeric backend's configurations are; and 9/B26
+    (9/N18) with seven sliders, whose modes have it of both signs."""
+    from baranov.enumerate import baranov_trusses
+    from baranov.scene.slider_instances import slider_instance_dict
+
+    truss = baranov_trusses(9)[truss_index]
+    scene = scene_from_dict(slider_instance_dict(truss, list(sliders), np.random.default_rng(1), rational=True))
+    expected = list(msolve_modes(scene).configurations)
+    assert expected
+    for method in ("exact", "numeric"):
+        solution = solve(scene, method=method)
+        assert compare_modes([mode.joints for mode in solution.assembly_modes], expected)[:2] == (0, 0), method

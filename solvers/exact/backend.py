@@ -237,7 +237,8 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
     names = tuple(parameter_name(pair, sliders) for pair in plan.parameters)
     every_branch = [tuple(int(s) for s in b) for b in branches]
     zero = coincidence_possible(scene, frozenset(plan.parameters[0]))
-    signed = bool(set(plan.parameters[0]) & set(sliders))  # t: an oriented distance, of either sign
+    # t: an oriented distance to a slider's axis, of either sign (thesis §4.2.4)
+    signed = tuple(bool(set(pair) & set(sliders)) for pair in plan.parameters)
     modes: list[AssemblyMode] = []
     gaps: list[str] = []
     previous = flint.ctx.prec
@@ -293,21 +294,25 @@ def _modes_at_root(scene: Scene, plan: Plan, points: list | None, signs_list: li
 
 
 def _parameter_points(root: flint.arb, fiber: Fiber | None, zero: bool,
-                      signed: bool = False) -> list[tuple[flint.acb, ...]] | None:
+                      signed: tuple[bool, ...] = (False, False)) -> list[tuple[flint.acb, ...]] | None:
     """The parameter values to try at a real root: (root,) for coupling 1; the real common
-    points (root, v), v > 0, of the two curves for coupling 2; None if they cannot be
-    decided at this precision (a ball straddling 0, or roots not isolated); [] where
-    root < 0 (a squared distance), or root = 0 unless ``zero`` (the parameter's joints can
-    coincide: issue 25's 9/N2 instance, a mode at s1,10 = 0 that was skipped); every root
-    where the first parameter is ``signed`` (a slider's t, thesis §4.2.4)."""
+    points (root, v) of the two curves for coupling 2, v > 0 for a squared distance;
+    None if they cannot be decided at this precision (a ball straddling 0, or roots not
+    isolated); [] where root < 0 (a squared distance), or root = 0 unless ``zero`` (the
+    parameter's joints can coincide: issue 25's 9/N2 instance, a mode at s1,10 = 0 that
+    was skipped). A parameter that is ``signed`` (a slider's t, thesis §4.2.4) takes
+    every real value: the second one was kept only where positive until 2026-11-26, which
+    lost every mode of 9/B28 with sliders P1, P2, P7, P8, P11 (t10,1 < 0 in all four)."""
     at_zero = zero and root.is_exact() and root == 0
-    if not root > 0 and not at_zero and not signed:
+    if not root > 0 and not at_zero and not signed[0]:
         return None if root.contains(0) and not root.is_exact() else []
     if fiber is None:
         return [(flint.acb(root),)]
     common = common_points(fiber, flint.acb(root))
     if common is None:
         return None
+    if signed[1]:
+        return [(u, flint.acb(v.real)) for u, v in common if v.imag.contains(0)]
     if any(v.imag.contains(0) and v.real.contains(0) and not v.real.is_exact() for _, v in common):
         return None
     return [(u, flint.acb(v.real)) for u, v in common if v.imag.contains(0) and v.real > 0]
