@@ -92,10 +92,11 @@ def slider_chain_entry(job: tuple[str, tuple[str, ...], bool]) -> dict:
 
 def _plan_lost_modes(entry: dict, counts: list[int]) -> dict:
     """The entry of a chain whose plan counted fewer modes than msolve finds on every
-    check instance, all alike: the plan's saturations removed modes (docs/sliders.md; 16
-    chains of 9/B26-B28 with five to seven sliders). Each count can only fall below the
-    generic one, so msolve's is the chain's; the plan's degrees are kept as
-    ``plan_degrees``."""
+    check instance, all alike (docs/sliders.md; 16 chains of 9/B26-B28 with five to seven
+    sliders): the degree of a coupling-2 characteristic polynomial counts the values of
+    the first parameter, and on these chains two or four modes share each value (the
+    second parameter, a slider's oriented distance, takes several values above each
+    root). msolve's count is the chain's; the plan's degrees are kept as ``plan_degrees``."""
     return {**entry, "assembly_modes": counts[0], "method": "msolve", "degrees": counts,
             "plan_degrees": entry["degrees"]}
 

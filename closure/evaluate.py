@@ -83,6 +83,15 @@ class CompiledSystem:
                 values[..., n] = self.searched[frozenset(pair)].value(values[..., n])
         return values
 
+    def searched_values(self, values: np.ndarray) -> np.ndarray:
+        """Parameter values as reported (shape (..., p)) → as searched: the inverse of
+        :meth:`reported`, for values read back from a configuration."""
+        values = np.array(values, dtype=float)
+        for n, pair in enumerate(self.parameters):
+            if frozenset(pair) in self.searched:
+                values[..., n] = self.searched[frozenset(pair)].searched(values[..., n])
+        return values
+
     def search_bound(self, n: int, bound: float) -> float:
         """The upper end of the searched range of parameter ``n``: ``bound`` (a squared
         distance's), or the map's scale² (``searched``)."""

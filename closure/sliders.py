@@ -212,6 +212,22 @@ class SearchedParameter:
             return self.scale * (2 * fraction - 1 if self.bounded else np.tan(np.pi * (fraction - 0.5)))
         return (self.scale * np.tan(np.pi / 2 * fraction)) ** 2
 
+    def searched(self, value):
+        """The searched value(s) p of the parameter value(s) ``value`` (numpy): the inverse
+        of :meth:`value`, for a parameter read back from a configuration. A bounded t a
+        rounding error beyond ±scale is taken at the bound.
+
+        >>> mapping = SearchedParameter(signed=True, bounded=False, scale=3.0)
+        >>> round(float(mapping.value(mapping.searched(-23.0))), 12)
+        -23.0
+        """
+        if self.signed:
+            ratio = np.asarray(value, float) / self.scale
+            fraction = np.clip((ratio + 1) / 2, 0, 1) if self.bounded else np.arctan(ratio) / np.pi + 0.5
+        else:
+            fraction = 2 / np.pi * np.arctan(np.sqrt(np.asarray(value, float)) / self.scale)
+        return (fraction * self.scale) ** 2
+
 
 @dataclass(frozen=True)
 class SliderGeometry:

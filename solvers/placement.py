@@ -170,7 +170,8 @@ def read_back(compiled: CompiledSystem, at: dict[str, np.ndarray],
 def _read_back_sliders(scene: Scene, compiled: CompiledSystem, at: dict[str, np.ndarray],
                        flat: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`read_back` for a slider chain (closure/sliders.py): a parameter with a slider
-    is t, the other joint's oriented distance to the axis; a free step that touches a
+    is t, the other joint's oriented distance to the axis (returned as searched:
+    :meth:`~baranov.closure.evaluate.CompiledSystem.searched_values`); a free step that touches a
     slider has the sign σ of its along-axis step, Re(conj(u)(p_b − p_a)) for the axis
     through P_a, P_b (the slider located) or from the base's revolute joint P_a to the
     joint placed P_b (a point off the axis), 0 within ``flat`` of the step's length; a
@@ -192,6 +193,9 @@ def _read_back_sliders(scene: Scene, compiled: CompiledSystem, at: dict[str, np.
             parameters.append((direction.conjugate() * (at[other] - foot)).imag)
         else:
             parameters.append(np.abs(at[u] - at[v]) ** 2)
+    # as searched: mode_of maps them to the reported values (mapping t or s read back as
+    # if searched gave NaN or a wrong value: 9/B28 with sliders P1, P2, P7, P8, P11)
+    parameters = [compiled.searched_values(stacked(parameters))] if parameters else []
     free_steps = [step for step in compiled.plan.steps if step.free_sign]
     branch = []
     for step, triangle in zip(free_steps, compiled.free_triangles, strict=True):
@@ -208,7 +212,7 @@ def _read_back_sliders(scene: Scene, compiled: CompiledSystem, at: dict[str, np.
         _, direction = axis(slider)
         along = (direction.conjugate() * (at[end] - at[start])).real
         branch.append(np.where(np.abs(along) <= flat * np.abs(at[end] - at[start]), 0, np.where(along > 0, 1, -1)))
-    return stacked(parameters), stacked(branch)
+    return (parameters[0] if parameters else stacked([])), stacked(branch)
 
 
 def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -> AssemblyMode:

@@ -568,6 +568,11 @@ def test_a_negative_second_slider_parameter_keeps_its_modes(truss_index, sliders
     scene = scene_from_dict(slider_instance_dict(truss, list(sliders), np.random.default_rng(1), rational=True))
     expected = list(msolve_modes(scene).configurations)
     assert expected
+    parameters = {}
     for method in ("exact", "numeric"):
         solution = solve(scene, method=method)
         assert compare_modes([mode.joints for mode in solution.assembly_modes], expected)[:2] == (0, 0), method
+        parameters[method] = sorted(tuple(mode.parameters.values()) for mode in solution.assembly_modes)
+    # the numeric backend read t back from polished configurations and mapped it as if
+    # searched: NaN or a wrong value (t10,8 = -43.7 for 20)
+    assert np.allclose(parameters["numeric"], parameters["exact"], rtol=1e-7, atol=1e-9)
