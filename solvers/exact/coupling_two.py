@@ -202,8 +202,9 @@ def shared_curves(curves: Sequence[flint.fmpz_mpoly], scene: Scene, plan: Plan) 
 
 def moving_point(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, lines: int = 32,
                  bits: int = 256) -> tuple[float, float] | None:
-    """A point (u, v), both > 0, of ``curve`` at which some sign branch closes with a
-    real configuration (ball arithmetic at ``bits``), searched on ``lines`` lines
+    """A point (u, v) of ``curve`` (each > 0 unless a slider's oriented distance) at which
+    some sign branch closes with a real configuration (ball arithmetic at ``bits``),
+    searched on ``lines`` lines
     u = (k + 1/2)/lines · upper (v = … for a vertical line) across the parameter's
     range; None if none is found. Cost: lines × 2^m evaluations of the plan."""
     previous = flint.ctx.prec
@@ -211,10 +212,13 @@ def moving_point(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, lines: int =
     try:
         axis = 0 if curve.degrees()[1] > 0 else 1
         upper = scene.largest_distance(*plan.parameters[axis]) ** 2
+        sliders = {slider.joint for slider in scene.sliders}
+        signed = [bool(set(pair) & sliders) for pair in plan.parameters]  # a slider's t: either sign
         for k in range(lines):
             value = flint.fmpq(round((2 * k + 1) * upper * 1000), 2000 * lines)
             for u, v in points_on_line(curve, value) or []:
-                if not (u.imag.contains(0) and v.imag.contains(0) and u.real > 0 and v.real > 0):
+                if not (u.imag.contains(0) and v.imag.contains(0) and (signed[0] or u.real > 0)
+                        and (signed[1] or v.real > 0)):
                     continue
                 point = (flint.acb(u.real), flint.acb(v.real))
                 if branch_solves(scene, plan, point, (0, 1), bits, real_only=True):
