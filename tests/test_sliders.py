@@ -576,3 +576,20 @@ def test_a_negative_second_slider_parameter_keeps_its_modes(truss_index, sliders
     # the numeric backend read t back from polished configurations and mapped it as if
     # searched: NaN or a wrong value (t10,8 = -43.7 for 20)
     assert np.allclose(parameters["numeric"], parameters["exact"], rtol=1e-7, atol=1e-9)
+
+
+def test_a_search_whose_suspect_cells_explode_stops_and_says_so():
+    """9/B27 (9/N27) with sliders P1, P2, P3, P7, P8, P11 (plan parameters s1,10 and
+    s1,5): every cell of the second level stays suspect, and the third level asked for
+    about 24 million points (23 GB: the process was killed). A level is now refined only
+    up to MOST_CELLS cells; the rest is reported undecided. The four modes are found
+    (msolve's, on this instance)."""
+    from baranov.enumerate import baranov_trusses
+    from baranov.scene.slider_instances import slider_instance_dict
+
+    truss = baranov_trusses(9)[26]
+    scene = scene_from_dict(slider_instance_dict(truss, ["P1", "P2", "P3", "P7", "P8", "P11"],
+                                                 np.random.default_rng(0), rational=True))
+    solution = solve(scene, method="numeric")
+    assert len(solution.assembly_modes) == 4
+    assert solution.undecided and all("suspect cells at one level" in sentence for sentence in solution.undecided)

@@ -71,11 +71,12 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         candidates += roots_at_critical_values(compiled, branches, critical_values(scene, plan))
     elif degree == 2:
         upper = _upper_bounds(scene, plan, compiled)
-        candidates, (stalled, stalled_branches), unsearched = two_parameter_roots(compiled, branches, upper, deadline)
+        candidates, (stalled, stalled_branches), (unsearched, reason) = two_parameter_roots(compiled, branches, upper,
+                                                                                           deadline)
         candidates += ridge_roots(compiled, branches, upper)
         _require_no_shared_curve(scene, compiled, branches, candidates)
         polished = _polished(scene, compiled, stalled, branches[stalled_branches])
-        undecided += _unsearched_cells(compiled, branches, unsearched)
+        undecided += _unsearched_cells(compiled, branches, unsearched, reason)
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
     modes = assembly_modes(scene, compiled, candidates, polished)
@@ -152,16 +153,17 @@ def _require_no_shared_curve(scene: Scene, compiled: CompiledSystem, branches: n
         "a continuum rather than isolated assembly modes")
 
 
-def _unsearched_cells(compiled: CompiledSystem, branches: np.ndarray, cells) -> list[str]:
-    """One sentence per branch with cells of the √ plane left unsearched by the time
-    limit: their bounding box in the parameters."""
+def _unsearched_cells(compiled: CompiledSystem, branches: np.ndarray, cells, reason: str) -> list[str]:
+    """One sentence per branch with cells of the √ plane left unsearched (by the time
+    limit, or a level with too many suspect cells: ``reason``): their bounding box in the
+    parameters."""
     names = " × ".join(parameter_name(pair) for pair in compiled.parameters)
     sentences = []
     for b in np.unique(cells.branch):
         mine = cells.branch == b
         low, high = cells.low[mine].min(axis=0) ** 2, cells.high[mine].max(axis=0) ** 2
         sentences.append(f"{names} in [{low[0]:.6g}, {high[0]:.6g}] × [{low[1]:.6g}, {high[1]:.6g}] on branch "
-                         f"{signs_text(branches[b])}: {int(mine.sum())} cells not searched: the time limit was reached")
+                         f"{signs_text(branches[b])}: {int(mine.sum())} cells not searched: {reason}")
     return sentences
 
 

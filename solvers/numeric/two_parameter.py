@@ -43,6 +43,9 @@ from .one_parameter import TOUCH_SEARCH, TOUCH_TOLERANCE
 GRID = 160
 #: Each suspect cell is split into SPLIT × SPLIT sub-cells, DEPTH levels deep.
 SPLIT = 4
+#: The most suspect cells a level refines; beyond, they are left unsearched and said so
+#: (a level of C cells evaluates C (SPLIT + 1)² points, about 1 kB of memory each).
+MOST_CELLS = 40_000
 DEPTH = 4
 #: Suspect cells on the domain boundary are split this many levels, then polished.
 BOUNDARY_DEPTH = 2
@@ -94,8 +97,10 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
     ``(points (K, 2), branch indices (K,))``: where Newton stalled close to a root, and
     the best sample of every suspect cell on the domain boundary after BOUNDARY_DEPTH
     levels (a condition behaves like a square root there, so splitting further only
-    multiplies the cells along the boundary); and the cells left unsearched when the
-    ``deadline`` (``time.monotonic()``) passed between two levels.
+    multiplies the cells along the boundary); and ``(cells, reason)``: the cells left
+    unsearched when the ``deadline`` (``time.monotonic()``) passed between two levels, or
+    when a level had more than MOST_CELLS suspect cells (9/B27 with sliders P1, P2, P3, P7,
+    P8, P11: about a million at the third level, 23 GB, before this bound).
 
     Cost: GRID² · B evaluations of the plan for B branches, BOUNDARY_STEPS evaluations per
     grid edge crossing the domain boundary, and SPLIT² per suspect cell and level.
@@ -104,7 +109,7 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
     high = np.array([math.sqrt(bound) for bound in upper])
     whole = Cells(np.arange(len(branches)), np.tile(low, (len(branches), 1)), np.tile(high, (len(branches), 1)))
     interior, boundary, windows, starts = _examine(compiled, branches, whole, GRID - 1, last=None)
-    all_starts, to_polish, unsearched = [starts], [], Cells.concatenate([])
+    all_starts, to_polish, unsearched, reason = [starts], [], Cells.concatenate([]), ""
     for depth in range(DEPTH):
         if depth >= BOUNDARY_DEPTH:
             to_polish.append(boundary)
@@ -114,7 +119,10 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
         if len(interior) == 0:
             break
         if time.monotonic() > deadline:
-            unsearched = interior
+            unsearched, reason = interior, "the time limit was reached"
+            break
+        if len(interior) > MOST_CELLS:  # each level multiplies suspect cells by up to SPLIT²
+            unsearched, reason = interior, f"more than {MOST_CELLS} suspect cells at one level"
             break
         report_stage(f"numeric: two-parameter search, level {depth + 2} of {DEPTH + 1} ({len(interior)} cells)")
         interior, boundary, windows, starts = _examine(compiled, branches, interior, SPLIT,
@@ -125,7 +133,7 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
     roots, stalled = _newton(compiled, branches, *(np.concatenate(parts) for parts in zip(*all_starts, strict=True)))
     polish_points = np.concatenate([stalled[0]] + [points for points, _ in to_polish])
     polish_branches = np.concatenate([stalled[1]] + [cells.branch for _, cells in to_polish])
-    return roots, (polish_points, polish_branches), unsearched
+    return roots, (polish_points, polish_branches), (unsearched, reason)
 
 
 def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: np.ndarray | None):
