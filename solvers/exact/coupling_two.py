@@ -133,6 +133,10 @@ def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan,
             if points is None:  # not isolated at this precision
                 continue
             verdicts = [branch_solves(scene, plan, point, conditions, bits, coincident) for point in points]
+            # a slider construction conjugates (closure/sliders.py): its residuals vanish at
+            # real points only, so a complex point cannot rule a branch out there
+            verdicts = [None if verdict is False and scene.sliders and not all(value.imag.contains(0) for value in point)
+                        else verdict for verdict, point in zip(verdicts, points, strict=True)]
             if True in verdicts:
                 return True
             if None not in verdicts:
@@ -240,7 +244,10 @@ def _factor_is_genuine(fiber: Fiber, scene: Scene, plan: Plan) -> bool | frozens
         return False
 
     def points() -> list | None:
-        return common_points(fiber, fiber.field.complex_roots()[0][0])
+        roots = [root for root, _ in fiber.field.complex_roots()]
+        if scene.sliders:  # a slider plan's residuals decide at real points only (_some_point_solves)
+            roots = sorted(roots, key=lambda root: not root.imag.contains(0))
+        return common_points(fiber, roots[0])
 
     return _some_point_solves(points, scene, plan, (0, 1))
 
