@@ -599,23 +599,17 @@ SLIDER_REGRESSIONS = Path(__file__).resolve().parent / "regressions" / "sliders"
 
 
 @needs_msolve
-@pytest.mark.xfail(strict=True, reason="open (2026-11-26): the exact backend drops the factor 25 t - 636 as "
-                   "extraneous; its one mode has the second parameter t11,8 = -0.4 (docs/sliders.md)")
-def test_exact_finds_the_mode_of_an_eight_slider_chain():
-    """Honest today (a gap, not a certificate), but the mode is missing."""
-    scene = load_scene(SLIDER_REGRESSIONS / "9-N27-eight-sliders-extraneous-factor.json")
-    solution = solve(scene, method="exact")
-    assert not solution.certificate.complete  # what holds today: it says it may have missed modes
-    expected = list(msolve_modes(scene).configurations)
-    assert compare_modes([mode.joints for mode in solution.assembly_modes], expected)[:2] == (0, 0)
-
-
-@needs_msolve
-@pytest.mark.xfail(strict=True, reason="open (2026-11-26): six near-duplicates of one ill-conditioned mode "
-                   "(s10,11 = 2041605) are listed as modes (docs/sliders.md)")
-def test_numeric_lists_each_mode_of_a_seven_slider_chain_once():
-    scene = load_scene(SLIDER_REGRESSIONS / "9-N28-seven-sliders-near-duplicates.json")
-    solution = solve(scene, method="numeric")
+@pytest.mark.parametrize("name, method", [
+    pytest.param("9-N27-eight-sliders-extraneous-factor", "exact", marks=pytest.mark.xfail(
+        strict=True, reason="open (2026-11-26): the exact backend drops the factor 25 t - 636 as extraneous and "
+        "reports a gap (not a certificate); its one mode has t11,8 = -0.4 (docs/sliders.md)")),
+    pytest.param("9-N28-seven-sliders-near-duplicates", "numeric", marks=pytest.mark.xfail(
+        strict=True, reason="open (2026-11-26): six near-duplicates of one ill-conditioned mode "
+        "(s10,11 = 2041605) are listed as modes (docs/sliders.md)")),
+])
+def test_saved_slider_instances_have_msolves_modes(name, method):
+    scene = load_scene(SLIDER_REGRESSIONS / f"{name}.json")
+    solution = solve(scene, method=method)
     expected = list(msolve_modes(scene).configurations)
     assert compare_modes([mode.joints for mode in solution.assembly_modes], expected)[:2] == (0, 0)
 
