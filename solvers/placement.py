@@ -193,9 +193,6 @@ def _read_back_sliders(scene: Scene, compiled: CompiledSystem, at: dict[str, np.
             parameters.append((direction.conjugate() * (at[other] - foot)).imag)
         else:
             parameters.append(np.abs(at[u] - at[v]) ** 2)
-    # as searched: mode_of maps them to the reported values (mapping t or s read back as
-    # if searched gave NaN or a wrong value: 9/B28 with sliders P1, P2, P7, P8, P11)
-    parameters = [compiled.searched_values(stacked(parameters))] if parameters else []
     free_steps = [step for step in compiled.plan.steps if step.free_sign]
     branch = []
     for step, triangle in zip(free_steps, compiled.free_triangles, strict=True):
@@ -212,7 +209,9 @@ def _read_back_sliders(scene: Scene, compiled: CompiledSystem, at: dict[str, np.
         _, direction = axis(slider)
         along = (direction.conjugate() * (at[end] - at[start])).real
         branch.append(np.where(np.abs(along) <= flat * np.abs(at[end] - at[start]), 0, np.where(along > 0, 1, -1)))
-    return (parameters[0] if parameters else stacked([])), stacked(branch)
+    # as searched: mode_of maps them to the reported values (mapping t or s read back as
+    # if searched gave NaN or a wrong value: 9/B28 with sliders P1, P2, P7, P8, P11)
+    return compiled.searched_values(stacked(parameters)), stacked(branch)
 
 
 def flattened_mode(scene: Scene, compiled: CompiledSystem, mode: AssemblyMode) -> AssemblyMode:
