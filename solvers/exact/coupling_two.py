@@ -44,6 +44,7 @@ from .characteristic import (
 )
 from .fibers import Fiber, column_over_field, common_fiber, isolated_roots
 from .modular import lifted_characteristic_polynomial
+from .newton_lifting import candidate_by_newton
 from .resultant import coefficients_in_v, resultant_by_primes
 
 #: The bivariate ring of the two parameters (u = first plan parameter, v = second).
@@ -267,9 +268,11 @@ def characteristic_polynomial_two(scene: Scene, plan: Plan, route: str = "lifted
 
     ``route="lifted"`` (default): the candidate polynomial — every u at which the curves
     meet on one branch, *including* the u that share a point at infinity or an undefined
-    point (``saturated=False``) — is lifted from its images modulo primes
-    (:func:`~baranov.solvers.exact.modular.lifted_characteristic_polynomial`, which never forms
-    the resultant over Q) and each irreducible factor is kept if it passes
+    point (``saturated=False``) — is lifted from one prime by Newton's iteration
+    (:func:`~baranov.solvers.exact.newton_lifting.candidate_by_newton`), or where that does
+    not apply from its images modulo many primes
+    (:func:`~baranov.solvers.exact.modular.lifted_characteristic_polynomial`); neither forms
+    the resultant over Q. Each irreducible factor is kept if it passes
     :func:`_factor_is_genuine`. ``route="resultant"``: Res_v(G_1, G_2) by primes,
     factored, every factor tested (9/B28 example: 174 s, against about 20 s lifted)."""
     curves = genuine_curves(scene, plan)
@@ -278,7 +281,10 @@ def characteristic_polynomial_two(scene: Scene, plan: Plan, route: str = "lifted
         common = math.prod(shared, start=PLANE.constant(1))
         curves = (curves[0] / common, curves[1] / common)
     if route == "lifted":
-        _, factors = lifted_characteristic_polynomial(scene, plan, saturated=False).factor()
+        candidate = candidate_by_newton(scene, plan, curves)
+        if candidate is None:  # the modes are not simple points in shape position modulo p: by primes
+            candidate = lifted_characteristic_polynomial(scene, plan, saturated=False)
+        _, factors = candidate.factor()
     elif route == "resultant":
         (du1, dv1), (du2, dv2) = curves[0].degrees(), curves[1].degrees()
         _, factors = resultant_by_primes(curves[0], curves[1], du1 * dv2 + dv1 * du2).factor()

@@ -53,7 +53,7 @@ def column_over_field(curve: flint.fmpz_mpoly, field: flint.fmpz_poly) -> FieldP
     return _trimmed(column)
 
 
-def _reduce(element: flint.fmpq_poly, modulus: flint.fmpq_poly) -> flint.fmpq_poly:
+def _reduce(element, modulus):
     return element % modulus if element.degree() >= modulus.degree() else element
 
 
@@ -68,23 +68,27 @@ def _over_q(polynomial: FieldPolynomial) -> flint.fmpq_poly:
     return flint.fmpq_poly([c[0] for c in polynomial])
 
 
-def _inverse(element: flint.fmpq_poly, modulus: flint.fmpq_poly) -> flint.fmpq_poly:
-    """1/element in K (``element`` non-zero; K is a field since f is irreducible)."""
-    if modulus.degree() == 1:
+def _inverse(element, modulus):
+    """1/element in R[u]/(modulus) (``fmpq_poly`` or ``nmod_poly``). For an irreducible
+    modulus (a field) every non-zero element has one; otherwise ZeroDivisionError where
+    ``element`` shares a factor with the modulus (it vanishes at some of its roots only)."""
+    if modulus.degree() == 1 and isinstance(modulus, flint.fmpq_poly):
         return flint.fmpq_poly([1 / element[0]])
     gcd, inverse, _ = element.xgcd(modulus)
-    return inverse / gcd[0]
+    if gcd.degree() != 0:
+        raise ZeroDivisionError("a leading coefficient is a zero divisor modulo a reducible polynomial")
+    return inverse / gcd[0] if isinstance(modulus, flint.fmpq_poly) else inverse * pow(int(gcd[0]), -1, modulus.modulus())
 
 
-def _monic(polynomial: FieldPolynomial, modulus: flint.fmpq_poly) -> FieldPolynomial:
+def _monic(polynomial: FieldPolynomial, modulus) -> FieldPolynomial:
     inverse = _inverse(polynomial[-1], modulus)
-    return [_reduce(c * inverse, modulus) for c in polynomial[:-1]] + [flint.fmpq_poly([1])]
+    return [_reduce(c * inverse, modulus) for c in polynomial[:-1]] + [modulus**0]
 
 
-def _remainder(dividend: FieldPolynomial, divisor: FieldPolynomial, modulus: flint.fmpq_poly,
+def _remainder(dividend: FieldPolynomial, divisor: FieldPolynomial, modulus,
                quotient: list | None = None) -> FieldPolynomial:
-    """``dividend`` mod the monic ``divisor`` over K; the quotient's coefficients are put in
-    ``quotient`` (highest first, zeros included) if given."""
+    """``dividend`` mod the monic ``divisor`` over R[u]/(modulus); the quotient's
+    coefficients are put in ``quotient`` (highest first, zeros included) if given."""
     remainder = list(dividend)
     shift = len(divisor) - 1
     for top in range(len(remainder) - 1, shift - 1, -1):
@@ -94,7 +98,7 @@ def _remainder(dividend: FieldPolynomial, divisor: FieldPolynomial, modulus: fli
         if not lead.is_zero():
             for k in range(shift):
                 remainder[top - shift + k] = _reduce(remainder[top - shift + k] - lead * divisor[k], modulus)
-        remainder[top] = flint.fmpq_poly([0])
+        remainder[top] = modulus * 0
     return _trimmed(remainder[:shift])
 
 
@@ -111,11 +115,30 @@ def gcd_over_field(first: FieldPolynomial, second: FieldPolynomial, field: flint
     >>> gcd_over_field(square, x, flint.fmpz_poly([-3, 0, 1]))
     [1]
     """
-    modulus = flint.fmpq_poly(field)
-    first, second = _trimmed(list(first)), _trimmed(list(second))
     if field.degree() == 1:  # K = Q: flint's gcd in Q[v]
-        common = _over_q(first).gcd(_over_q(second))
+        common = _over_q(_trimmed(list(first))).gcd(_over_q(_trimmed(list(second))))
         return [flint.fmpq_poly([c]) for c in common.coeffs()]
+    return gcd_modulo(first, second, flint.fmpq_poly(field))
+
+
+def gcd_modulo(first: FieldPolynomial, second: FieldPolynomial, modulus) -> FieldPolynomial:
+    """The monic gcd of two polynomials in v over R[u]/(``modulus``), R = Q (``fmpq_poly``)
+    or F_p (``nmod_poly``), by Euclid's algorithm; [] if both are zero. Over a reducible
+    modulus this is the gcd at every root of it at once, and ZeroDivisionError is raised
+    where the remainder sequence differs between roots (a leading coefficient vanishing at
+    some roots only).
+
+    >>> p = 101
+    >>> modulus = flint.nmod_poly([-2, 0, 1], p) * flint.nmod_poly([-3, 1], p)   # u² = 2 or u = 3
+    >>> u = flint.nmod_poly([0, 1], p)
+    >>> gcd_modulo([-u, u**0], [-2 * u**0, u * 0, u**0], modulus)   # v - u, v² - 2: common at u² = 2 only
+    Traceback (most recent call last):
+    ...
+    ZeroDivisionError: a leading coefficient is a zero divisor modulo a reducible polynomial
+    >>> gcd_modulo([-u, u**0], [-u * u, u * 0, u**0], modulus)   # v - u and v² - u²
+    [100*x, 1]
+    """
+    first, second = _trimmed([_reduce(c, modulus) for c in first]), _trimmed([_reduce(c, modulus) for c in second])
     if len(first) < len(second):
         first, second = second, first
     while second:

@@ -150,20 +150,37 @@ def characteristic_polynomial_modulo(scene: Scene, plan: Plan, prime: int, seed:
     """
     if plan.number_of_parameters not in (1, 2):
         raise ExactMethodError(f"coupling degree {plan.number_of_parameters}: counts are derived for 1 and 2")
+    if plan.number_of_parameters == 2:
+        return candidate_images(scene, plan, prime, seed, saturated)[-1]
+    tower, parts = _tower_modulo(scene, plan, prime)
+    polynomial = flint.nmod_poly([1], prime)
+    for factor, multiplicity in _saturated_norm(tower.conditions[0], tower, math.prod(parts, start=tower.context.constant(1))):
+        polynomial *= _univariate(factor, prime) ** multiplicity
+    return _monic(polynomial)
+
+
+def _tower_modulo(scene: Scene, plan: Plan, prime: int) -> tuple[RadicalTower, list]:
+    """The radical tower modulo ``prime`` and the square-free parts of its denominators'
+    norms."""
     try:
         tower = radical_tower(scene, plan, prime)
     except ZeroDivisionError:
         raise ExactMethodError(f"the prime {prime} divides a denominator of the dimensions") from None
-    parts = _square_free_parts(factor for denominator in tower.denominators
-                               for factor, _ in _norm_factors(denominator, tower))
+    return tower, _square_free_parts(factor for denominator in tower.denominators
+                                     for factor, _ in _norm_factors(denominator, tower))
+
+
+def candidate_images(scene: Scene, plan: Plan, prime: int, seed: int = 0,
+                     saturated: bool = True) -> tuple[flint.nmod_poly, ...]:
+    """Coupling degree 2, modulo ``prime``: the candidate polynomial (every u at which
+    the curves meet on one branch, the saturations not applied) and, if ``saturated``,
+    the characteristic polynomial (the candidate saturated by undefined points and points
+    at infinity), each monic with distinct roots, from one set of resultants. Errors as
+    :func:`characteristic_polynomial_modulo`."""
+    tower, parts = _tower_modulo(scene, plan, prime)
+    rng = random.Random(seed)
     one = tower.context.constant(1)
     denominators = math.prod(parts, start=one)
-    if plan.number_of_parameters == 1:
-        polynomial = flint.nmod_poly([1], prime)
-        for factor, multiplicity in _saturated_norm(tower.conditions[0], tower, denominators):
-            polynomial *= _univariate(factor, prime) ** multiplicity
-        return _monic(polynomial)
-    rng = random.Random(seed)
     first, second = tower.conditions
     combined = first + rng.randrange(1, prime) * second
     curves = [math.prod(_square_free_parts(factor for factor, _ in _saturated_norm(condition, tower, denominators)),
@@ -172,11 +189,14 @@ def characteristic_polynomial_modulo(scene: Scene, plan: Plan, prime: int, seed:
     every_branch_pair, same_branch, *undefined = _resultants_in_v(curves[0], [curves[1], curves[2], *in_plane],
                                                                   prime, rng)
     common = every_branch_pair.gcd(same_branch)
-    if saturated:
-        for part in [*undefined, *(_univariate(part, prime, -2) for part in parts if part.degrees()[-1] == 0)]:
-            common = saturate(common, part)
-        common = saturate(common, _univariate(_leading_coefficient_in_v(curves[0]), prime, -2))
-    return _monic(common / common.gcd(common.derivative()))  # distinct roots
+    candidate = _monic(common / common.gcd(common.derivative()))  # distinct roots
+    if not saturated:
+        return (candidate,)
+    characteristic = candidate
+    for part in [*undefined, *(_univariate(part, prime, -2) for part in parts if part.degrees()[-1] == 0)]:
+        characteristic = saturate(characteristic, part)
+    characteristic = saturate(characteristic, _univariate(_leading_coefficient_in_v(curves[0]), prime, -2))
+    return candidate, _monic(characteristic)
 
 
 def _monic(polynomial: flint.nmod_poly) -> flint.nmod_poly:

@@ -1,0 +1,215 @@
+"""The candidate polynomial of a coupling-2 plan over Q from one prime by p-adic Newton
+iteration, instead of from ~50 primes by the Chinese remainder theorem.
+
+The exact method for coupling degree 2 (:mod:`baranov.solvers.exact.coupling_two`) needs
+the candidate polynomial over Q: the characteristic polynomial P (the assembly modes'
+values of the first parameter u, about 1 400 bits per coefficient on 9/B28) times the
+small part E whose roots the saturations remove (undefined points, points at infinity;
+degree 2–9 and tens of bits on the four nine-link trusses). Lifting it by primes
+(:func:`~baranov.solvers.exact.modular.lifted_characteristic_polynomial`) takes twice
+the coefficients' bits in primes, each a full resultant computation: 36 primes and 3.7 s
+of a 4.1 s solve on a random 9/B25 instance.
+
+Here one prime p gives P mod p (:func:`~baranov.solvers.exact.modular.candidate_images`)
+and, above each of its roots, the one common point of the genuine curves G_1, G_2 with
+v = Q(u) mod P — their gcd in v over F_p[u]/(P) (:func:`~baranov.solvers.exact.fibers.gcd_modulo`).
+This *shape-position* parametrization (P, Q) of the modes is lifted p-adically by
+Newton's operator for (G_1, G_2) applied to all points at once (global Newton iteration;
+Giusti, Lecerf, Salvy, "A Gröbner free alternative for polynomial system solving",
+J. Complexity 17, 2001, §4): with (δ_u, δ_v) = J⁻¹·(G_1, G_2) at (u, Q(u)) in
+(Z/p^2k)[u]/(P), J the Jacobian,
+
+    P ← P + (δ_u · P' mod P),        Q ← Q + (Q' · δ_u − δ_v mod P),
+
+which doubles the p-adic precision each step; the coefficients of P over Q are recovered
+by rational reconstruction once two successive precisions agree. E (small) is recovered
+from its images at the first primes by the Chinese remainder theorem; every prime after
+the first also checks P: its own image of P must equal the lifted one reduced modulo it.
+
+Where the modes are not simple common points of G_1 and G_2 in shape position modulo p
+(a zero divisor in the gcd, a Jacobian not invertible) or a check fails, nothing is
+returned and the caller lifts by primes. Cost: one resultant computation per prime used
+(two or three on generic nine-link instances) and O(log bits) Newton steps of
+O(deg_v) products of polynomials of degree deg P.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from collections.abc import Iterator, Sequence
+from fractions import Fraction
+from itertools import chain
+
+import flint
+
+from baranov.planner import Plan
+from baranov.scene import Scene
+
+from ..progress import report_stage
+from .characteristic import ExactMethodError
+from .fibers import gcd_modulo
+from .modular import candidate_images, random_prime, rational_reconstruction
+from .resultant import chinese_remainder, coefficients_in_v
+
+#: Give up (the caller lifts by primes) beyond this p-adic precision or number of primes.
+MOST_BITS = 1 << 18
+MOST_PRIMES = 12
+
+
+def _columns(curve: flint.fmpz_mpoly) -> list[flint.fmpz_poly]:
+    """``curve``(u, v) as its coefficients in v, integer polynomials in u."""
+    return [flint.fmpz_poly([terms.get(k, 0) for k in range(max(terms, default=0) + 1)])
+            for terms in coefficients_in_v(curve)]
+
+
+def second_coordinate(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_poly) -> flint.nmod_poly | None:
+    """Q with v = Q(u) at the common point of the two curves above every root of
+    ``characteristic`` (modulo its prime), or None where some root has no single common
+    point, or the curves' remainder sequence differs between roots.
+
+    >>> from baranov.solvers.exact.coupling_two import PLANE
+    >>> u, v = PLANE.gens()
+    >>> second_coordinate([v - u**2, v + u - 2], flint.nmod_poly([-2, 1, 1], 101))   # u² + u - 2
+    100*x + 2
+    """
+    prime = characteristic.modulus()
+    try:
+        common = gcd_modulo(*([flint.nmod_poly([int(c) for c in column.coeffs()], prime) for column in _columns(curve)]
+                              for curve in curves), characteristic)
+    except ZeroDivisionError:
+        return None
+    return -common[0] if len(common) == 2 else None
+
+
+def _values(columns: list, powers: list, modulus) -> tuple:
+    """G, ∂G/∂u and ∂G/∂v at (u, Q(u)) modulo P, from the columns of G and Q^j mod P."""
+    value = sum((column * powers[j] for j, column in enumerate(columns)), start=modulus * 0)
+    along_u = sum((column.derivative() * powers[j] for j, column in enumerate(columns)), start=modulus * 0)
+    along_v = sum((j * column * powers[j - 1] for j, column in enumerate(columns) if j), start=modulus * 0)
+    return value % modulus, along_u % modulus, along_v % modulus
+
+
+def _newton_step(columns: list, characteristic, second, inverse, modulus: int):
+    """One Newton step modulo ``modulus`` (the square of the current precision m): the
+    new (P, Q) and the inverse of the Jacobian determinant modulo (P, m)."""
+    ring = flint.fmpz_mod_poly_ctx(modulus)
+    P, Q, inverse = ring(characteristic), ring(second), ring(inverse)
+    powers = [ring([1])]
+    for _ in range(max(len(c) for c in columns) - 1):
+        powers.append(powers[-1].mul_mod(Q, P))
+    (g1, u1, v1), (g2, u2, v2) = (_values([ring(c) for c in curve], powers, P) for curve in columns)
+    determinant = (u1 * v2 - v1 * u2) % P
+    inverse = (inverse * (2 - determinant * inverse)) % P  # valid modulo m: enough for this step
+    delta_u = ((v2 * g1 - v1 * g2) % P * inverse) % P
+    delta_v = ((u1 * g2 - u2 * g1) % P * inverse) % P
+    new_second = Q + (Q.derivative() * delta_u - delta_v) % P
+    new_characteristic = P + (delta_u * P.derivative()) % P
+    return tuple(flint.fmpz_poly([int(c) for c in x.coeffs()]) for x in (new_characteristic, new_second, inverse))
+
+
+def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_poly) -> Iterator[list[Fraction]]:
+    """Candidates for the monic polynomial over Q whose image modulo the prime is
+    ``characteristic``, lifted along the common points of the two ``curves`` (module
+    docstring): after each Newton step whose rational reconstruction succeeds, its
+    coefficients, lowest first (a too low precision can reconstruct wrongly: callers check
+    each candidate at another prime). Nothing where the points are not simple common
+    points in shape position modulo the prime.
+
+    >>> from baranov.solvers.exact.coupling_two import PLANE
+    >>> u, v = PLANE.gens()
+    >>> curves = [2 * v - u**2, 3 * v + u - 2]            # common points: 3u² + 2u − 4 = 0
+    >>> prime = 1000003
+    >>> image = flint.nmod_poly([-4 * pow(3, -1, prime), 2 * pow(3, -1, prime), 1], prime)
+    >>> [str(c) for c in next(newton_lifts(curves, image))]
+    ['-4/3', '2/3', '1']
+    >>> list(newton_lifts([v**2 - 1, u], flint.nmod_poly([0, 1], prime)))   # (0, ±1): one u, two points
+    []
+    """
+    prime = characteristic.modulus()
+    if characteristic.degree() < 1:
+        yield [Fraction(1)]
+        return
+    second = second_coordinate(curves, characteristic)
+    if second is None:
+        return
+    columns = [_columns(curve) for curve in curves]
+    field = [[flint.nmod_poly([int(c) for c in column.coeffs()], prime) for column in curve] for curve in columns]
+    powers = [flint.nmod_poly([1], prime)]
+    for _ in range(max(len(c) for c in field) - 1):
+        powers.append(powers[-1] * second % characteristic)
+    (_, u1, v1), (_, u2, v2) = (_values(curve, powers, characteristic) for curve in field)
+    common, inverse, _ = ((u1 * v2 - v1 * u2) % characteristic).xgcd(characteristic)
+    if common.degree() != 0:
+        return  # a mode is not a simple common point modulo p
+    inverse *= pow(int(common[0]), -1, prime)
+    lift = tuple(flint.fmpz_poly([int(c) for c in x.coeffs()]) for x in (characteristic, second, inverse))
+    modulus = prime
+    while modulus.bit_length() < MOST_BITS:
+        modulus *= modulus
+        lift = _newton_step(columns, *lift, modulus)
+        report_stage(f"exact: characteristic polynomial of degree {characteristic.degree()} by Newton's iteration, "
+                     f"{modulus.bit_length()} bits")
+        fractions = [rational_reconstruction(int(c), modulus) for c in lift[0].coeffs()]
+        if None not in fractions:
+            yield fractions
+
+
+def _reduced(coefficients: list[Fraction], prime: int) -> flint.nmod_poly | None:
+    """The monic polynomial with these rational coefficients modulo ``prime`` (None if the
+    prime divides a denominator)."""
+    if any(c.denominator % prime == 0 for c in coefficients):
+        return None
+    return flint.nmod_poly([c.numerator * pow(c.denominator, -1, prime) for c in coefficients], prime)
+
+
+def candidate_by_newton(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mpoly],
+                        seed: int = 0) -> flint.fmpz_poly | None:
+    """The candidate polynomial of a coupling-2 ``plan`` over Z (primitive, leading
+    coefficient positive), as :func:`~baranov.solvers.exact.modular.lifted_characteristic_polynomial`
+    with ``saturated=False`` returns it: its characteristic part lifted by Newton's
+    iteration along the genuine ``curves`` from the first prime and accepted when it
+    reduces to the second prime's image, its small remainder lifted by primes and
+    accepted when it reduces to the next prime's image; every prime after the first checks
+    the characteristic part again. None where Newton's iteration does not apply or a
+    check fails (the caller then lifts by primes)."""
+    rng = random.Random(seed)
+    lifts: Iterator[list[Fraction]] | None = None
+    characteristic: list[Fraction] | None = None
+    residues: list[int] = []
+    modulus, degrees = 1, None
+    for _ in range(MOST_PRIMES):
+        prime = random_prime(rng)
+        try:
+            candidate, image = candidate_images(scene, plan, prime, seed)
+        except ExactMethodError:
+            continue
+        rest = candidate / image
+        if lifts is None:
+            degrees, lifts = (candidate.degree(), image.degree()), newton_lifts(curves, image)
+            first = next(lifts, None)
+            if first is None:
+                return None  # not simple points in shape position: no need for a second prime
+            lifts = chain([first], lifts)
+        elif (candidate.degree(), image.degree()) != degrees:
+            return None  # an unlucky prime, or an unlucky first one
+        else:
+            if characteristic is None:  # the first lift that this prime confirms
+                characteristic = next((lift for lift in lifts if _reduced(lift, prime) == image), None)
+            if characteristic is None or _reduced(characteristic, prime) != image:
+                return None
+            extraneous = [rational_reconstruction(r, modulus) for r in residues]
+            if None not in extraneous and _reduced(extraneous, prime) == rest:
+                return _primitive(characteristic, extraneous)
+        residues = chinese_remainder(residues or [0] * (rest.degree() + 1), modulus, [int(c) for c in rest.coeffs()], prime)
+        modulus *= prime
+    return None
+
+
+def _primitive(*factors: list[Fraction]) -> flint.fmpz_poly:
+    product = math.prod((flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in factor]) for factor in factors),
+                        start=flint.fmpq_poly([1]))
+    integral = product.numer()
+    content = math.gcd(*(int(c) for c in integral.coeffs()))
+    integral = flint.fmpz_poly([int(c) // content for c in integral.coeffs()])
+    return -integral if integral.coeffs()[-1] < 0 else integral

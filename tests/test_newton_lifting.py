@@ -1,0 +1,75 @@
+"""The coupling-2 candidate polynomial lifted by Newton's iteration from one prime
+(baranov.solvers.exact.newton_lifting) against its lifting by primes, and the exact
+backend on it."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from shared import same_modes
+
+from baranov.enumerate import baranov_trusses
+from baranov.planner import best_plan
+from baranov.scene import load_scene
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers import solve
+from baranov.solvers.exact import coupling_two
+from baranov.solvers.exact.coupling_two import PLANE, genuine_curves, shared_curves
+from baranov.solvers.exact.modular import lifted_characteristic_polynomial
+from baranov.solvers.exact.newton_lifting import candidate_by_newton
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+NINE = baranov_trusses(9)
+COUPLING_TWO = [truss for truss in NINE if best_plan(truss).number_of_parameters == 2]  # 9/B25–B28
+
+
+def _curves(scene, plan):
+    curves = genuine_curves(scene, plan)
+    shared = shared_curves(curves, scene, plan)
+    common = math.prod(shared, start=PLANE.constant(1))
+    return (curves[0] / common, curves[1] / common) if shared else curves
+
+
+def _both_ways(truss, seed):
+    scene = scene_of(truss, generic_integer_configuration(truss, np.random.default_rng(seed)))
+    plan = best_plan(truss)
+    return candidate_by_newton(scene, plan, _curves(scene, plan)), lifted_characteristic_polynomial(
+        scene, plan, saturated=False)
+
+
+@settings(max_examples=3, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_newton_and_primes_give_the_same_candidate_polynomial(seed):
+    """On random instances of 9/B25 (the cheapest coupling-2 truss by primes): the
+    candidate polynomial over Z from one prime by Newton's iteration is the one lifted
+    from ~36 primes by the Chinese remainder theorem, coefficient for coefficient."""
+    by_newton, by_primes = _both_ways(COUPLING_TWO[0], seed)
+    assert by_newton is not None and by_newton == by_primes
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("index", range(4))
+@pytest.mark.parametrize("seed", range(3))
+def test_newton_and_primes_agree_on_every_coupling_two_nine_link_truss(index, seed):
+    by_newton, by_primes = _both_ways(COUPLING_TWO[index], seed)
+    assert by_newton is not None and by_newton == by_primes
+
+
+def test_the_exact_backend_lifts_by_newton_and_keeps_its_modes(monkeypatch):
+    """The 9/B28 example of the thesis (58 modes over C, 14 real): solved without the
+    lifting by primes (it would raise here), with the modes of the numeric backend."""
+    scene = load_scene(EXAMPLES / "9-B28.json")
+    numeric = solve(scene, method="numeric").assembly_modes
+
+    def by_primes(*args, **kwargs):
+        raise AssertionError("lifted by primes: Newton's iteration did not apply")
+
+    monkeypatch.setattr(coupling_two, "lifted_characteristic_polynomial", by_primes)
+    solution = solve(scene, method="exact")
+    assert solution.characteristic_polynomial.polynomial.degree() == 58
+    assert solution.certificate.complete
+    assert same_modes(scene, solution.assembly_modes, numeric) and len(numeric) == 14
+
