@@ -88,7 +88,7 @@ def saturate(polynomial, by):
     return polynomial
 
 
-def _norm_factors(polynomial, tower: RadicalTower) -> list[tuple[object, int]]:
+def norm_factors(polynomial, tower: RadicalTower) -> list[tuple[object, int]]:
     """The norm of ``polynomial`` over the radicals as (factor, multiplicity) pairs: the
     eliminated polynomial and each content divided out on the way (multiplicity = the
     power of 2 it would have had)."""
@@ -96,7 +96,7 @@ def _norm_factors(polynomial, tower: RadicalTower) -> list[tuple[object, int]]:
     return [(norm, 1), *contents]
 
 
-def _square_free_parts(polynomials) -> list:
+def square_free_parts(polynomials) -> list:
     """The distinct non-constant square-free factors of ``polynomials`` (flint
     ``factor_squarefree``): only their zeros matter here, and norms are often high powers
     of small polynomials — the denominators' norms on an 11-link coupling-2 truss have
@@ -117,10 +117,10 @@ def _leading_coefficient_in_v(polynomial):
 
 
 def _saturated_norm(polynomial, tower: RadicalTower, denominators) -> list[tuple[object, int]]:
-    """:func:`_norm_factors` of ``polynomial``, each saturated by ``denominators`` (the
+    """:func:`norm_factors` of ``polynomial``, each saturated by ``denominators`` (the
     product of the square-free parts of the denominators' norms)."""
     return [(saturate(factor, denominators), multiplicity)
-            for factor, multiplicity in _norm_factors(polynomial, tower)]
+            for factor, multiplicity in norm_factors(polynomial, tower)]
 
 
 def _univariate(polynomial, prime: int, generator: int = -1) -> flint.nmod_poly:
@@ -166,8 +166,8 @@ def _tower_modulo(scene: Scene, plan: Plan, prime: int) -> tuple[RadicalTower, l
         tower = radical_tower(scene, plan, prime)
     except ZeroDivisionError:
         raise ExactMethodError(f"the prime {prime} divides a denominator of the dimensions") from None
-    return tower, _square_free_parts(factor for denominator in tower.denominators
-                                     for factor, _ in _norm_factors(denominator, tower))
+    return tower, square_free_parts(factor for denominator in tower.denominators
+                                     for factor, _ in norm_factors(denominator, tower))
 
 
 def candidate_images(scene: Scene, plan: Plan, prime: int, seed: int = 0,
@@ -183,7 +183,7 @@ def candidate_images(scene: Scene, plan: Plan, prime: int, seed: int = 0,
     denominators = math.prod(parts, start=one)
     first, second = tower.conditions
     combined = first + rng.randrange(1, prime) * second
-    curves = [math.prod(_square_free_parts(factor for factor, _ in _saturated_norm(condition, tower, denominators)),
+    curves = [math.prod(square_free_parts(factor for factor, _ in _saturated_norm(condition, tower, denominators)),
                         start=one) for condition in (first, second, combined)]
     in_plane = [part for part in parts if part.degrees()[-1] > 0] if saturated else []
     every_branch_pair, same_branch, *undefined = _resultants_in_v(curves[0], [curves[1], curves[2], *in_plane],

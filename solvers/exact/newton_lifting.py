@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import math
 import random
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from fractions import Fraction
 from itertools import chain
 
@@ -47,9 +47,9 @@ from baranov.planner import Plan
 from baranov.scene import Scene
 
 from ..progress import report_stage
-from .characteristic import ExactMethodError
+from .characteristic import ExactMethodError, radical_tower
 from .fibers import gcd_modulo
-from .modular import candidate_images, random_prime, rational_reconstruction
+from .modular import candidate_images, norm_factors, random_prime, rational_reconstruction, square_free_parts
 from .resultant import chinese_remainder, coefficients_in_v
 
 #: Give up (the caller lifts by primes) beyond this p-adic precision or number of primes.
@@ -163,19 +163,81 @@ def _reduced(coefficients: list[Fraction], prime: int) -> flint.nmod_poly | None
     return flint.nmod_poly([c.numerator * pow(c.denominator, -1, prime) for c in coefficients], prime)
 
 
+def known_extraneous_factors(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mpoly]) -> Iterator[flint.fmpz_poly]:
+    """Integer polynomials in u, cheap over Q, whose roots include those that the
+    saturations remove: each curve's leading coefficient in v and its value at v = 0
+    (points at infinity; the line v = 0, where the second parameter is a factor of a
+    denominator), then the parts of the denominators' norms in u alone (the tower over Q,
+    computed only if asked for). On seed 3 of 9/B25–B28 they explain every removed root."""
+    for curve in curves:
+        columns = _columns(curve)
+        yield columns[-1]
+        yield columns[0]
+    tower = radical_tower(scene, plan)
+    for part in square_free_parts(factor for denominator in tower.denominators
+                                  for factor, _ in norm_factors(denominator, tower)):
+        if part.degrees()[-1] == 0:
+            terms = dict(zip(part.monoms(), part.coeffs(), strict=True))
+            yield flint.fmpq_poly([terms.get(_monomial(part, k), 0) for k in range(part.degrees()[-2] + 1)]).numer()
+
+
+def _monomial(polynomial, power: int) -> tuple[int, ...]:
+    """The exponent vector of u^power in ``polynomial``'s ring (u the second-to-last generator)."""
+    exponents = [0] * len(polynomial.degrees())
+    exponents[-2] = power
+    return tuple(exponents)
+
+
+def extraneous_from_factors(rest: flint.nmod_poly, known: Iterable[flint.fmpz_poly]) -> list[Fraction] | None:
+    """The monic polynomial over Q, product of irreducible factors of the ``known``
+    polynomials, whose image modulo the prime is ``rest`` (monic, square-free): its
+    coefficients, lowest first; None if the factors met do not make it up exactly. The
+    known polynomials are taken in order, and only until they do.
+
+    >>> prime = 1000003
+    >>> rest = flint.nmod_poly([0, 1], prime) * flint.nmod_poly([1, 0, 1], prime)   # u (u² + 1)
+    >>> [str(c) for c in extraneous_from_factors(rest, [flint.fmpz_poly([0, 3]), flint.fmpz_poly([1, 1]),
+    ...                                                 flint.fmpz_poly([5, 0, 5])])]
+    ['0', '1', '0', '1']
+    >>> extraneous_from_factors(rest, [flint.fmpz_poly([0, 3])]) is None
+    True
+    """
+    prime = rest.modulus()
+    if rest.degree() < 1:
+        return [Fraction(1)]
+    chosen, seen, image = [], set(), flint.nmod_poly([1], prime)
+    for polynomial in known:
+        if polynomial.degree() < 1:
+            continue
+        for factor, _ in polynomial.factor()[1]:
+            reduced = flint.nmod_poly([int(c) for c in factor.coeffs()], prime)
+            if factor.degree() < 1 or str(factor) in seen or reduced.degree() != factor.degree():
+                continue
+            seen.add(str(factor))
+            if rest.gcd(reduced).degree() > 0:
+                chosen.append(factor)
+                image *= reduced
+        if image * pow(int(image.coeffs()[-1]), -1, prime) == rest:
+            product = math.prod(chosen, start=flint.fmpz_poly([1]))
+            return [Fraction(int(c), int(product.coeffs()[-1])) for c in product.coeffs()]
+    return None
+
+
 def candidate_by_newton(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mpoly],
                         seed: int = 0) -> flint.fmpz_poly | None:
     """The candidate polynomial of a coupling-2 ``plan`` over Z (primitive, leading
     coefficient positive), as :func:`~baranov.solvers.exact.modular.lifted_characteristic_polynomial`
-    with ``saturated=False`` returns it: its characteristic part lifted by Newton's
-    iteration along the genuine ``curves`` from the first prime and accepted when it
-    reduces to the second prime's image, its small remainder lifted by primes and
-    accepted when it reduces to the next prime's image; every prime after the first checks
-    the characteristic part again. None where Newton's iteration does not apply or a
-    check fails (the caller then lifts by primes)."""
+    with ``saturated=False`` returns it, from its characteristic part P and the small rest
+    E that saturations remove. P is lifted by Newton's iteration along the genuine
+    ``curves`` from the first prime and accepted when it reduces to the second prime's
+    image; E is made of :func:`known_extraneous_factors` matching the first prime's image,
+    or else lifted by primes, and accepted when it reduces to a further prime's image.
+    Every prime after the first checks P again. None where Newton's iteration does not
+    apply or a check fails (the caller then lifts by primes)."""
     rng = random.Random(seed)
     lifts: Iterator[list[Fraction]] | None = None
     characteristic: list[Fraction] | None = None
+    extraneous: list[Fraction] | None = None
     residues: list[int] = []
     modulus, degrees = 1, None
     for _ in range(MOST_PRIMES):
@@ -191,6 +253,7 @@ def candidate_by_newton(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mp
             if first is None:
                 return None  # not simple points in shape position: no need for a second prime
             lifts = chain([first], lifts)
+            extraneous = extraneous_from_factors(rest, known_extraneous_factors(scene, plan, curves))
         elif (candidate.degree(), image.degree()) != degrees:
             return None  # an unlucky prime, or an unlucky first one
         else:
@@ -198,9 +261,12 @@ def candidate_by_newton(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mp
                 characteristic = next((lift for lift in lifts if _reduced(lift, prime) == image), None)
             if characteristic is None or _reduced(characteristic, prime) != image:
                 return None
-            extraneous = [rational_reconstruction(r, modulus) for r in residues]
-            if None not in extraneous and _reduced(extraneous, prime) == rest:
+            if extraneous is None:
+                reconstructed = [rational_reconstruction(r, modulus) for r in residues]
+                extraneous = None if None in reconstructed else reconstructed
+            if extraneous is not None and _reduced(extraneous, prime) == rest:
                 return _primitive(characteristic, extraneous)
+            extraneous = None  # by primes from here
         residues = chinese_remainder(residues or [0] * (rest.degree() + 1), modulus, [int(c) for c in rest.coeffs()], prime)
         modulus *= prime
     return None
