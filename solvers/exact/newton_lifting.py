@@ -82,30 +82,65 @@ def second_coordinate(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.
     return -common[0] if len(common) == 2 else None
 
 
-def _values(columns: list, powers: list, modulus) -> tuple:
-    """G, ∂G/∂u and ∂G/∂v at (u, Q(u)) modulo P, from the columns of G and Q^j mod P."""
-    value = sum((column * powers[j] for j, column in enumerate(columns)), start=modulus * 0)
-    along_u = sum((column.derivative() * powers[j] for j, column in enumerate(columns)), start=modulus * 0)
-    along_v = sum((j * column * powers[j - 1] for j, column in enumerate(columns) if j), start=modulus * 0)
-    return value % modulus, along_u % modulus, along_v % modulus
+def _powers(second, modulus, count: int) -> tuple[list, object]:
+    """Baby steps Q^0 … Q^(k-1) and the giant step Q^k modulo P, k ≈ √count."""
+    steps = max(1, math.isqrt(count - 1) + 1) if count > 1 else 1
+    baby = [modulus**0]
+    for _ in range(steps - 1):
+        baby.append(baby[-1] * second % modulus)
+    return baby, baby[-1] * second % modulus
 
 
-def _newton_step(columns: list, characteristic, second, inverse, modulus: int):
-    """One Newton step modulo ``modulus`` (the square of the current precision m): the
-    new (P, Q) and the inverse of the Jacobian determinant modulo (P, m)."""
-    ring = flint.fmpz_mod_poly_ctx(modulus)
-    P, Q, inverse = ring(characteristic), ring(second), ring(inverse)
-    powers = [ring([1])]
-    for _ in range(max(len(c) for c in columns) - 1):
-        powers.append(powers[-1].mul_mod(Q, P))
-    (g1, u1, v1), (g2, u2, v2) = (_values([ring(c) for c in curve], powers, P) for curve in columns)
+def _evaluate(coefficients: list, powers: tuple[list, object], modulus):
+    """Σ_j coefficients[j]·Q^j modulo P (Paterson–Stockmeyer: each block of k columns
+    times the baby steps, the blocks combined by Horner in the giant step), so that a
+    curve of degree d in v costs about 2√d products and remainders of size deg P,
+    against d for all the powers of Q."""
+    baby, giant = powers
+    blocks = [sum((c * baby[i] for i, c in enumerate(coefficients[start:start + len(baby)])), start=modulus * 0)
+              for start in range(0, len(coefficients), len(baby))]
+    value = blocks[-1] % modulus
+    for block in reversed(blocks[:-1]):
+        value = (value * giant + block) % modulus
+    return value
+
+
+def _parts(columns: list) -> tuple[list, list, list]:
+    """The columns of G, ∂G/∂u and ∂G/∂v (coefficients in v, polynomials in u)."""
+    return columns, [c.derivative() for c in columns], [j * c for j, c in enumerate(columns)][1:] or [columns[0] * 0]
+
+
+def _jacobian(parts: list, ring, characteristic, second, inverse) -> tuple:
+    """The Jacobian (∂G_i/∂u, ∂G_i/∂v) at (u, Q(u)) modulo P in ``ring``, and the inverse
+    of its determinant improved by one Newton step."""
+    P, Q = ring(characteristic), ring(second)
+    powers = _powers(Q, P, max(len(columns) for columns, _, _ in parts))
+    (u1, v1), (u2, v2) = (tuple(_evaluate([ring(c) for c in columns], powers, P) for columns in (along_u, along_v))
+                          for _, along_u, along_v in parts)
     determinant = (u1 * v2 - v1 * u2) % P
-    inverse = (inverse * (2 - determinant * inverse)) % P  # valid modulo m: enough for this step
-    delta_u = ((v2 * g1 - v1 * g2) % P * inverse) % P
-    delta_v = ((u1 * g2 - u2 * g1) % P * inverse) % P
+    inverse = ring(inverse)
+    return (u1, v1, u2, v2), (inverse * (2 - determinant * inverse)) % P
+
+
+def _integer(polynomial) -> flint.fmpz_poly:
+    return flint.fmpz_poly([int(c) for c in polynomial.coeffs()])
+
+
+def _newton_step(parts: list, characteristic, second, inverse, precision: int):
+    """One Newton step from ``precision`` m to m²: the new (P, Q) and the inverse of the
+    Jacobian determinant modulo (P, m). The Jacobian is needed modulo m only (the
+    residuals are ≡ 0 modulo m), so it is evaluated there, at half the size."""
+    jacobian, inverse = _jacobian(parts, flint.fmpz_mod_poly_ctx(precision), characteristic, second, inverse)
+    ring = flint.fmpz_mod_poly_ctx(precision * precision)
+    P, Q = ring(characteristic), ring(second)
+    powers = _powers(Q, P, max(len(columns) for columns, _, _ in parts))
+    g1, g2 = (_evaluate([ring(c) for c in columns], powers, P) for columns, _, _ in parts)
+    (u1, v1, u2, v2), lifted_inverse = (ring(_integer(x)) for x in jacobian), ring(_integer(inverse))
+    delta_u = ((v2 * g1 - v1 * g2) % P * lifted_inverse) % P
+    delta_v = ((u1 * g2 - u2 * g1) % P * lifted_inverse) % P
     new_second = Q + (Q.derivative() * delta_u - delta_v) % P
     new_characteristic = P + (delta_u * P.derivative()) % P
-    return tuple(flint.fmpz_poly([int(c) for c in x.coeffs()]) for x in (new_characteristic, new_second, inverse))
+    return _integer(new_characteristic), _integer(new_second), _integer(inverse)
 
 
 def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_poly) -> Iterator[list[Fraction]]:
@@ -133,21 +168,18 @@ def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_
     second = second_coordinate(curves, characteristic)
     if second is None:
         return
-    columns = [_columns(curve) for curve in curves]
-    field = [[flint.nmod_poly([int(c) for c in column.coeffs()], prime) for column in curve] for curve in columns]
-    powers = [flint.nmod_poly([1], prime)]
-    for _ in range(max(len(c) for c in field) - 1):
-        powers.append(powers[-1] * second % characteristic)
-    (_, u1, v1), (_, u2, v2) = (_values(curve, powers, characteristic) for curve in field)
-    common, inverse, _ = ((u1 * v2 - v1 * u2) % characteristic).xgcd(characteristic)
+    parts = [_parts(_columns(curve)) for curve in curves]
+    ring = flint.fmpz_mod_poly_ctx(prime)
+    lift = [_integer(characteristic), _integer(second), flint.fmpz_poly([0])]
+    (u1, v1, u2, v2), _ = _jacobian(parts, ring, *lift)
+    common, inverse, _ = ((u1 * v2 - v1 * u2) % ring(lift[0])).xgcd(ring(lift[0]))
     if common.degree() != 0:
         return  # a mode is not a simple common point modulo p
-    inverse *= pow(int(common[0]), -1, prime)
-    lift = tuple(flint.fmpz_poly([int(c) for c in x.coeffs()]) for x in (characteristic, second, inverse))
+    lift[2] = _integer(inverse * pow(int(common.coeffs()[0]), -1, prime))
     modulus = prime
     while modulus.bit_length() < MOST_BITS:
+        lift = _newton_step(parts, *lift, modulus)
         modulus *= modulus
-        lift = _newton_step(columns, *lift, modulus)
         report_stage(f"exact: characteristic polynomial of degree {characteristic.degree()} by Newton's iteration, "
                      f"{modulus.bit_length()} bits")
         fractions = [rational_reconstruction(int(c), modulus) for c in lift[0].coeffs()]
