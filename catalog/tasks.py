@@ -18,6 +18,7 @@ import logging
 import shutil
 import tempfile
 from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import CancelledError
 from contextlib import contextmanager, suppress
 from pathlib import Path
 from typing import Any
@@ -34,6 +35,11 @@ CONNECT_TIMEOUT = 20
 
 class SchedulerUnreachable(ValueError):
     """No Dask scheduler answers at the address given."""
+
+
+class ClusterLost(RuntimeError):
+    """The Dask scheduler went away during the job (its tasks cancelled); the shards
+    finished before are on disk."""
 
 
 @contextmanager
@@ -111,8 +117,12 @@ def _computed(function, jobs, shards, order, client, weight, pending) -> Iterato
     futures = {client.submit(run_shard, function, [jobs[i] for i in shards[number]], pure=False,
                              retries=RETRIES, priority=priority[number]):
                number for number in order}
-    for future in as_completed(futures):
-        yield futures[future], future.result()
+    try:
+        for future in as_completed(futures):
+            yield futures[future], future.result()
+    except CancelledError as error:  # e.g. "scheduler-connection-lost" (a 13-link run under load)
+        raise ClusterLost(f"the Dask cluster was lost during the job ({error}); the finished shards are "
+                          "kept: rerun the same command to resume") from None
 
 
 def run_shard(function: Callable[[Any], Any], jobs: list) -> list:

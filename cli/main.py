@@ -15,6 +15,8 @@ import sys
 import textwrap
 from pathlib import Path
 
+from baranov.catalog.tasks import ClusterLost
+
 from .trace import add_trace_parser, run_trace
 
 # the library is imported inside each command, so that --help and --version start fast
@@ -371,6 +373,9 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("baranov: interrupted; complete catalog files are kept, rerun to resume", file=sys.stderr)
         return 130
+    except ClusterLost as error:
+        print(f"baranov: error: {error}", file=sys.stderr)
+        return 1
     except BrokenPipeError:  # output piped into e.g. `head`: stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0

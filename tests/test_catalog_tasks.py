@@ -2,6 +2,7 @@
 resumes from them, a shard of other jobs is recomputed, and on a Dask cluster a worker
 killed in the middle of a task loses only that task."""
 
+import importlib
 import json
 import os
 import signal
@@ -71,3 +72,43 @@ def test_an_unreachable_scheduler_is_one_error(monkeypatch):
     with pytest.raises(SchedulerUnreachable, match="tcp://127.0.0.1:9: no Dask scheduler answers there"):
         with dask_client(2, "tcp://127.0.0.1:9"):
             pass
+
+
+def test_a_lost_cluster_is_one_error_and_the_shards_stay(tmp_path, monkeypatch, capsys):
+    """A 13-link run whose embedded scheduler starved under load died with a traceback
+    (FutureCancelledError, "scheduler-connection-lost"); now the job raises ClusterLost,
+    the command prints one line and exits 1, and the shards finished before stay."""
+    from distributed.client import FutureCancelledError
+
+    from baranov.catalog.tasks import ClusterLost
+
+    cli = importlib.import_module("baranov.cli.main")
+
+    class Future:
+        def __init__(self, value):
+            self.value = value
+
+        def result(self):
+            if self.value is None:
+                raise FutureCancelledError("run_shard-0", "scheduler-connection-lost")
+            return self.value
+
+    class Client:  # the first shard finishes, the second is cancelled with the scheduler
+        submitted = 0
+
+        def submit(self, task, function, jobs, **options):
+            Client.submitted += 1
+            return Future(task(function, jobs) if Client.submitted == 1 else None)
+
+    monkeypatch.setattr("distributed.as_completed", lambda futures: iter(futures))
+    with pytest.raises(ClusterLost, match="scheduler-connection-lost.*rerun the same command to resume"):
+        run_in_shards(str.upper, JOBS[:4], tmp_path, Client(), shard_size=2)
+    assert [p.name for p in tmp_path.iterdir()] == ["shard-0.json"]
+
+    def lost(args):
+        raise ClusterLost("the Dask cluster was lost during the job (…); rerun the same command to resume")
+
+    monkeypatch.setattr(cli, "run_catalog", lost)
+    assert cli.main(["catalog", "--links", "5"]) == 1
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and "rerun the same command" in error and "Traceback" not in error
