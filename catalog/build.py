@@ -39,12 +39,15 @@ from .entries import (
 from .files import gzipped, legacy_path, write_atomically
 from .slider_chains import SLIDER_MODES_MAX_LINKS, load_slider_chains, slider_chain_entries
 from .summary import render_summary
-from .tasks import dask_client, run_in_shards, shard_folder
+from .tasks import ClusterLost, dask_client, run_in_shards, shard_folder
 
 Progress = Callable[[str], None]
 #: From this link count on, the catalog holds a census (counts, invariants, a sample)
 #: instead of one entry per truss: 15 links have about a million trusses.
 CENSUS_FROM_LINKS = 15
+#: An embedded cluster lost mid-job is restarted this many times (the job resumes from its
+#: shards); a cluster named by address is the user's to restart.
+EMBEDDED_RESTARTS = 3
 
 
 def catalog_links(links: int, show_progress: bool, client: Any = None,
@@ -108,6 +111,44 @@ def _census(links: int, out: Path, client: Any, force: bool, crosscheck: bool, s
     write_atomically(path, dump_census(census))
 
 
+def _catalog_files(links: int, out: Path, client: Any, force: bool, crosscheck: bool, checks: dict,
+                   geng: str | None, slider_modes: int, assembly_modes: int, show_progress: bool,
+                   log: Progress) -> None:
+    """Write (or reuse) the files of one link count (:func:`build_catalog`); ``checks``
+    (the cross-check results by link count) is updated and written."""
+    if links >= CENSUS_FROM_LINKS:
+        _census(links, out, client, force, crosscheck, show_progress, log)
+        return
+    path = out / f"trusses-{links}.jsonl"
+    entries = None if force else _reused(path, load_entries)
+    if entries and links <= assembly_modes and any(
+            e["assembly_modes"] is None and e["assembly_modes_evidence"].startswith(f"not derived: {links} links")
+            for e in entries):
+        entries = None  # written without the counts now asked for
+    if entries is None:
+        log(f"{links} links: enumerating")
+        entries = catalog_links(links, show_progress, client, out / ".shards" / path.stem,
+                                assembly_modes)
+        write_atomically(path, dump_entries(entries))
+    else:
+        log(f"{links} links: reusing {path}")
+    if links >= COMPACT_FROM_LINKS:  # seconds, and always what the full file says
+        write_atomically(path.with_name(path.name + ".gz"), gzipped(dump_entries(compact_entries(entries))))
+    if geng and (force or links not in checks or checks[links].get("trusses") != len(entries)):
+        log(f"{links} links: brute-force cross-check")
+        checks[links] = crosscheck_links(links, entries, client)
+        write_atomically(out / "crosscheck.json",
+                         json.dumps({str(k): checks[k] for k in sorted(checks)}, indent=2) + "\n")
+    if links <= slider_modes:
+        path = out / f"slider-chains-{links}.jsonl"
+        if force or _reused(path, load_slider_chains) is None:
+            log(f"{links} links: slider chains")
+            chains = slider_chain_entries(entries, show_progress, client, out / ".shards" / path.stem)
+            write_atomically(path, dump_entries(chains))
+        else:
+            log(f"{links} links: reusing {path}")
+
+
 def build_catalog(
     link_counts: Iterable[int],
     out: Path,
@@ -126,7 +167,10 @@ def build_catalog(
     ``assembly_modes``; return the summary. The
     entries are computed as Dask tasks (:mod:`.tasks`): on an embedded cluster of
     ``workers`` processes, or on the cluster of ``scheduler``; finished shards wait in
-    ``out/.shards/`` until their file is written, so an interrupted job resumes. Files:
+    ``out/.shards/`` until their file is written, so an interrupted job resumes; an
+    embedded cluster lost mid-job (:class:`~baranov.catalog.tasks.ClusterLost`) is
+    restarted up to :data:`EMBEDDED_RESTARTS` times and the job resumes from its shards
+    (a cluster named by ``scheduler`` is the user's to restart: the error is raised). Files:
     ``trusses-<L>.jsonl`` (from COMPACT_FROM_LINKS links on also ``trusses-<L>.jsonl.gz``,
     :data:`~baranov.catalog.entries.COMPACT_FIELDS` only) and ``slider-chains-<L>.jsonl``,
     JSON lines (one object per
@@ -137,38 +181,19 @@ def build_catalog(
     except (OSError, ValueError):
         checks = {}
     geng = find_geng() if crosscheck else None
-    with dask_client(workers, scheduler) as client:
-        for links in sorted(set(link_counts)):
-            if links >= CENSUS_FROM_LINKS:
-                _census(links, out, client, force, crosscheck, show_progress, log)
-                continue
-            path = out / f"trusses-{links}.jsonl"
-            entries = None if force else _reused(path, load_entries)
-            if entries and links <= assembly_modes and any(
-                    e["assembly_modes"] is None and e["assembly_modes_evidence"].startswith(f"not derived: {links} links")
-                    for e in entries):
-                entries = None  # written without the counts now asked for
-            if entries is None:
-                log(f"{links} links: enumerating")
-                entries = catalog_links(links, show_progress, client, out / ".shards" / path.stem,
-                                        assembly_modes)
-                write_atomically(path, dump_entries(entries))
-            else:
-                log(f"{links} links: reusing {path}")
-            if links >= COMPACT_FROM_LINKS:  # seconds, and always what the full file says
-                write_atomically(path.with_name(path.name + ".gz"), gzipped(dump_entries(compact_entries(entries))))
-            if geng and (force or links not in checks or checks[links].get("trusses") != len(entries)):
-                log(f"{links} links: brute-force cross-check")
-                checks[links] = crosscheck_links(links, entries, client)
-                write_atomically(crosscheck_path, json.dumps({str(k): checks[k] for k in sorted(checks)}, indent=2) + "\n")
-            if links <= slider_modes:
-                path = out / f"slider-chains-{links}.jsonl"
-                if force or _reused(path, load_slider_chains) is None:
-                    log(f"{links} links: slider chains")
-                    chains = slider_chain_entries(entries, show_progress, client, out / ".shards" / path.stem)
-                    write_atomically(path, dump_entries(chains))
-                else:
-                    log(f"{links} links: reusing {path}")
+    attempts = 1 if scheduler else EMBEDDED_RESTARTS + 1
+    for attempt in range(1, attempts + 1):
+        try:
+            with dask_client(workers, scheduler) as client:
+                for links in sorted(set(link_counts)):
+                    _catalog_files(links, out, client, force, crosscheck, checks, geng, slider_modes,
+                                   assembly_modes, show_progress, log)
+            break
+        except ClusterLost as error:
+            if attempt == attempts:
+                raise
+            log(f"{error}; restarting the embedded cluster ({attempt} of {EMBEDDED_RESTARTS})")
+            force = False  # what this run wrote is fresh; the rest resumes from its shards
     summary = render_summary(out, checks)
     write_atomically(out / "summary.md", summary)
     return summary

@@ -112,3 +112,45 @@ def test_a_lost_cluster_is_one_error_and_the_shards_stay(tmp_path, monkeypatch, 
     assert cli.main(["catalog", "--links", "5"]) == 1
     error = capsys.readouterr().err
     assert error.count("\n") == 1 and "rerun the same command" in error and "Traceback" not in error
+
+
+def test_a_lost_embedded_cluster_is_restarted_and_the_job_resumes(tmp_path, monkeypatch):
+    """The catalog job restarts an embedded cluster lost mid-job (up to EMBEDDED_RESTARTS
+    times) and writes what an uninterrupted run writes; a cluster named by address is
+    not restarted."""
+    from contextlib import contextmanager
+
+    from baranov.catalog import build
+    from baranov.catalog.tasks import ClusterLost
+
+    clusters = []
+
+    @contextmanager
+    def client(workers, scheduler=None):
+        clusters.append(scheduler)
+        yield None
+
+    real, calls = build.catalog_links, []
+
+    def lost_once(*args, **kwargs):
+        calls.append(args[0])
+        if len(calls) == 1:
+            raise ClusterLost("the Dask cluster was lost during the job (scheduler-connection-lost)")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(build, "dask_client", client)
+    monkeypatch.setattr(build, "catalog_links", lost_once)
+    messages = []
+    build.build_catalog([3, 5], tmp_path / "resumed", crosscheck=False, slider_modes=0, log=messages.append)
+    assert clusters == [None, None] and calls == [3, 3, 5]
+    assert any("restarting the embedded cluster (1 of 3)" in m for m in messages)
+    monkeypatch.setattr(build, "catalog_links", real)
+    build.build_catalog([3, 5], tmp_path / "plain", crosscheck=False, slider_modes=0)
+    for name in ("trusses-3.jsonl", "trusses-5.jsonl", "summary.md"):
+        assert (tmp_path / "resumed" / name).read_bytes() == (tmp_path / "plain" / name).read_bytes()
+
+    calls.clear()
+    monkeypatch.setattr(build, "catalog_links", lost_once)
+    with pytest.raises(ClusterLost):
+        build.build_catalog([3], tmp_path / "named", crosscheck=False, slider_modes=0, scheduler="tcp://host:8786")
+    assert clusters[-1] == "tcp://host:8786" and calls == [3]
