@@ -166,8 +166,15 @@ def _tower_modulo(scene: Scene, plan: Plan, prime: int) -> tuple[RadicalTower, l
         tower = radical_tower(scene, plan, prime)
     except ZeroDivisionError:
         raise ExactMethodError(f"the prime {prime} divides a denominator of the dimensions") from None
-    return tower, square_free_parts(factor for denominator in tower.denominators
-                                     for factor, _ in norm_factors(denominator, tower))
+    return tower, denominator_parts(tower)
+
+
+def denominator_parts(tower: RadicalTower) -> list:
+    """The distinct square-free parts of the norms of ``tower``'s denominators (over Q or
+    modulo its prime): where they vanish a condition holds without its distance being the
+    known one."""
+    return square_free_parts(factor for denominator in tower.denominators
+                             for factor, _ in norm_factors(denominator, tower))
 
 
 def candidate_images(scene: Scene, plan: Plan, prime: int, seed: int = 0,

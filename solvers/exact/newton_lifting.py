@@ -49,7 +49,7 @@ from baranov.scene import Scene
 from ..progress import report_stage
 from .characteristic import ExactMethodError, radical_tower
 from .fibers import gcd_modulo
-from .modular import candidate_images, norm_factors, random_prime, rational_reconstruction, square_free_parts
+from .modular import candidate_images, denominator_parts, random_prime, rational_reconstruction
 from .resultant import chinese_remainder, coefficients_in_v
 
 #: Give up (the caller lifts by primes) beyond this p-adic precision or number of primes.
@@ -84,7 +84,7 @@ def second_coordinate(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.
 
 def _powers(second, modulus, count: int) -> tuple[list, object]:
     """Baby steps Q^0 … Q^(k-1) and the giant step Q^k modulo P, k ≈ √count."""
-    steps = max(1, math.isqrt(count - 1) + 1) if count > 1 else 1
+    steps = math.isqrt(max(count - 1, 0)) + 1
     baby = [modulus**0]
     for _ in range(steps - 1):
         baby.append(baby[-1] * second % modulus)
@@ -237,9 +237,7 @@ def known_extraneous_factors(scene: Scene, plan: Plan, curves: Sequence[flint.fm
         columns = _columns(curve)
         yield columns[-1]
         yield columns[0]
-    tower = radical_tower(scene, plan)
-    for part in square_free_parts(factor for denominator in tower.denominators
-                                  for factor, _ in norm_factors(denominator, tower)):
+    for part in denominator_parts(radical_tower(scene, plan)):
         if part.degrees()[-1] == 0:
             terms = dict(zip(part.monoms(), part.coeffs(), strict=True))
             yield flint.fmpq_poly([terms.get(_monomial(part, k), 0) for k in range(part.degrees()[-2] + 1)]).numer()
