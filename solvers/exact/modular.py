@@ -284,10 +284,21 @@ def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0,
         fractions = [rational_reconstruction(r, modulus) for r in residues]
         stable = stable + 1 if None not in fractions and fractions == previous else 0
         previous = fractions
-    denominator = math.lcm(*(f.denominator for f in previous))
-    coefficients = [int(f * denominator) for f in previous]  # the leading one is the lcm > 0
-    content = math.gcd(*coefficients)
-    return flint.fmpz_poly([c // content for c in coefficients])
+    return primitive_polynomial(previous)
+
+
+def primitive_polynomial(coefficients: list[Fraction]) -> flint.fmpz_poly:
+    """The primitive integer polynomial with leading coefficient > 0 proportional to the
+    one with these rational ``coefficients`` (lowest first).
+
+    >>> primitive_polynomial([Fraction(1, 2), Fraction(-1, 3)])
+    2*x + (-3)
+    """
+    denominator = math.lcm(*(f.denominator for f in coefficients))
+    integers = [int(f * denominator) for f in coefficients]
+    sign = -1 if integers[-1] < 0 else 1
+    content = math.gcd(*integers)
+    return flint.fmpz_poly([sign * c // content for c in integers])
 
 
 def _resultants_in_v(first, others: list, prime: int, rng: random.Random) -> list[flint.nmod_poly]:

@@ -49,7 +49,13 @@ from baranov.scene import Scene
 from ..progress import report_stage
 from .characteristic import ExactMethodError, radical_tower
 from .fibers import gcd_modulo
-from .modular import candidate_images, denominator_parts, random_prime, rational_reconstruction
+from .modular import (
+    candidate_images,
+    denominator_parts,
+    primitive_polynomial,
+    random_prime,
+    rational_reconstruction,
+)
 from .resultant import chinese_remainder, coefficients_in_v
 
 #: Give up (the caller lifts by primes) beyond this p-adic precision or number of primes.
@@ -203,7 +209,7 @@ def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_
     parts = [_parts(_columns(curve)) for curve in curves]
     ring = flint.fmpz_mod_poly_ctx(prime)
     lift = [_integer(characteristic), _integer(second), flint.fmpz_poly([0])]
-    (u1, v1, u2, v2), _ = _jacobian(parts, ring, *lift)
+    (u1, v1, u2, v2), _ = _jacobian(parts, ring, *lift)  # the inverse step is unused here: xgcd gives it
     common, inverse, _ = ((u1 * v2 - v1 * u2) % ring(lift[0])).xgcd(ring(lift[0]))
     if common.degree() != 0:
         return  # a mode is not a simple common point modulo p
@@ -217,6 +223,10 @@ def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_
         fractions = reconstructed([int(c) for c in lift[0].coeffs()], modulus)
         if fractions is not None:
             yield fractions
+
+
+def _rational(coefficients: list[Fraction]) -> flint.fmpq_poly:
+    return flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in coefficients])
 
 
 def _reduced(coefficients: list[Fraction], prime: int) -> flint.nmod_poly | None:
@@ -327,17 +337,9 @@ def candidate_by_newton(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mp
                 reconstructed = [rational_reconstruction(r, modulus) for r in residues]
                 extraneous = None if None in reconstructed else reconstructed
             if extraneous is not None and _reduced(extraneous, prime) == rest:
-                return _primitive(characteristic, extraneous)
+                return primitive_polynomial([Fraction(int(c.p), int(c.q))
+                                                for c in (_rational(characteristic) * _rational(extraneous)).coeffs()])
             extraneous = None  # by primes from here
         residues = chinese_remainder(residues or [0] * (rest.degree() + 1), modulus, [int(c) for c in rest.coeffs()], prime)
         modulus *= prime
     return None
-
-
-def _primitive(*factors: list[Fraction]) -> flint.fmpz_poly:
-    product = math.prod((flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in factor]) for factor in factors),
-                        start=flint.fmpq_poly([1]))
-    integral = product.numer()
-    content = math.gcd(*(int(c) for c in integral.coeffs()))
-    integral = flint.fmpz_poly([int(c) // content for c in integral.coeffs()])
-    return -integral if integral.coeffs()[-1] < 0 else integral
