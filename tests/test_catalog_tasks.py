@@ -154,3 +154,21 @@ def test_a_lost_embedded_cluster_is_restarted_and_the_job_resumes(tmp_path, monk
     with pytest.raises(ClusterLost):
         build.build_catalog([3], tmp_path / "named", crosscheck=False, slider_modes=0, scheduler="tcp://host:8786")
     assert clusters[-1] == "tcp://host:8786" and calls == [3]
+
+
+def test_archived_shards_restore_and_a_job_resumes_from_them(tmp_path):
+    """catalog/shard_archive.py: shards archived from one working folder and restored into
+    a fresh one are reused by the rerun (nothing recomputed), byte-identical archives."""
+    from baranov.catalog.shard_archive import archive_shards, restore_shards
+
+    first, archive, second = tmp_path / "first", tmp_path / "archive", tmp_path / "second"
+    with pytest.raises(Interrupted):
+        run_in_shards(lambda job: (_ for _ in ()).throw(Interrupted) if job == "job 6" else job.upper(), JOBS,
+                      first, shard_size=2)
+    assert archive_shards(first, archive) == 3
+    packed = {path.name: path.read_bytes() for path in archive.iterdir()}
+    assert archive_shards(first, archive) == 0 and packed == {p.name: p.read_bytes() for p in archive.iterdir()}
+    assert restore_shards(archive, second) == 3 and restore_shards(archive, second) == 0
+    computed = []
+    results = run_in_shards(lambda job: computed.append(job) or job.upper(), JOBS, second, shard_size=2)
+    assert results == [job.upper() for job in JOBS] and computed == JOBS[6:]
