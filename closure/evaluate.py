@@ -9,6 +9,7 @@ parameter value — yields NaN, which propagates to the residuals.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Mapping, Sequence
 from itertools import product
 from typing import NamedTuple
@@ -22,6 +23,7 @@ from baranov.topology.graphs import joints_of_links
 from .bilateration import dehomogenised, place_joints, signed_root
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
 from .sliders import SearchedParameter, SliderGeometry, SliderPlacement
+from .straight_line import StraightLineProgram, run_program, trace_plan
 
 Triangle = tuple[str, str, str]
 Pair = frozenset[str]
@@ -98,6 +100,26 @@ class CompiledSystem:
         mapping = self.searched.get(frozenset(self.parameters[n]))
         return bound if mapping is None else mapping.scale**2
 
+    def _traced(self, parameter_values: np.ndarray, signs: np.ndarray, paired: bool) -> Profile | None:
+        """:meth:`profile` by the plan's straight-line program (:mod:`.straight_line`),
+        compiled: the same values bit for bit; None for a plan with slider joints."""
+        if self.sliders:
+            return None
+        program = _straight_line_program(self.plan, tuple(self.known), tuple(self.fixed_signs))
+        values = np.asarray(parameter_values, dtype=float)
+        if values.ndim == 1:
+            values = values[:, None]
+        mapped = np.column_stack([self.searched[frozenset(pair)].value(values[:, n])
+                                  if frozenset(pair) in self.searched else values[:, n]
+                                  for n, pair in enumerate(self.parameters)]) if len(self.parameters) else values
+        signs = np.asarray(signs, dtype=float)
+        residuals, failures, radicands, margins = run_program(
+            program, [self.known[pair] for pair in program.known_pairs],
+            [self.fixed_signs[t] for t in program.fixed_triangles], mapped, signs, paired)
+        shape = (1, len(values)) if paired else (len(signs), len(values))
+        return Profile(residuals.reshape(*shape, residuals.shape[1]), failures.reshape(shape),
+                       radicands.reshape(shape), margins.reshape(*shape, margins.shape[1]))
+
     def matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
         """M_k for every joint, and s_ref, broadcast over branches and parameter values.
 
@@ -112,7 +134,8 @@ class CompiledSystem:
         cannot be built (negative radicand), or the number of steps where all can; shape
         (B, N). Where neighbouring values fail at different steps, a feasible window may
         lie between them even if no sample falls inside it."""
-        return self._evaluate(parameter_values, signs).failures
+        traced = self._traced(parameter_values, signs, paired=False)
+        return traced.failures if traced is not None else self._evaluate(parameter_values, signs).failures
 
     def failure_profile(self, parameter_values: np.ndarray,
                         signs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -122,6 +145,9 @@ class CompiledSystem:
         values failing at the same step shows as a local maximum of that radicand; an
         undefined gap between two defined values, as a local minimum of one free-sign
         step's radicand."""
+        traced = self._traced(parameter_values, signs, paired=False)
+        if traced is not None:
+            return traced.failures, traced.radicands, traced.margins
         placement = self._evaluate(parameter_values, signs, profile=True)
         return placement.failures, placement.radicands, placement.stacked_margins()
 
@@ -130,6 +156,9 @@ class CompiledSystem:
         (B, N), (B, N) and (B, N, free); with ``paired``, point n on branch ``signs[n]``
         and shapes (N, c), (N,), (N,), (N, free). The values are those of the separate
         calls, bit for bit (the same arithmetic element by element)."""
+        profile = self._traced(parameter_values, signs, paired)
+        if profile is not None:
+            return Profile(*(part[0] for part in profile)) if paired else profile
         placement = self._evaluate(parameter_values, signs, profile=True, paired=paired)
         profile = Profile(self._closure_residuals(placement), placement.failures, placement.radicands,
                           placement.stacked_margins())
@@ -144,12 +173,18 @@ class CompiledSystem:
         """Relative closure residuals of point n on branch ``signs[n]``: shape (N, c) for
         ``parameter_values`` of shape (N, p) and ``signs`` of shape (N, m) (candidates of
         different branches refined together)."""
+        traced = self._traced(parameter_values, signs, paired=True)
+        if traced is not None:
+            return traced.residuals[0]
         return self._closure_residuals(self._evaluate(parameter_values, signs, paired=True))[0]
 
     def paired_residuals_and_failures(self, parameter_values: np.ndarray,
                                       signs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """In one evaluation, for point n on branch ``signs[n]``: :meth:`paired_residuals`,
         shape (N, c), and :meth:`first_failures`, shape (N,)."""
+        traced = self._traced(parameter_values, signs, paired=True)
+        if traced is not None:
+            return traced.residuals[0], traced.failures[0]
         placement = self._evaluate(parameter_values, signs, paired=True)
         return self._closure_residuals(placement)[0], placement.failures[0]
 
@@ -231,6 +266,9 @@ class CompiledSystem:
         values and c conditions. NaN where a radicand is negative."""
         if signs is None:
             signs = sign_branches(len(self.free_triangles))
+        traced = self._traced(parameter_values, signs, paired=False)
+        if traced is not None:
+            return traced.residuals
         return self._closure_residuals(self._evaluate(parameter_values, signs))
 
     def _closure_residuals(self, placement: _Placement) -> np.ndarray:
@@ -264,6 +302,12 @@ class CompiledSystem:
         geometry = self.sliders[slider]
         size = max(abs(z) for frame in geometry.offsets.values() for z in frame.values())
         return value.real / size
+
+
+@functools.lru_cache(maxsize=256)
+def _straight_line_program(plan, known_pairs: tuple, fixed_triangles: tuple) -> StraightLineProgram:
+    """A plan's program, traced once per plan (and its link pairs and link steps)."""
+    return trace_plan(plan, known_pairs, fixed_triangles)
 
 
 class Profile(NamedTuple):

@@ -1,0 +1,120 @@
+"""The bilateration kernel traced into a straight-line program and run compiled
+(closure/straight_line.py, issue 21) gives the numpy evaluation's values bit for bit:
+closure residuals, first failing steps, their relative radicands and the free-sign
+margins (NaNs alike, whatever their sign bit), on every branch or point by point, at random parameter values (inside and
+outside the feasible domain, 0, negative) and with signs 0 (triangles taken flat)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from baranov.closure.evaluate import sign_branches
+from baranov.closure.straight_line import Recorder, trace_plan
+from baranov.enumerate import baranov_trusses
+from baranov.scene import load_scene
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers.coincidence import solvable_plan
+from baranov.solvers.placement import compile_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+#: The examples and every saved regression without sliders (flat triangles, coincident
+#: joints, narrow windows: the cases the searches were fixed for).
+SCENES = sorted(path for folder in (ROOT / "examples", ROOT / "tests" / "regressions")
+                for path in folder.glob("*.json") if "slider" not in path.name)
+TRUSSES = [(links, index) for links in (3, 5, 7, 9) for index in range(len(baranov_trusses(links)))]
+TRUSSES += [(11, index) for index in range(0, len(baranov_trusses(11)), 37)]
+
+
+def _numpy_profile(compiled, values, signs, paired):
+    """What CompiledSystem.profile computed before the straight-line program: the kernel
+    in numpy arrays."""
+    placement = compiled._evaluate(values, signs, profile=True, paired=paired)
+    return (compiled._closure_residuals(placement), placement.failures, placement.radicands,
+            placement.stacked_margins())
+
+
+def _bits(array) -> bytes:
+    """The array's bytes, every NaN made one NaN (a NaN's sign bit differs between the
+    numpy and the compiled arithmetic on some NaN propagations, and nothing reads it)."""
+    array = np.ascontiguousarray(array).copy()
+    if array.dtype.kind == "f":
+        array[np.isnan(array)] = np.nan
+    return array.dtype.str.encode() + repr(array.shape).encode() + array.tobytes()
+
+
+def _assert_same(compiled, values, signs):
+    for paired in (False, True):
+        chosen = signs[np.arange(len(values)) % len(signs)] if paired else signs
+        traced = compiled._traced(values, chosen, paired)
+        assert traced is not None
+        expected = _numpy_profile(compiled, values, chosen, paired)
+        for part, mine, numpy_value in zip(traced._fields, traced, expected, strict=True):
+            assert _bits(mine) == _bits(numpy_value), f"{part} differs (paired={paired})"
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(TRUSSES), st.integers(0, 2**32 - 1))
+def test_traced_program_equals_the_numpy_kernel_bit_for_bit(truss, seed):
+    links, index = truss
+    rng = np.random.default_rng(seed)
+    chain = baranov_trusses(links)[index]
+    scene = scene_of(chain, generic_integer_configuration(chain, rng))
+    compiled = compile_scene(scene, solvable_plan(scene))
+    size = max(compiled.known.values())
+    count = len(compiled.parameters)
+    values = np.concatenate([rng.uniform(0, 4 * size, (60, count)), rng.uniform(-size, 0, (4, count)),
+                             np.zeros((2, count)), np.full((2, count), 1e12)])
+    branches = sign_branches(len(compiled.free_triangles))
+    flat = rng.integers(-1, 2, (3, branches.shape[1])).astype(float)  # a sign 0: the triangle taken flat
+    _assert_same(compiled, values, np.concatenate([branches, flat]))
+
+
+@pytest.mark.parametrize("path", SCENES, ids=lambda path: path.stem)
+def test_traced_program_on_the_examples_and_regressions(path):
+    try:
+        scene = load_scene(path)
+    except ValueError:
+        pytest.skip("not a scene (a robot or a chain that moves)")
+    try:
+        compiled = compile_scene(scene, solvable_plan(scene))
+    except ValueError:
+        pytest.skip("no bilateration plan")
+    if compiled.sliders:
+        pytest.skip("slider chains are evaluated in numpy complex numbers")
+    rng = np.random.default_rng(1)
+    size = max(compiled.known.values())
+    values = rng.uniform(0, 4 * size, (300, len(compiled.parameters)))
+    _assert_same(compiled, values, sign_branches(len(compiled.free_triangles)))
+
+
+def test_one_program_serves_every_instance_of_a_plan():
+    chain = baranov_trusses(7)[0]
+    scenes = [scene_of(chain, generic_integer_configuration(chain, np.random.default_rng(seed))) for seed in (1, 2)]
+    plans = [solvable_plan(scene) for scene in scenes]
+    assert plans[0] == plans[1]
+    programs = [trace_plan(plan, tuple(compile_scene(scene, plan).known), tuple(compile_scene(scene, plan).fixed_signs))
+                for scene, plan in zip(scenes, plans, strict=True)]
+    assert np.array_equal(programs[0].instructions, programs[1].instructions)
+
+
+def test_traced_arithmetic_records_what_python_evaluates():
+    recorder = Recorder()
+    x = recorder.input()
+    y = 2 * x + 1
+    assert len(recorder.instructions) == 2 and y.register == recorder.registers - 1
+    with pytest.raises(ValueError, match="power 3"):
+        x ** 3
+
+
+def test_no_points_give_empty_shapes():
+    chain = baranov_trusses(7)[0]
+    scene = scene_of(chain, generic_integer_configuration(chain, np.random.default_rng(3)))
+    compiled = compile_scene(scene, solvable_plan(scene))
+    branches = sign_branches(len(compiled.free_triangles))
+    _assert_same(compiled, np.zeros((0, 1)), branches)
+    assert compiled.paired_residuals(np.zeros((0, 1)), branches[:0]).shape == (0, 1)
