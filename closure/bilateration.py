@@ -222,7 +222,9 @@ def signed_root(radicand, sides, sign):
     """sign · √radicand in floats (numpy arrays): NaN where the radicand is negative
     beyond rounding (RADICAND_NOISE relative to the largest squared side: the triangle
     does not exist), 0 where it is within rounding of 0 or where ``sign`` is 0 (the
-    triangle taken flat)."""
+    triangle taken flat). The straight-line program runs this rule as its instructions
+    ``GUARDED_ROOT`` and ``FLAT_ZERO`` (:mod:`.straight_line`; equal bit for bit,
+    ``tests/test_straight_line.py``)."""
     s_ij, s_ik, s_jk = sides
     noise = -RADICAND_NOISE * np.maximum(np.maximum(s_ij, s_ik), s_jk) ** 2
     # no errstate needed: the square root sees only values ≥ 0 and NaN, which raise nothing
