@@ -138,14 +138,15 @@ def _finish(thread: _Thread, value: Any, results: list, ready: list[_Thread]) ->
 
 def _evaluated(evaluate, waiting: list[tuple[_Thread, Samples]]) -> list:
     """One evaluation of every waiting request's points, split back per request."""
-    points, signs, sizes = [], [], []
-    for thread, request in waiting:
-        at = np.asarray(request.points, dtype=float).reshape(-1)
-        branch = thread.branch if request.signs is None else np.asarray(request.signs)
-        points.append(at)
-        signs.append(np.broadcast_to(branch, (len(at), branch.shape[-1])))
-        sizes.append(len(at))
-    reply = evaluate(np.concatenate(points), np.concatenate(signs))
+    points = [np.asarray(request.points, dtype=float).reshape(-1) for _, request in waiting]
+    branches = [thread.branch if request.signs is None else np.asarray(request.signs) for thread, request in waiting]
+    sizes = [len(at) for at in points]
+    if all(branch.ndim == 1 for branch in branches):  # the usual case: one branch a request, repeated
+        signs = np.repeat(np.array(branches).reshape(len(branches), -1), sizes, axis=0)
+    else:
+        signs = np.concatenate([np.broadcast_to(branch, (size, branch.shape[-1]))
+                                for branch, size in zip(branches, sizes, strict=True)])
+    reply = evaluate(np.concatenate(points), signs)
     bounds = np.cumsum([0] + sizes)
     if isinstance(reply, tuple):  # a NamedTuple of arrays, each split alike
         return [type(reply)(*(part[a:b] for part in reply)) for a, b in zip(bounds[:-1], bounds[1:], strict=True)]
