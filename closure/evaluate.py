@@ -10,6 +10,7 @@ parameter value — yields NaN, which propagates to the residuals.
 from __future__ import annotations
 
 import functools
+import time
 from collections.abc import Callable, Mapping, Sequence
 from itertools import product
 from typing import NamedTuple
@@ -23,7 +24,7 @@ from baranov.topology.graphs import joints_of_links
 from .bilateration import dehomogenised, place_joints, signed_root
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
 from .sliders import SearchedParameter, SliderGeometry, SliderPlacement
-from .straight_line import StraightLineProgram, run_program, trace_plan
+from .straight_line import StraightLineProgram, compiled_kernel_in_use, count_numpy_seconds, run_program, trace_plan
 
 Triangle = tuple[str, str, str]
 Pair = frozenset[str]
@@ -101,10 +102,17 @@ class CompiledSystem:
         return bound if mapping is None else mapping.scale**2
 
     def _traced(self, parameter_values: np.ndarray, signs: np.ndarray, paired: bool) -> Profile | None:
-        """:meth:`profile` by the plan's straight-line program (:mod:`.straight_line`),
-        compiled: the same values bit for bit; None for a plan with slider joints."""
-        if self.sliders:
+        """:meth:`program_profile` where the compiled kernel is in use
+        (:func:`~.straight_line.compiled_kernel_in_use`); None for the numpy kernel, and
+        for a plan with slider joints."""
+        if self.sliders or not compiled_kernel_in_use():
             return None
+        return self.program_profile(parameter_values, signs, paired)
+
+    def program_profile(self, parameter_values: np.ndarray, signs: np.ndarray, paired: bool = False) -> Profile:
+        """:meth:`profile` (with ``paired``, before its first axis is dropped) by the
+        plan's straight-line program (:mod:`.straight_line`), compiled: the same values
+        bit for bit. Not for plans with slider joints."""
         program = _straight_line_program(self.plan, tuple(self.known), tuple(self.fixed_signs))
         values = np.asarray(parameter_values, dtype=float)
         if values.ndim == 1:
@@ -191,7 +199,17 @@ class CompiledSystem:
     def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool = False,
                   paired: bool = False):
         """The plan placed by the bilateration kernel (:func:`~.bilateration.place_joints`)
-        in numpy floats over all branches × parameter values at once."""
+        in numpy floats over all branches × parameter values at once (its time counted
+        towards the switch to the compiled kernel, :func:`~.straight_line.count_numpy_seconds`)."""
+        started = time.perf_counter()
+        try:
+            return self._placed(parameter_values, signs, profile, paired)
+        finally:
+            if not self.sliders:
+                count_numpy_seconds(time.perf_counter() - started)
+
+    def _placed(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool, paired: bool):
+        """:meth:`_evaluate`'s placement."""
         values = np.asarray(parameter_values, dtype=float)
         if values.ndim == 1:
             values = values[:, None]

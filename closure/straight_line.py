@@ -21,6 +21,7 @@ Plans with slider joints (complex arithmetic, ``closure/sliders.py``) are not tr
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -275,6 +276,38 @@ def _run(instructions, registers, constant_registers, constant_values, input_reg
 
 
 _compiled_loop = None
+
+#: Seconds of numpy evaluation after which a process switches to the compiled kernel
+#: (``BARANOV_KERNEL=auto``, the default). Loading numba and the compiled loop costs
+#: about 0.5 s (measured: the import 0.25–0.37 s, the first call 0.24 s from numba's disk
+#: cache), which a one-off solve of a 7-link truss (20 ms) never pays back: that one stays
+#: in numpy, while a sweep, a batch or a coupling-2 solve switches within its first half
+#: second and then spends at most twice what the better kernel alone would have.
+SWITCH_AFTER_SECONDS = 0.5
+
+_numpy_seconds = 0.0
+
+
+def count_numpy_seconds(seconds: float) -> None:
+    """Add ``seconds`` of evaluation in numpy arrays to this process's count."""
+    global _numpy_seconds
+    _numpy_seconds += seconds
+
+
+def compiled_kernel_in_use() -> bool:
+    """Whether evaluations run the compiled program: ``BARANOV_KERNEL=compiled`` always,
+    ``numpy`` never, ``auto`` (default) once this process has spent
+    :data:`SWITCH_AFTER_SECONDS` in numpy evaluations. Either gives the same values."""
+    choice = os.environ.get("BARANOV_KERNEL", "auto")
+    if choice not in ("auto", "compiled", "numpy"):
+        raise KernelChoiceError(f"BARANOV_KERNEL={choice!r}: 'auto', 'compiled' or 'numpy'")
+    if choice == "auto":
+        return _compiled_loop is not None or _numpy_seconds >= SWITCH_AFTER_SECONDS
+    return choice == "compiled"
+
+
+class KernelChoiceError(ValueError):
+    """An unknown ``BARANOV_KERNEL`` value."""
 
 
 def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np.ndarray, parameters: np.ndarray,

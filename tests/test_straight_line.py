@@ -13,8 +13,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+import baranov.closure.straight_line as straight_line
 from baranov.closure.evaluate import sign_branches
-from baranov.closure.straight_line import Recorder, trace_plan
+from baranov.closure.straight_line import KernelChoiceError, Recorder, trace_plan
 from baranov.enumerate import baranov_trusses
 from baranov.scene import load_scene
 from baranov.scene.instances import generic_integer_configuration, scene_of
@@ -50,8 +51,7 @@ def _bits(array) -> bytes:
 def _assert_same(compiled, values, signs):
     for paired in (False, True):
         chosen = signs[np.arange(len(values)) % len(signs)] if paired else signs
-        traced = compiled._traced(values, chosen, paired)
-        assert traced is not None
+        traced = compiled.program_profile(values, chosen, paired)
         expected = _numpy_profile(compiled, values, chosen, paired)
         for part, mine, numpy_value in zip(traced._fields, traced, expected, strict=True):
             assert _bits(mine) == _bits(numpy_value), f"{part} differs (paired={paired})"
@@ -118,3 +118,29 @@ def test_no_points_give_empty_shapes():
     branches = sign_branches(len(compiled.free_triangles))
     _assert_same(compiled, np.zeros((0, 1)), branches)
     assert compiled.paired_residuals(np.zeros((0, 1)), branches[:0]).shape == (0, 1)
+
+
+def test_the_kernel_in_use_follows_baranov_kernel(monkeypatch):
+    """``auto`` switches once the process has spent SWITCH_AFTER_SECONDS in numpy
+    evaluations (or has loaded the compiled loop); ``numpy`` and ``compiled`` force one."""
+    chain = baranov_trusses(7)[0]
+    scene = scene_of(chain, generic_integer_configuration(chain, np.random.default_rng(4)))
+    compiled = compile_scene(scene, solvable_plan(scene))
+    branches = sign_branches(len(compiled.free_triangles))
+    values = np.linspace(1, 50, 7)[:, None]
+    monkeypatch.setattr(straight_line, "_compiled_loop", None)
+    monkeypatch.setattr(straight_line, "_numpy_seconds", 0.0)
+    monkeypatch.setenv("BARANOV_KERNEL", "auto")
+    assert compiled._traced(values, branches, False) is None
+    compiled.residuals(values, branches)  # a numpy evaluation, counted
+    assert 0 < straight_line._numpy_seconds < straight_line.SWITCH_AFTER_SECONDS
+    monkeypatch.setattr(straight_line, "_numpy_seconds", straight_line.SWITCH_AFTER_SECONDS)
+    assert compiled._traced(values, branches, False) is not None
+    monkeypatch.setenv("BARANOV_KERNEL", "numpy")
+    assert compiled._traced(values, branches, False) is None
+    monkeypatch.setenv("BARANOV_KERNEL", "compiled")
+    monkeypatch.setattr(straight_line, "_numpy_seconds", 0.0)
+    assert compiled._traced(values, branches, False) is not None
+    monkeypatch.setenv("BARANOV_KERNEL", "fast")
+    with pytest.raises(KernelChoiceError, match="BARANOV_KERNEL='fast'"):
+        compiled.residuals(values, branches)
