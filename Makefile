@@ -41,7 +41,7 @@ test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default tes
 	$(BIN)/ruff check .
 	$(BIN)/pytest -q
 
-test-slow: $(STAMP)  ## long checks (about 2 h 40 min, the sum of separately measured parts): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 800 coupling-2 random instances), whole catalog
+test-slow: $(STAMP)  ## long checks (not timed as a whole; README gives the parts measured separately): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 800 coupling-2 random instances), whole catalog
 	$(BIN)/pytest -q -m slow
 
 fuzz: $(STAMP)  ## the long fuzz run of the scene loader and the solvers (tests/test_fuzz.py, FUZZ cases per test, default 10⁴)
