@@ -1,9 +1,11 @@
 """Completeness of the numeric backend against the exact one (issue 5): on 200 random
 generic instances of every 7- and 9-link truss, the numeric method finds exactly the
 assembly modes whose parameter values the exact method certifies as real roots. The four
-9-link trusses of coupling degree 2 (9/B25-B28) cost 5-21 s per exact solve (the
-polynomial lifted from primes, then certified): their tests, one per truss, took 12 to
-48 min each on 2 cores (1 h 53 min in all), the coupling-1 one about 14 min.
+9-link trusses of coupling degree 2 (9/B25-B28) cost 5-21 s per exact solve when the
+polynomial was lifted from primes: their tests, one per truss, took 12 to 48 min each on
+2 cores (1 h 53 min in all), the coupling-1 one about 14 min. With the polynomial lifted
+by Newton's iteration and the compiled numeric kernel, all five tests took 32 min 42 s
+(2026-11-26, a niced catalog job beside them).
 
 Slow (`make test-slow`): two worker processes; a miss prints the instance's coordinates,
 to be saved under tests/regressions/.
