@@ -101,14 +101,6 @@ class CompiledSystem:
         mapping = self.searched.get(frozenset(self.parameters[n]))
         return bound if mapping is None else mapping.scale**2
 
-    def _traced(self, parameter_values: np.ndarray, signs: np.ndarray, paired: bool) -> Profile | None:
-        """:meth:`program_profile` where the compiled kernel is in use
-        (:func:`~.straight_line.compiled_kernel_in_use`); None for the numpy kernel, and
-        for a plan with slider joints."""
-        if self.sliders or not compiled_kernel_in_use():
-            return None
-        return self.program_profile(parameter_values, signs, paired)
-
     def program_profile(self, parameter_values: np.ndarray, signs: np.ndarray, paired: bool = False) -> Profile:
         """:meth:`profile` (with ``paired``, before its first axis is dropped) by the
         plan's straight-line program (:mod:`.straight_line`), compiled: the same values
@@ -134,7 +126,7 @@ class CompiledSystem:
         ``parameter_values`` has shape (N, p) (p = number of parameters), ``signs`` shape
         (B, m) (m = free-sign triangles); results have shape (B, N).
         """
-        placement = self._evaluate(parameter_values, signs)
+        placement = self._evaluate(parameter_values, signs, points=True)
         return placement.matrices(), placement.s_ref
 
     def first_failures(self, parameter_values: np.ndarray, signs: np.ndarray) -> np.ndarray:
@@ -142,8 +134,7 @@ class CompiledSystem:
         cannot be built (negative radicand), or the number of steps where all can; shape
         (B, N). Where neighbouring values fail at different steps, a feasible window may
         lie between them even if no sample falls inside it."""
-        traced = self._traced(parameter_values, signs, paired=False)
-        return traced.failures if traced is not None else self._evaluate(parameter_values, signs).failures
+        return self._evaluate(parameter_values, signs).failures
 
     def failure_profile(self, parameter_values: np.ndarray,
                         signs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -153,9 +144,6 @@ class CompiledSystem:
         values failing at the same step shows as a local maximum of that radicand; an
         undefined gap between two defined values, as a local minimum of one free-sign
         step's radicand."""
-        traced = self._traced(parameter_values, signs, paired=False)
-        if traced is not None:
-            return traced.failures, traced.radicands, traced.margins
         placement = self._evaluate(parameter_values, signs, profile=True)
         return placement.failures, placement.radicands, placement.stacked_margins()
 
@@ -164,9 +152,6 @@ class CompiledSystem:
         (B, N), (B, N) and (B, N, free); with ``paired``, point n on branch ``signs[n]``
         and shapes (N, c), (N,), (N,), (N, free). The values are those of the separate
         calls, bit for bit (the same arithmetic element by element)."""
-        profile = self._traced(parameter_values, signs, paired)
-        if profile is not None:
-            return Profile(*(part[0] for part in profile)) if paired else profile
         placement = self._evaluate(parameter_values, signs, profile=True, paired=paired)
         profile = Profile(self._closure_residuals(placement), placement.failures, placement.radicands,
                           placement.stacked_margins())
@@ -174,33 +159,32 @@ class CompiledSystem:
 
     def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> dict[str, np.ndarray]:
         """M_k for every joint, point n on branch ``signs[n]``; shape (N,)."""
-        matrices = self._evaluate(parameter_values, signs, paired=True).matrices()
+        matrices = self._evaluate(parameter_values, signs, paired=True, points=True).matrices()
         return {joint: value[0] for joint, value in matrices.items()}
 
     def paired_residuals(self, parameter_values: np.ndarray, signs: np.ndarray) -> np.ndarray:
         """Relative closure residuals of point n on branch ``signs[n]``: shape (N, c) for
         ``parameter_values`` of shape (N, p) and ``signs`` of shape (N, m) (candidates of
         different branches refined together)."""
-        traced = self._traced(parameter_values, signs, paired=True)
-        if traced is not None:
-            return traced.residuals[0]
         return self._closure_residuals(self._evaluate(parameter_values, signs, paired=True))[0]
 
     def paired_residuals_and_failures(self, parameter_values: np.ndarray,
                                       signs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """In one evaluation, for point n on branch ``signs[n]``: :meth:`paired_residuals`,
         shape (N, c), and :meth:`first_failures`, shape (N,)."""
-        traced = self._traced(parameter_values, signs, paired=True)
-        if traced is not None:
-            return traced.residuals[0], traced.failures[0]
         placement = self._evaluate(parameter_values, signs, paired=True)
         return self._closure_residuals(placement)[0], placement.failures[0]
 
     def _evaluate(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool = False,
-                  paired: bool = False):
+                  paired: bool = False, points: bool = False):
         """The plan placed by the bilateration kernel (:func:`~.bilateration.place_joints`)
-        in numpy floats over all branches × parameter values at once (its time counted
-        towards the switch to the compiled kernel, :func:`~.straight_line.count_numpy_seconds`)."""
+        in numpy floats over all branches × parameter values at once; or, where the
+        compiled kernel is in use (:func:`~.straight_line.compiled_kernel_in_use`) and
+        no ``points`` are asked for, its residuals and failure profile by the plan's
+        compiled program (:meth:`program_profile`: the same values). Time spent in numpy
+        counts towards the switch (:func:`~.straight_line.count_numpy_seconds`)."""
+        if not points and not self.sliders and compiled_kernel_in_use():
+            return _ProgramPlacement(*self.program_profile(parameter_values, signs, paired))
         started = time.perf_counter()
         try:
             return self._placed(parameter_values, signs, profile, paired)
@@ -284,12 +268,11 @@ class CompiledSystem:
         values and c conditions. NaN where a radicand is negative."""
         if signs is None:
             signs = sign_branches(len(self.free_triangles))
-        traced = self._traced(parameter_values, signs, paired=False)
-        if traced is not None:
-            return traced.residuals
         return self._closure_residuals(self._evaluate(parameter_values, signs))
 
-    def _closure_residuals(self, placement: _Placement) -> np.ndarray:
+    def _closure_residuals(self, placement: _Placement | _ProgramPlacement) -> np.ndarray:
+        if isinstance(placement, _ProgramPlacement):
+            return placement.residuals
         columns = []
         for u, v in self.plan.closure_pairs:
             if u in self.sliders or v in self.sliders:
@@ -336,6 +319,19 @@ class Profile(NamedTuple):
     failures: np.ndarray
     radicands: np.ndarray
     margins: np.ndarray
+
+
+class _ProgramPlacement(NamedTuple):
+    """What the compiled program gives in place of a :class:`_Placement`: residuals and
+    the failure profile, no points."""
+
+    residuals: np.ndarray
+    failures: np.ndarray
+    radicands: np.ndarray
+    margins: np.ndarray
+
+    def stacked_margins(self) -> np.ndarray:
+        return self.margins
 
 
 class _Placement(NamedTuple):

@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import baranov.closure.straight_line as straight_line
-from baranov.closure.evaluate import sign_branches
+from baranov.closure.evaluate import _ProgramPlacement, sign_branches
 from baranov.closure.straight_line import KernelChoiceError, Recorder, trace_plan
 from baranov.enumerate import baranov_trusses
 from baranov.scene import load_scene
@@ -34,7 +34,7 @@ TRUSSES += [(11, index) for index in range(0, len(baranov_trusses(11)), 37)]
 def _numpy_profile(compiled, values, signs, paired):
     """What CompiledSystem.profile computed before the straight-line program: the kernel
     in numpy arrays."""
-    placement = compiled._evaluate(values, signs, profile=True, paired=paired)
+    placement = compiled._placed(values, signs, profile=True, paired=paired)
     return (compiled._closure_residuals(placement), placement.failures, placement.radicands,
             placement.stacked_margins())
 
@@ -120,6 +120,11 @@ def test_no_points_give_empty_shapes():
     assert compiled.paired_residuals(np.zeros((0, 1)), branches[:0]).shape == (0, 1)
 
 
+def _compiled(compiled, values, branches) -> bool:
+    """Whether the evaluation ran the compiled program."""
+    return isinstance(compiled._evaluate(values, branches), _ProgramPlacement)
+
+
 def test_the_kernel_in_use_follows_baranov_kernel(monkeypatch):
     """``auto`` switches once the process has spent SWITCH_AFTER_SECONDS in numpy
     evaluations (or has loaded the compiled loop); ``numpy`` and ``compiled`` force one."""
@@ -131,16 +136,16 @@ def test_the_kernel_in_use_follows_baranov_kernel(monkeypatch):
     monkeypatch.setattr(straight_line, "_compiled_loop", None)
     monkeypatch.setattr(straight_line, "_numpy_seconds", 0.0)
     monkeypatch.setenv("BARANOV_KERNEL", "auto")
-    assert compiled._traced(values, branches, False) is None
+    assert not _compiled(compiled, values, branches)
     compiled.residuals(values, branches)  # a numpy evaluation, counted
     assert 0 < straight_line._numpy_seconds < straight_line.SWITCH_AFTER_SECONDS
     monkeypatch.setattr(straight_line, "_numpy_seconds", straight_line.SWITCH_AFTER_SECONDS)
-    assert compiled._traced(values, branches, False) is not None
+    assert _compiled(compiled, values, branches)
     monkeypatch.setenv("BARANOV_KERNEL", "numpy")
-    assert compiled._traced(values, branches, False) is None
+    assert not _compiled(compiled, values, branches)
     monkeypatch.setenv("BARANOV_KERNEL", "compiled")
     monkeypatch.setattr(straight_line, "_numpy_seconds", 0.0)
-    assert compiled._traced(values, branches, False) is not None
+    assert _compiled(compiled, values, branches)
     monkeypatch.setenv("BARANOV_KERNEL", "fast")
     with pytest.raises(KernelChoiceError, match="BARANOV_KERNEL='fast'"):
         compiled.residuals(values, branches)
