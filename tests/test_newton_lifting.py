@@ -16,14 +16,16 @@ from baranov.planner import best_plan
 from baranov.scene import load_scene
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import solve
-from baranov.solvers.exact import coupling_two
+from baranov.solvers.exact import coupling_two, newton_lifting
 from baranov.solvers.exact.coupling_two import PLANE, genuine_curves, shared_curves
-from baranov.solvers.exact.modular import lifted_characteristic_polynomial
-from baranov.solvers.exact.newton_lifting import candidate_by_newton
+from baranov.solvers.exact.modular import candidate_images, lifted_characteristic_polynomial
+from baranov.solvers.exact.newton_lifting import candidate_by_newton, characteristic_by_msolve
+from baranov.solvers.msolve import eliminating_polynomial_modulo, find_msolve
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 NINE = baranov_trusses(9)
 COUPLING_TWO = [truss for truss in NINE if best_plan(truss).number_of_parameters == 2]  # 9/B25–B28
+needs_msolve = pytest.mark.skipif(find_msolve() is None, reason="msolve binary not installed (make installs it)")
 
 
 def _curves(scene, plan):
@@ -73,3 +75,39 @@ def test_the_exact_backend_lifts_by_newton_and_keeps_its_modes(monkeypatch):
     assert solution.certificate.complete
     assert same_modes(scene, solution.assembly_modes, numeric) and len(numeric) == 14
 
+
+
+def _instance(index: int, seed: int):
+    truss = COUPLING_TWO[index]
+    return scene_of(truss, generic_integer_configuration(truss, np.random.default_rng(seed))), best_plan(truss)
+
+
+@needs_msolve
+@pytest.mark.parametrize("index", range(4))
+def test_msolve_image_is_the_saturated_characteristic_image(index):
+    """msolve's eliminating polynomial of the first parameter over F_p (Cartesian system)
+    is the characteristic polynomial's image that the resultants of the closure
+    conditions give at the same prime, saturated: two eliminations that share nothing."""
+    scene, plan = _instance(index, 1)
+    prime = 1073741789
+    assert eliminating_polynomial_modulo(scene, plan.parameters[0], prime) == candidate_images(scene, plan, prime)[1]
+
+
+@needs_msolve
+@pytest.mark.parametrize("index", range(4))
+def test_the_characteristic_polynomial_is_the_same_with_and_without_msolve(index, monkeypatch):
+    """The polynomial lifted from msolve's images divides the candidate lifted from the
+    resultants' images, and the exact backend keeps the same characteristic polynomial
+    and modes either way."""
+    scene, plan = _instance(index, 2)
+    curves = _curves(scene, plan)
+    from_msolve = characteristic_by_msolve(scene, plan, curves)
+    assert from_msolve is not None and from_msolve.degree() > 0
+    assert candidate_by_newton(scene, plan, curves) % from_msolve == 0
+    with_msolve = solve(scene, method="exact")
+    monkeypatch.setattr(newton_lifting, "find_msolve", lambda: None)
+    assert characteristic_by_msolve(scene, plan, curves) is None
+    without = solve(scene, method="exact")
+    assert with_msolve.characteristic_polynomial.polynomial == without.characteristic_polynomial.polynomial
+    assert same_modes(scene, with_msolve.assembly_modes, without.assembly_modes)
+    assert with_msolve.certificate.complete and without.certificate.complete

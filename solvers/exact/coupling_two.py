@@ -44,7 +44,7 @@ from .characteristic import (
 )
 from .fibers import Fiber, column_over_field, common_fiber, isolated_roots
 from .modular import denominator_parts, lifted_characteristic_polynomial
-from .newton_lifting import candidate_by_newton
+from .newton_lifting import candidate_by_newton, characteristic_by_msolve
 from .plane_factoring import PLANE, factors_over_q, plane_factors, plane_polynomial
 from .resultant import coefficients_in_v, resultant_by_primes
 
@@ -269,7 +269,7 @@ def characteristic_polynomial_two(scene: Scene, plan: Plan, route: str = "lifted
         common = math.prod(shared, start=PLANE.constant(1))
         curves = (curves[0] / common, curves[1] / common)
     if route == "lifted":
-        candidate = candidate_by_newton(scene, plan, curves)
+        candidate = characteristic_by_msolve(scene, plan, curves) or candidate_by_newton(scene, plan, curves)
         if candidate is None:  # the modes are not simple points in shape position modulo p: by primes
             candidate = lifted_characteristic_polynomial(scene, plan, saturated=False)
         _, factors = candidate.factor()
