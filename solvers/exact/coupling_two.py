@@ -44,7 +44,8 @@ from .characteristic import (
 )
 from .fibers import Fiber, column_over_field, common_fiber, isolated_roots
 from .modular import denominator_parts, lifted_characteristic_polynomial
-from .newton_lifting import candidate_by_newton, characteristic_by_msolve
+from .msolve_images import characteristic_by_msolve
+from .newton_lifting import candidate_by_newton
 from .plane_factoring import PLANE, factors_over_q, plane_factors, plane_polynomial
 from .resultant import coefficients_in_v, resultant_by_primes
 

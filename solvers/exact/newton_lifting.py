@@ -46,7 +46,6 @@ import flint
 from baranov.planner import Plan
 from baranov.scene import Scene
 
-from ..msolve import cartesian_system, eliminating_polynomial_modulo, find_msolve
 from ..progress import report_stage
 from .characteristic import ExactMethodError, radical_tower
 from .fibers import gcd_modulo
@@ -230,7 +229,7 @@ def _rational(coefficients: list[Fraction]) -> flint.fmpq_poly:
     return flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in coefficients])
 
 
-def _reduced(coefficients: list[Fraction], prime: int) -> flint.nmod_poly | None:
+def reduced_modulo(coefficients: list[Fraction], prime: int) -> flint.nmod_poly | None:
     """The monic polynomial with these rational coefficients modulo ``prime`` (None if the
     prime divides a denominator)."""
     if any(c.denominator % prime == 0 for c in coefficients):
@@ -296,49 +295,6 @@ def extraneous_from_factors(rest: flint.nmod_poly, known: Iterable[flint.fmpz_po
     return None
 
 
-#: Bits of the primes of :func:`characteristic_by_msolve` (msolve's sparse FGLM takes
-#: primes below 2^30).
-MSOLVE_PRIME_BITS = 30
-
-
-def characteristic_by_msolve(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mpoly],
-                             seed: int = 0) -> flint.fmpz_poly | None:
-    """The characteristic polynomial P of a coupling-2 ``plan`` over Z (primitive, leading
-    coefficient positive), lifted by Newton's iteration along the genuine ``curves``
-    from msolve's eliminating polynomial of the first parameter modulo a 30-bit prime.
-    It is accepted when it reduces to msolve's image modulo a second prime.
-
-    The image comes from the Cartesian system, not from this plan's closure conditions
-    (:func:`~baranov.solvers.msolve.eliminating_polynomial_modulo`): about 15 ms on
-    9/B25–B28, against 0.1–0.3 s for the resultants of :func:`candidate_images`. Its
-    roots are the first parameter's values at every complex solution, so every mode of
-    the plan is among them. Those solutions include configurations that the plan cannot
-    express (joints coinciding); the caller's factor tests drop their factors. On seed 1
-    of 9/B25–B28 it equals the saturated image of :func:`candidate_images` at the same
-    prime.
-
-    None, and the caller takes :func:`candidate_by_newton`, where msolve is absent, the
-    scene has sliders or an auxiliary root (an irrational link area: the Cartesian
-    system then also solves the mirrored links), the parameter does not separate the
-    solutions, Newton's iteration does not apply, or the check fails."""
-    if scene.sliders or find_msolve() is None or cartesian_system(scene)[3]:
-        return None
-    rng = random.Random(seed)
-    images = []
-    for _ in range(2):
-        image = eliminating_polynomial_modulo(scene, plan.parameters[0], random_prime(rng, MSOLVE_PRIME_BITS))
-        if image is None or image.degree() < 1:
-            return None
-        images.append(image)
-    first, second = images
-    if first.degree() != second.degree():
-        return None  # an unlucky prime
-    for lift in newton_lifts(curves, first):
-        if _reduced(lift, second.modulus()) == second:
-            return primitive_polynomial(lift)
-    return None
-
-
 def candidate_by_newton(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mpoly],
                         seed: int = 0) -> flint.fmpz_poly | None:
     """The candidate polynomial of a coupling-2 ``plan`` over Z (primitive, leading
@@ -374,13 +330,13 @@ def candidate_by_newton(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mp
             return None  # an unlucky prime, or an unlucky first one
         else:
             if characteristic is None:  # the first lift that this prime confirms
-                characteristic = next((lift for lift in lifts if _reduced(lift, prime) == image), None)
-            if characteristic is None or _reduced(characteristic, prime) != image:
+                characteristic = next((lift for lift in lifts if reduced_modulo(lift, prime) == image), None)
+            if characteristic is None or reduced_modulo(characteristic, prime) != image:
                 return None
             if extraneous is None:
                 reconstructed = [rational_reconstruction(r, modulus) for r in residues]
                 extraneous = None if None in reconstructed else reconstructed
-            if extraneous is not None and _reduced(extraneous, prime) == rest:
+            if extraneous is not None and reduced_modulo(extraneous, prime) == rest:
                 return primitive_polynomial([Fraction(int(c.p), int(c.q))
                                                 for c in (_rational(characteristic) * _rational(extraneous)).coeffs()])
             extraneous = None  # by primes from here

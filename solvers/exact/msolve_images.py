@@ -1,0 +1,183 @@
+"""The characteristic polynomial of a coupling-2 plan over Q from msolve's images of it
+modulo primes.
+
+The coupling-2 exact method (:mod:`baranov.solvers.exact.coupling_two`) needs the
+characteristic polynomial P over Q, the assembly modes' values of the first parameter u.
+Its image modulo a prime p costs 0.1–0.3 s on the nine-link trusses from the
+resultants of the closure conditions (:func:`~baranov.solvers.exact.modular.candidate_images`).
+msolve gets it in about 15 ms from the Cartesian system with a last variable
+s = |P_j − P_i|² for the parameter's pair (i, j). That is the eliminating polynomial of
+its rational parametrization over F_p, when s separates the solutions
+(:func:`~baranov.solvers.msolve.eliminating_polynomial_modulo`). Its roots are s at every
+complex solution, so every mode of the plan is among them. There are also configurations
+the plan cannot express (joints coinciding); the caller's factor tests drop their factors.
+
+P is lifted in one of two ways:
+
+1. by Newton's iteration from one prime along the genuine curves
+   (:func:`~baranov.solvers.exact.newton_lifting.newton_lifts`), when the modes are
+   simple common points of the curves. The result is accepted when it reduces to msolve's
+   image at a second prime;
+2. otherwise by the Chinese remainder theorem over msolve's images at further primes
+   (:func:`lifted_from_images`). This happens on degenerate instances where the curves
+   meet non-transversally at a mode, e.g. a mode at a domain edge. The number of primes
+   is about twice P's coefficient bits divided by 30, at 15–20 ms each, against 0.7 s
+   per prime for the resultants. Newton's iteration runs along the plan's own curves, but
+   this lifting never touches the plan, so its result must also hold the plan's own image
+   at one prime (:func:`holds_the_plans_image`).
+
+Both are Monte Carlo steps like the rest of the coupling-2 lifting. A polynomial is
+accepted only when it reduces to the image of a prime that was not used to make it.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Iterator, Sequence
+from fractions import Fraction
+from itertools import chain, combinations, islice
+
+import flint
+
+from baranov.planner import Plan
+from baranov.scene import Scene
+
+from ..msolve import cartesian_system, eliminating_polynomial_modulo, find_msolve
+from ..progress import report_stage
+from .characteristic import ExactMethodError
+from .modular import candidate_images, primitive_polynomial, random_prime
+from .newton_lifting import MOST_BITS, newton_lifts, reconstructed, reduced_modulo
+from .resultant import chinese_remainder
+
+#: Bits of the primes (msolve's sparse FGLM takes primes below 2^30).
+MSOLVE_PRIME_BITS = 30
+
+#: Primes not used to make a polynomial that must each reduce it to their image.
+CHECK_PRIMES = 2
+
+#: At most this many further images are asked of msolve (30 bits each).
+MOST_PRIMES = 1 << 12
+
+
+def msolve_images_apply(scene: Scene) -> bool:
+    """Whether msolve's eliminating polynomial is the characteristic polynomial's image.
+    That needs the msolve binary and a scene without sliders (the plan's slider parameters
+    are not distances) whose link areas are rational. An irrational area needs an auxiliary
+    root in the Cartesian system, which then also solves the linkage with that link
+    mirrored. The ground's world coordinates must be exact too: a scene given by distances
+    places its ground in floats (the 9/B28 example: √6610/3), and the Cartesian system is
+    then a nearby instance with another polynomial."""
+    return (not scene.sliders and find_msolve() is not None and exact_ground(scene)
+            and not cartesian_system(scene)[3])
+
+
+def exact_ground(scene: Scene) -> bool:
+    """Whether the ground's world coordinates are exact and give the ground link's squared
+    distances exactly.
+
+    >>> from baranov.scene import load_scene
+    >>> exact_ground(load_scene("examples/9-B28.json")), exact_ground(load_scene("examples/7-B1.json"))
+    (False, True)
+    """
+    world = {joint: (Fraction(x), Fraction(y)) for joint, (x, y) in scene.world.items()
+             if isinstance(x, int | Fraction) and isinstance(y, int | Fraction)}
+    if len(world) < len(scene.world):
+        return False
+    return all((world[u][0] - world[v][0]) ** 2 + (world[u][1] - world[v][1]) ** 2 == Fraction(scene.known[pair])
+               for pair in map(frozenset, combinations(world, 2)) if pair in scene.known for u, v in [tuple(pair)])
+
+
+def msolve_images(scene: Scene, plan: Plan, seed: int = 0) -> Iterator[flint.nmod_poly | None]:
+    """msolve's images of the characteristic polynomial of ``plan``'s first parameter
+    modulo successive random 30-bit primes (monic, square-free); None where msolve gives
+    none at a prime (the parameter does not separate the solutions, positive dimension,
+    the prime divides a denominator)."""
+    rng = random.Random(seed)
+    while True:
+        yield eliminating_polynomial_modulo(scene, plan.parameters[0], random_prime(rng, MSOLVE_PRIME_BITS))
+
+
+def characteristic_by_msolve(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mpoly],
+                             seed: int = 0) -> flint.fmpz_poly | None:
+    """The characteristic polynomial of a coupling-2 ``plan`` over Z (primitive, leading
+    coefficient positive) from msolve's images (module docstring): by Newton's iteration
+    along the genuine ``curves`` from the first image, accepted when it reduces to the
+    second; where that fails, by :func:`lifted_from_images`. None where msolve's images do
+    not apply (:func:`msolve_images_apply`), msolve gives no image at the first two
+    primes, or the lifting fails; the caller then uses the resultants' images."""
+    if not msolve_images_apply(scene):
+        return None
+    images = msolve_images(scene, plan, seed)
+    first, second = next(images), next(images)
+    if first is None or second is None or first.degree() < 1:
+        return None
+    if first.degree() == second.degree():
+        for lift in newton_lifts(curves, first):
+            if reduced_modulo(lift, second.modulus()) == second:
+                return primitive_polynomial(lift)
+    lifted = lifted_from_images(chain([first, second], islice(images, MOST_PRIMES)))
+    return lifted if lifted is not None and holds_the_plans_image(scene, plan, lifted, seed) else None
+
+
+def holds_the_plans_image(scene: Scene, plan: Plan, polynomial: flint.fmpz_poly, seed: int = 0) -> bool:
+    """Whether the plan's own characteristic image modulo a random 62-bit prime (the
+    saturated one of :func:`~baranov.solvers.exact.modular.candidate_images`, from the
+    closure conditions) divides ``polynomial`` there: every value of the first parameter
+    at which the plan's curves meet on one branch is a root. This is the check of the
+    lifting by the Chinese remainder theorem, which, unlike Newton's iteration, never
+    touches the plan. It costs one set of resultants (0.1–0.7 s on nine links), so it is
+    done only on the instances that need that lifting. False where no prime gives an
+    image."""
+    rng = random.Random(seed)
+    for _ in range(3):
+        prime = random_prime(rng)
+        try:
+            _, image = candidate_images(scene, plan, prime, seed)
+        except ExactMethodError:  # the prime divides a denominator, or an image vanishes
+            continue
+        return (flint.nmod_poly([int(c) for c in polynomial.coeffs()], prime) % image).is_zero()
+    return False
+
+
+def lifted_from_images(images: Iterator[flint.nmod_poly | None]) -> flint.fmpz_poly | None:
+    """The polynomial over Z (primitive, leading coefficient positive) whose monic images
+    modulo distinct primes are ``images``: combined by the Chinese remainder theorem,
+    reconstructed (:func:`~baranov.solvers.exact.newton_lifting.reconstructed`) whenever
+    the modulus has grown by a quarter since the last attempt, and accepted once
+    :data:`CHECK_PRIMES` further images agree with it. An image of lower degree than
+    another comes from an unlucky prime and is skipped; a higher one restarts the
+    combination. None if an image is None or the images run out first or the modulus
+    exceeds :data:`~baranov.solvers.exact.newton_lifting.MOST_BITS`.
+
+    >>> primes = [1000003, 1000033, 1000037, 1000039, 1000081, 1000099]
+    >>> images = [flint.nmod_poly([-4 * pow(3, -1, p), 2 * pow(3, -1, p), 1], p) for p in primes]   # (3u² + 2u − 4)/3
+    >>> lifted_from_images(iter(images))
+    3*x^2 + 2*x + (-4)
+    """
+    residues: list[int] = []
+    modulus, attempt_bits, candidate, checks = 1, 64, None, 0
+    for image in images:
+        if image is None:
+            return None
+        if candidate is not None:
+            checks = checks + 1 if reduced_modulo(candidate, image.modulus()) == image else 0
+            if checks == CHECK_PRIMES:
+                return primitive_polynomial(candidate)
+            if checks:
+                continue  # a check prime is not combined: it must stay independent of the candidate
+            candidate = None
+        coefficients = [int(c) for c in image.coeffs()]
+        if len(coefficients) < len(residues):
+            continue
+        if len(coefficients) > len(residues):  # every earlier prime was unlucky
+            residues, modulus, attempt_bits = [0] * len(coefficients), 1, 64
+        residues = chinese_remainder(residues, modulus, coefficients, image.modulus())
+        modulus *= image.modulus()
+        if modulus.bit_length() > MOST_BITS:
+            return None
+        if modulus.bit_length() >= attempt_bits:
+            report_stage(f"exact: characteristic polynomial of degree {len(residues) - 1} from msolve's images, "
+                         f"{modulus.bit_length()} bits")
+            candidate = reconstructed(residues, modulus)
+            attempt_bits = modulus.bit_length() * 5 // 4
+    return None
