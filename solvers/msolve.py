@@ -443,6 +443,13 @@ def eliminating_polynomial_modulo(scene: Scene, pair: tuple[str, str], prime: in
     6
     """
     variables, polynomials, _, _ = cartesian_system(scene, distances=[pair])
+    return eliminating_polynomial_of(variables, polynomials, prime, timeout)
+
+
+def eliminating_polynomial_of(variables: list[str], polynomials: list[dict], prime: int,
+                              timeout: float = 600.0) -> flint.nmod_poly | None:
+    """:func:`eliminating_polynomial_modulo` for a system already built (the last variable
+    the one eliminated for), so that the images at many primes build it once."""
     try:
         output = _parametrization_modulo(variables, polynomials, prime, timeout)
     except ArithmeticError:  # the prime divides a denominator

@@ -42,7 +42,7 @@ import flint
 from baranov.planner import Plan
 from baranov.scene import Scene
 
-from ..msolve import cartesian_system, eliminating_polynomial_modulo, find_msolve
+from ..msolve import cartesian_system, eliminating_polynomial_of, find_msolve
 from ..progress import report_stage
 from .characteristic import ExactMethodError
 from .modular import candidate_images, primitive_polynomial, random_prime
@@ -93,8 +93,9 @@ def msolve_images(scene: Scene, plan: Plan, seed: int = 0) -> Iterator[flint.nmo
     none at a prime (the parameter does not separate the solutions, positive dimension,
     the prime divides a denominator)."""
     rng = random.Random(seed)
+    variables, polynomials, _, _ = cartesian_system(scene, distances=[plan.parameters[0]])
     while True:
-        yield eliminating_polynomial_modulo(scene, plan.parameters[0], random_prime(rng, MSOLVE_PRIME_BITS))
+        yield eliminating_polynomial_of(variables, polynomials, random_prime(rng, MSOLVE_PRIME_BITS))
 
 
 def characteristic_by_msolve(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mpoly],
