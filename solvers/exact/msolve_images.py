@@ -67,8 +67,7 @@ def msolve_images_apply(scene: Scene) -> bool:
     mirrored. The ground's world coordinates must be exact too: a scene given by distances
     places its ground in floats (the 9/B28 example: √6610/3), and the Cartesian system is
     then a nearby instance with another polynomial."""
-    return (not scene.sliders and find_msolve() is not None and exact_ground(scene)
-            and not cartesian_system(scene)[3])
+    return not scene.sliders and find_msolve() is not None and exact_ground(scene)
 
 
 def exact_ground(scene: Scene) -> bool:
@@ -79,21 +78,27 @@ def exact_ground(scene: Scene) -> bool:
     >>> exact_ground(load_scene("examples/9-B28.json")), exact_ground(load_scene("examples/7-B1.json"))
     (False, True)
     """
-    world = {joint: (Fraction(x), Fraction(y)) for joint, (x, y) in scene.world.items()
-             if isinstance(x, int | Fraction) and isinstance(y, int | Fraction)}
-    if len(world) < len(scene.world):
+    world = scene.world
+    if not all(isinstance(c, int | Fraction) for point in world.values() for c in point):
         return False
-    return all((world[u][0] - world[v][0]) ** 2 + (world[u][1] - world[v][1]) ** 2 == Fraction(scene.known[pair])
-               for pair in map(frozenset, combinations(world, 2)) if pair in scene.known for u, v in [tuple(pair)])
+    for u, v in combinations(world, 2):
+        known = scene.known.get(frozenset((u, v)))
+        (xu, yu), (xv, yv) = world[u], world[v]
+        if known is not None and (Fraction(xu) - xv) ** 2 + (Fraction(yu) - yv) ** 2 != Fraction(known):
+            return False
+    return True
 
 
 def msolve_images(scene: Scene, plan: Plan, seed: int = 0) -> Iterator[flint.nmod_poly | None]:
     """msolve's images of the characteristic polynomial of ``plan``'s first parameter
     modulo successive random 30-bit primes (monic, square-free); None where msolve gives
     none at a prime (the parameter does not separate the solutions, positive dimension,
-    the prime divides a denominator)."""
+    the prime divides a denominator). Nothing if the Cartesian system needs an auxiliary
+    root (an irrational link area: it would also solve the mirrored link)."""
     rng = random.Random(seed)
-    variables, polynomials, _, _ = cartesian_system(scene, distances=[plan.parameters[0]])
+    variables, polynomials, _, auxiliary = cartesian_system(scene, distances=[plan.parameters[0]])
+    if auxiliary:
+        return
     while True:
         yield eliminating_polynomial_of(variables, polynomials, random_prime(rng, MSOLVE_PRIME_BITS))
 
@@ -109,7 +114,7 @@ def characteristic_by_msolve(scene: Scene, plan: Plan, curves: Sequence[flint.fm
     if not msolve_images_apply(scene):
         return None
     images = msolve_images(scene, plan, seed)
-    first, second = next(images), next(images)
+    first, second = next(images, None), next(images, None)
     if first is None or second is None or first.degree() < 1:
         return None
     if first.degree() == second.degree():
