@@ -159,29 +159,25 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     along_first, along_second = _boundary(compiled, signs, [
         (grid[:, :-1, :, :], grid[:, 1:, :, :], failures[:, :-1], failures[:, 1:]),
         (grid[:, :, :-1, :], grid[:, :, 1:, :], failures[:, :, :-1], failures[:, :, 1:])])
-    # the values seen by cell (i, j): four corners and the boundary points on its four
-    # edges, as eight views (C, n, n, 2) — not stacked: reducing a stacked (C, n, n, 8, 2)
-    # array over its sample axis took 1.1 of a 1.2 s first level (16 branches, 160²)
+    # the points and values seen by cell (i, j): four corners and the boundary points on
+    # its four edges, as eight views (C, n, n, 2), gathered only for the cells kept
     points = [grid[:, :-1, :-1], grid[:, 1:, :-1], grid[:, :-1, 1:], grid[:, 1:, 1:],
               along_first[0][:, :, :-1], along_first[0][:, :, 1:], along_second[0][:, :-1, :], along_second[0][:, 1:, :]]
     seen = [values[:, :-1, :-1], values[:, 1:, :-1], values[:, :-1, 1:], values[:, 1:, 1:],
             along_first[1][:, :, :-1], along_first[1][:, :, 1:], along_second[1][:, :-1, :], along_second[1][:, 1:, :]]
     near_boundary = _EdgeSamples.of_cells(along_first[3], along_second[3])
-    changes, suspect, distance = _classify(seen, near_boundary)
-    defined = [_both(np.isfinite(part)) for part in seen]
-    inside = defined[0] & defined[1] & defined[2] & defined[3]
-    # the sample of the smallest max(|f_1|, |f_2|)
-    best, smallest = _smallest(points, [np.where(known, _larger(part), np.inf) for part, known in zip(seen, defined,
-                                                                                                        strict=True)])
-    best = np.where((near_boundary.size < smallest)[..., None], near_boundary.best, best)
+    changes, suspect, distance = _classify(values, near_boundary)
+    inside = _over_corners(np.logical_and, _both(np.isfinite(values)))
 
     def cells_of(mask: np.ndarray) -> tuple[Cells, np.ndarray]:
-        c, i, j = np.nonzero(mask)
-        return Cells(cells.branch[c], grid[c, i, j], grid[c, i + 1, j + 1]), best[c, i, j]
+        at = np.nonzero(mask)
+        c, i, j = at
+        best = _best_samples(points, seen, near_boundary, at)
+        return Cells(cells.branch[c], grid[c, i, j], grid[c, i + 1, j + 1]), best
 
     undefined = failures < len(compiled.plan.steps)
-    window = (undefined[:, :-1, :-1] & undefined[:, 1:, :-1] & undefined[:, :-1, 1:] & undefined[:, 1:, 1:]
-              & (defined[4] | defined[5] | defined[6] | defined[7]))
+    window = (_over_corners(np.logical_and, undefined)
+              & _on_a_side(_both(np.isfinite(along_first[1])), _both(np.isfinite(along_second[1]))))
     strip = points[4:] + [along_first[2][:, :, :-1], along_first[2][:, :, 1:], along_second[2][:, :-1, :],
                           along_second[2][:, 1:, :]]
     interior, _ = cells_of(suspect & inside)
@@ -203,8 +199,8 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
 class _EdgeSamples:
     """What the EDGE_SAMPLES samples between the domain boundary and a grid edge's defined
     end saw (:func:`_boundary`), per grid edge: the smallest and largest value of each
-    condition (±inf where none), and the sample of the smallest max(|f_1|, |f_2|) with
-    that size (NaN, inf where none). Kept per edge and merged into its two cells, rather
+    condition there and at the boundary point itself (±inf where none), and the sample of
+    the smallest max(|f_1|, |f_2|) with that size (NaN, inf where none). Kept per edge and merged into its two cells, rather
     than stacked as more samples of every cell, because few edges cross the boundary."""
 
     low: np.ndarray  # (..., 2)
@@ -228,14 +224,59 @@ class _EdgeSamples:
         self.size[at] = size[np.arange(len(points)), pick]
 
     @staticmethod
-    def of_cells(along_first: _EdgeSamples, along_second: _EdgeSamples) -> _EdgeSamples:
+    def of_cells(along_first: _EdgeSamples, along_second: _EdgeSamples) -> _CellEdgeSamples:
         """Per cell (i, j), the samples of its four sides merged, from the edges along the
         first axis (C, n, n + 1) and along the second (C, n + 1, n)."""
         def sides(name: str) -> list[np.ndarray]:
             first, second = getattr(along_first, name), getattr(along_second, name)
             return [first[:, :, :-1], first[:, :, 1:], second[:, :-1, :], second[:, 1:, :]]
-        best, size = _smallest(sides("best"), sides("size"))
-        return _EdgeSamples(np.minimum.reduce(sides("low")), np.maximum.reduce(sides("high")), best, size)
+        return _CellEdgeSamples(np.minimum.reduce(sides("low")), np.maximum.reduce(sides("high")), sides("best"),
+                                sides("size"))
+
+
+@dataclass
+class _CellEdgeSamples:
+    """:class:`_EdgeSamples` merged per cell (C, n, n): the smallest and largest value of
+    each condition over its four sides; the sides' best samples and their sizes kept as
+    four views, merged only for the cells asked (:meth:`best_at`)."""
+
+    low: np.ndarray  # (C, n, n, 2)
+    high: np.ndarray  # (C, n, n, 2)
+    sides_best: list[np.ndarray]  # 4 × (C, n, n, 2)
+    sides_size: list[np.ndarray]  # 4 × (C, n, n)
+
+    def best_at(self, at: tuple[np.ndarray, ...]) -> tuple[np.ndarray, np.ndarray]:
+        """The best sample of the sides of the cells ``at`` (an index tuple), and its size."""
+        return _smallest([side[at] for side in self.sides_best], [side[at] for side in self.sides_size])
+
+
+def _over_corners(combine: np.ufunc, array: np.ndarray) -> np.ndarray:
+    """``combine`` (a commutative, associative ufunc) over each cell's four corners:
+    (C, n + 1, n + 1, ...) → (C, n, n, ...), along one axis, then the other."""
+    along = combine(array[:, :-1], array[:, 1:])
+    return combine(along[:, :, :-1], along[:, :, 1:])
+
+
+def _on_a_side(along_first: np.ndarray, along_second: np.ndarray) -> np.ndarray:
+    """Per cell (C, n, n), whether a flag of the edges along the first axis (C, n, n + 1)
+    or the second (C, n + 1, n) holds on one of its four sides."""
+    return along_first[:, :, :-1] | along_first[:, :, 1:] | along_second[:, :-1, :] | along_second[:, 1:, :]
+
+
+def _best_samples(points: list[np.ndarray], seen: list[np.ndarray], near_boundary: _CellEdgeSamples,
+                  at: tuple[np.ndarray, ...]) -> np.ndarray:
+    """For the cells ``at`` (an index tuple into (C, n, n)), the sample of the smallest
+    max(|f_1|, |f_2|) among those each saw (``points``, ``seen``: eight views; both
+    conditions defined) and its sides' samples near the domain boundary. Only the cells a
+    level keeps ask: computed for every cell of a first level (16 branches × 160²), this
+    was a fifth of a coupling-2 solve."""
+    sizes = []
+    for part in seen:
+        values = part[at]
+        sizes.append(np.where(_both(np.isfinite(values)), _larger(values), np.inf))
+    best, smallest = _smallest([part[at] for part in points], sizes)
+    edge_best, edge_size = near_boundary.best_at(at)
+    return np.where((edge_size < smallest)[..., None], edge_best, best)
 
 
 def _local_minima(branch: np.ndarray, low: np.ndarray, width: np.ndarray, value: np.ndarray,
@@ -342,6 +383,9 @@ def _boundary(compiled, signs, sides: list[tuple]) -> list[tuple]:
         edges = np.flatnonzero(inner[0][mine]) if len(later_failure) else []
         if len(edges):
             samples.record(tuple(axis[edges] for axis in index), inner[1][mine][edges], inner[2][mine][edges])
+        if len(later_failure):  # the boundary point's values join the samples' range
+            samples.low[index] = np.fmin(samples.low[index], values[mine])
+            samples.high[index] = np.fmax(samples.high[index], values[mine])
         found.append((points, at_points, far_points, samples))
     return found
 
@@ -404,9 +448,10 @@ def _larger(values: np.ndarray) -> np.ndarray:
     return np.maximum(np.abs(values[..., 0]), np.abs(values[..., 1]))
 
 
-def _classify(seen: list[np.ndarray], near_boundary: _EdgeSamples) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """For the values seen by each cell, k arrays (C, n, n, 2) with NaN where undefined,
-    and those its sides' samples near the domain boundary saw (``near_boundary``):
+def _classify(values: np.ndarray, near_boundary: _CellEdgeSamples) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """For the values at the cells' corners, (C, n + 1, n + 1, 2) with NaN where
+    undefined, and those its sides' points on and near the domain boundary saw
+    (``near_boundary``):
     cells where both conditions change sign; cells where both zero sets may pass (a sign
     change, or the smallest |f_k| within the spread of f_k over the 3 × 3 neighbouring
     cells); and each cell's distance from a common zero, measured by the conditions that
@@ -419,10 +464,10 @@ def _classify(seen: list[np.ndarray], near_boundary: _EdgeSamples) -> tuple[np.n
     noise hid the cell of the root: max(|f_1|, |f_2|) was not a local minimum there
     (issue 25, seed 35: 9/N2 (s1,10, s1,12) = (25, 10), f_2 ≥ 0 with an isolated zero,
     no Newton start on its branch)."""
-    low, high, smallest = near_boundary.low, near_boundary.high, None
-    for part in seen:  # NaN (undefined) ignored
-        low, high = np.fmin(low, part), np.fmax(high, part)
-        smallest = np.abs(part) if smallest is None else np.fmin(smallest, np.abs(part))
+    # over each cell's four corners, NaN (undefined) ignored
+    low = np.fmin(_over_corners(np.fmin, values), near_boundary.low)
+    high = np.fmax(_over_corners(np.fmax, values), near_boundary.high)
+    smallest = _over_corners(np.fmin, np.abs(values))
     # where the boundary samples keep one sign, their smallest |f| is their low or -high
     # (where they change sign, so does the cell, and its smallest |f| is not used)
     boundary_smallest = np.where(near_boundary.low > 0, near_boundary.low, np.maximum(-near_boundary.high, 0.0))
