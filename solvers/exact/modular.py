@@ -35,7 +35,7 @@ largest count over instances drawn with different primes
 (:func:`baranov.solvers.mode_counts.characteristic_degree`).
 
 :func:`lifted_characteristic_polynomial` recovers the polynomial over Q from its monic
-images (Chinese remainder theorem, rational reconstruction); the exact coupling-2 method
+images (:mod:`baranov.solvers.exact.lifting_by_primes`); the exact coupling-2 method
 uses it and certifies each factor (:mod:`baranov.solvers.exact.coupling_two`).
 The counts equal the degrees over Q for every truss up to 9 links and the realization
 counts for every truss of 11 links (tests/test_modular.py, the catalog's summary).
@@ -45,16 +45,16 @@ from __future__ import annotations
 
 import math
 import random
-from fractions import Fraction
+from collections.abc import Iterator
 
 import flint
 
 from baranov.planner import Plan
 from baranov.scene import Scene
 
-from ..progress import report_stage
 from .characteristic import ExactMethodError, RadicalTower, eliminate_radicals, radical_tower
-from .resultant import chinese_remainder, coefficients_in_v, resultants_modulo
+from .lifting_by_primes import MOST_BITS, lifted_from_images
+from .resultant import coefficients_in_v, resultants_modulo
 
 #: Primes are drawn from [2^61, 2^62): word-size for flint's nmod types.
 PRIME_BITS = 62
@@ -227,35 +227,17 @@ def characteristic_degree_modulo(scene: Scene, plan: Plan, prime: int, seed: int
     return characteristic_polynomial_modulo(scene, plan, prime, seed).degree()
 
 
-def rational_reconstruction(residue: int, modulus: int) -> Fraction | None:
-    """The fraction n/d ≡ ``residue`` (mod ``modulus``) with |n|, d ≤ √(modulus/2), if
-    there is one (extended Euclid stopped half way; Wang 1981). python-flint has none.
-
-    >>> rational_reconstruction(3 * pow(7, -1, 10007) % 10007, 10007)
-    Fraction(3, 7)
-    """
-    bound = math.isqrt(modulus // 2)
-    r0, r1, s0, s1 = modulus, residue % modulus, 0, 1
-    while r1 > bound:
-        quotient = r0 // r1
-        r0, r1, s0, s1 = r1, r0 - quotient * r1, s1, s0 - quotient * s1
-    if s1 == 0 or abs(s1) > bound or math.gcd(r1, s1) != 1:
-        return None
-    return Fraction(r1, s1)
-
-
 def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0,
                                      saturated: bool = True) -> flint.fmpz_poly:
     """The characteristic polynomial over Q from its images modulo random 62-bit primes
-    (:func:`characteristic_polynomial_modulo`): the monic coefficients are combined by the
-    Chinese remainder theorem and recovered by :func:`rational_reconstruction` until two
-    more primes change nothing; returned primitive over Z, leading coefficient positive.
-    An image of lower degree than another comes from an unlucky prime and is skipped.
+    (:func:`characteristic_polynomial_modulo`), by
+    :func:`~baranov.solvers.exact.lifting_by_primes.lifted_from_images` (accepted when two
+    further primes agree); primitive over Z, leading coefficient positive.
     ``saturated`` as in :func:`characteristic_polynomial_modulo`.
 
     Nothing here proves the result; callers certify its factors (the coupling-2 exact
     method tests each at a root in ball arithmetic). On the 9/B28 example: degree 58,
-    coefficients of 1418 bits, 47 primes, about 19 s (the resultant route: 174 s).
+    coefficients of 1418 bits, about 47 primes, about 19 s (the resultant route: 174 s).
 
     >>> from baranov.scene import load_scene
     >>> from baranov.solvers.coincidence import solvable_plan
@@ -265,40 +247,18 @@ def lifted_characteristic_polynomial(scene: Scene, plan: Plan, seed: int = 0,
     14
     """
     rng = random.Random(seed)
-    residues: list[int] = []
-    modulus, stable, previous = 1, 0, None
-    while stable < 2:
-        prime = random_prime(rng)
-        try:
-            image = [int(c) for c in characteristic_polynomial_modulo(scene, plan, prime, seed, saturated).coeffs()]
-        except ExactMethodError:
-            continue
-        if len(image) < len(residues):
-            continue
-        if len(image) > len(residues):  # every earlier prime was unlucky
-            residues, modulus, previous = [0] * len(image), 1, None
-        residues = chinese_remainder(residues, modulus, image, prime)
-        modulus *= prime
-        report_stage(f"exact: characteristic polynomial of degree {len(image) - 1} modulo primes, "
-                     f"{modulus.bit_length()} bits so far")
-        fractions = [rational_reconstruction(r, modulus) for r in residues]
-        stable = stable + 1 if None not in fractions and fractions == previous else 0
-        previous = fractions
-    return primitive_polynomial(previous)
 
+    def images() -> Iterator[flint.nmod_poly]:
+        while True:
+            try:
+                yield characteristic_polynomial_modulo(scene, plan, random_prime(rng), seed, saturated)
+            except ExactMethodError:  # the prime divides a denominator of the dimensions
+                continue
 
-def primitive_polynomial(coefficients: list[Fraction]) -> flint.fmpz_poly:
-    """The primitive integer polynomial with leading coefficient > 0 proportional to the
-    one with these rational ``coefficients`` (lowest first).
-
-    >>> primitive_polynomial([Fraction(1, 2), Fraction(-1, 3)])
-    2*x + (-3)
-    """
-    denominator = math.lcm(*(f.denominator for f in coefficients))
-    integers = [int(f * denominator) for f in coefficients]
-    sign = -1 if integers[-1] < 0 else 1
-    content = math.gcd(*integers)
-    return flint.fmpz_poly([sign * c // content for c in integers])
+    lifted = lifted_from_images(images(), "the resultants' images")
+    if lifted is None:
+        raise ExactMethodError(f"the characteristic polynomial needs more than {MOST_BITS} bits of primes")
+    return lifted
 
 
 def _resultants_in_v(first, others: list, prime: int, rng: random.Random) -> list[flint.nmod_poly]:

@@ -19,7 +19,7 @@ P is lifted in one of two ways:
    simple common points of the curves. The result is accepted when it reduces to msolve's
    image at a second prime;
 2. otherwise by the Chinese remainder theorem over msolve's images at further primes
-   (:func:`lifted_from_images`). This happens on degenerate instances where the curves
+   (:func:`~baranov.solvers.exact.lifting_by_primes.lifted_from_images`). This happens on degenerate instances where the curves
    meet non-transversally at a mode, e.g. a mode at a domain edge. The number of primes
    is about twice P's coefficient bits divided by 30, at 15–20 ms each, against 0.7 s
    per prime for the resultants. Newton's iteration runs along the plan's own curves, but
@@ -43,17 +43,13 @@ from baranov.planner import Plan
 from baranov.scene import Scene
 
 from ..msolve import cartesian_system, eliminating_polynomial_of, find_msolve
-from ..progress import report_stage
 from .characteristic import ExactMethodError
-from .modular import candidate_images, primitive_polynomial, random_prime
-from .newton_lifting import MOST_BITS, newton_lifts, reconstructed, reduced_modulo
-from .resultant import chinese_remainder
+from .lifting_by_primes import lifted_from_images, primitive_polynomial, reduced_modulo
+from .modular import candidate_images, random_prime
+from .newton_lifting import newton_lifts
 
 #: Bits of the primes (msolve's sparse FGLM takes primes below 2^30).
 MSOLVE_PRIME_BITS = 30
-
-#: Primes not used to make a polynomial that must each reduce it to their image.
-CHECK_PRIMES = 2
 
 #: At most this many further images are asked of msolve (30 bits each).
 MOST_PRIMES = 1 << 12
@@ -108,7 +104,8 @@ def characteristic_by_msolve(scene: Scene, plan: Plan, curves: Sequence[flint.fm
     """The characteristic polynomial of a coupling-2 ``plan`` over Z (primitive, leading
     coefficient positive) from msolve's images (module docstring): by Newton's iteration
     along the genuine ``curves`` from the first image, accepted when it reduces to the
-    second; where that fails, by :func:`lifted_from_images`. None where msolve's images do
+    second; where that fails, by
+    :func:`~baranov.solvers.exact.lifting_by_primes.lifted_from_images`. None where msolve's images do
     not apply (:func:`msolve_images_apply`), msolve gives no image at the first two
     primes, or the lifting fails; the caller then uses the resultants' images."""
     if not msolve_images_apply(scene):
@@ -121,7 +118,7 @@ def characteristic_by_msolve(scene: Scene, plan: Plan, curves: Sequence[flint.fm
         for lift in newton_lifts(curves, first):
             if reduced_modulo(lift, second.modulus()) == second:
                 return primitive_polynomial(lift)
-    lifted = lifted_from_images(chain([first, second], islice(images, MOST_PRIMES)))
+    lifted = lifted_from_images(chain([first, second], islice(images, MOST_PRIMES)), "msolve's images")
     return lifted if lifted is not None and holds_the_plans_image(scene, plan, lifted, seed) else None
 
 
@@ -143,47 +140,3 @@ def holds_the_plans_image(scene: Scene, plan: Plan, polynomial: flint.fmpz_poly,
             continue
         return (flint.nmod_poly([int(c) for c in polynomial.coeffs()], prime) % image).is_zero()
     return False
-
-
-def lifted_from_images(images: Iterator[flint.nmod_poly | None]) -> flint.fmpz_poly | None:
-    """The polynomial over Z (primitive, leading coefficient positive) whose monic images
-    modulo distinct primes are ``images``: combined by the Chinese remainder theorem,
-    reconstructed (:func:`~baranov.solvers.exact.newton_lifting.reconstructed`) whenever
-    the modulus has grown by a quarter since the last attempt, and accepted once
-    :data:`CHECK_PRIMES` further images agree with it. An image of lower degree than
-    another comes from an unlucky prime and is skipped; a higher one restarts the
-    combination. None if an image is None or the images run out first or the modulus
-    exceeds :data:`~baranov.solvers.exact.newton_lifting.MOST_BITS`.
-
-    >>> primes = [1000003, 1000033, 1000037, 1000039, 1000081, 1000099]
-    >>> images = [flint.nmod_poly([-4 * pow(3, -1, p), 2 * pow(3, -1, p), 1], p) for p in primes]   # (3u² + 2u − 4)/3
-    >>> lifted_from_images(iter(images))
-    3*x^2 + 2*x + (-4)
-    """
-    residues: list[int] = []
-    modulus, attempt_bits, candidate, checks = 1, 64, None, 0
-    for image in images:
-        if image is None:
-            return None
-        if candidate is not None:
-            checks = checks + 1 if reduced_modulo(candidate, image.modulus()) == image else 0
-            if checks == CHECK_PRIMES:
-                return primitive_polynomial(candidate)
-            if checks:
-                continue  # a check prime is not combined: it must stay independent of the candidate
-            candidate = None
-        coefficients = [int(c) for c in image.coeffs()]
-        if len(coefficients) < len(residues):
-            continue
-        if len(coefficients) > len(residues):  # every earlier prime was unlucky
-            residues, modulus, attempt_bits = [0] * len(coefficients), 1, 64
-        residues = chinese_remainder(residues, modulus, coefficients, image.modulus())
-        modulus *= image.modulus()
-        if modulus.bit_length() > MOST_BITS:
-            return None
-        if modulus.bit_length() >= attempt_bits:
-            report_stage(f"exact: characteristic polynomial of degree {len(residues) - 1} from msolve's images, "
-                         f"{modulus.bit_length()} bits")
-            candidate = reconstructed(residues, modulus)
-            attempt_bits = modulus.bit_length() * 5 // 4
-    return None

@@ -49,17 +49,18 @@ from baranov.scene import Scene
 from ..progress import report_stage
 from .characteristic import ExactMethodError, radical_tower
 from .fibers import gcd_modulo
-from .modular import (
-    candidate_images,
-    denominator_parts,
+from .lifting_by_primes import (
+    MOST_BITS,
+    chinese_remainder,
     primitive_polynomial,
-    random_prime,
     rational_reconstruction,
+    reconstructed,
+    reduced_modulo,
 )
-from .resultant import chinese_remainder, coefficients_in_v
+from .modular import candidate_images, denominator_parts, random_prime
+from .resultant import coefficients_in_v
 
-#: Give up (the caller lifts by primes) beyond this p-adic precision or number of primes.
-MOST_BITS = 1 << 18
+#: Give up (the caller lifts by primes) beyond this number of primes.
 MOST_PRIMES = 12
 
 
@@ -149,38 +150,6 @@ def _newton_step(parts: list, characteristic, second, inverse, precision: int):
     return _integer(new_characteristic), _integer(new_second), _integer(inverse)
 
 
-#: Bits of margin asked of a reconstruction: a residue drawn at random reconstructs
-#: within them with probability about 2^-MARGIN_BITS.
-MARGIN_BITS = 64
-
-
-def reconstructed(residues: list[int], modulus: int) -> list[Fraction] | None:
-    """The rationals with a common denominator D whose residues modulo ``modulus`` are
-    ``residues``: D is the lcm of the denominators of the coefficients that rational
-    reconstruction recovers with :data:`MARGIN_BITS` to spare (|n|·d < modulus / 2^64),
-    and every coefficient times D must then be an integer of that size. This needs fewer
-    bits than rational reconstruction coefficient by coefficient once the coefficients
-    that come out give all of D: one Newton step fewer on seed 3 of 9/B25, none on B26–B28
-    or the 11-link instance of issue 24's table (there, at 7 930 bits, 33 coefficients of
-    137 come out, and their denominators' lcm is not yet the 3 422-bit D). None where
-    they do not suffice.
-
-    >>> modulus = 2**521 - 1
-    >>> reconstructed([x * pow(3, -1, modulus) % modulus for x in (5, 2**70 + 1, 3)], modulus)
-    [Fraction(5, 3), Fraction(1180591620717411303425, 3), Fraction(1, 1)]
-    """
-    limit = modulus >> MARGIN_BITS
-    fractions = [rational_reconstruction(r, modulus) for r in residues]
-    denominators = [f.denominator for f in fractions if f is not None and abs(f.numerator) * f.denominator < limit]
-    if not denominators:
-        return None
-    denominator = math.lcm(*denominators)
-    numerators = [(r * denominator + modulus // 2) % modulus - modulus // 2 for r in residues]
-    if any(abs(n) >= limit for n in numerators):
-        return None
-    return [Fraction(n, denominator) for n in numerators]
-
-
 def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_poly) -> Iterator[list[Fraction]]:
     """Candidates for the monic polynomial over Q whose image modulo the prime is
     ``characteristic``, lifted along the common points of the two ``curves`` (module
@@ -227,14 +196,6 @@ def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_
 
 def _rational(coefficients: list[Fraction]) -> flint.fmpq_poly:
     return flint.fmpq_poly([flint.fmpq(c.numerator, c.denominator) for c in coefficients])
-
-
-def reduced_modulo(coefficients: list[Fraction], prime: int) -> flint.nmod_poly | None:
-    """The monic polynomial with these rational coefficients modulo ``prime`` (None if the
-    prime divides a denominator)."""
-    if any(c.denominator % prime == 0 for c in coefficients):
-        return None
-    return flint.nmod_poly([c.numerator * pow(c.denominator, -1, prime) for c in coefficients], prime)
 
 
 def known_extraneous_factors(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mpoly]) -> Iterator[flint.fmpz_poly]:

@@ -27,6 +27,8 @@ from itertools import accumulate
 
 import flint
 
+from .lifting_by_primes import chinese_remainder
+
 #: The primes used are the ones just below 2^62, in decreasing order.
 _PRIME_START = (1 << 62) - 1
 
@@ -46,16 +48,6 @@ def coefficients_in_v(polynomial) -> list[dict[int, int]]:
     for exponents, coefficient in zip(polynomial.monoms(), polynomial.coeffs(), strict=True):
         columns.setdefault(exponents[-1], {})[exponents[-2]] = int(coefficient)
     return [columns.get(k, {}) for k in range(max(columns) + 1)]
-
-
-def chinese_remainder(residues: list[int], modulus: int, image: list[int], prime: int) -> list[int]:
-    """x ≡ residues[k] (mod modulus) and x ≡ image[k] (mod prime), in [0, modulus·prime).
-
-    >>> chinese_remainder([2], 3, [3], 5)
-    [8]
-    """
-    inverse = pow(modulus, -1, prime)
-    return [r + modulus * (((value - r) * inverse) % prime) for r, value in zip(residues, image, strict=True)]
 
 
 def _subproduct_tree(points: list, context: flint.fmpz_mod_poly_ctx) -> list[list]:
