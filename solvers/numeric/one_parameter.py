@@ -116,11 +116,12 @@ def _flat_along_branches(branches: np.ndarray, margins: np.ndarray) -> np.ndarra
     a stretch only (an earlier step clamped at a fold: issue 25's 9/N12 small box, seed
     29, P11 P4 P3 flat for s1,10 in [4.8, 19.4] and not below, where six modes lie) keeps
     its ±1 branches beside the flat one."""
-    flat_samples = (np.abs(np.nan_to_num(margins, nan=1.0)) < FLAT_NOISE).sum(axis=1)
-    defined = np.isfinite(margins).sum(axis=1)
+    with np.errstate(invalid="ignore"):
+        flat_samples = (np.abs(margins) < FLAT_NOISE).sum(axis=1)  # NaN (undefined) compares False
     flat = flat_samples >= FLAT_SAMPLES
     if not flat.any():
         return branches
+    defined = np.isfinite(margins).sum(axis=1)
     everywhere = flat & (flat_samples >= 0.95 * defined)
     return np.unique(np.concatenate([np.where(everywhere, 0, branches), np.where(flat, 0, branches)]), axis=0)
 
@@ -132,7 +133,8 @@ def _require_isolated_roots(compiled: CompiledSystem, branches: np.ndarray, grid
     that often vanishes identically: a continuum of configurations). Issue 25's 7/N2
     instance rotates about P1 = P6 = P8; the bracketing of its rounding noise ran for over
     300 s."""
-    vanishing = np.abs(np.nan_to_num(table, nan=1.0)) < FLAT_NOISE
+    with np.errstate(invalid="ignore"):
+        vanishing = np.abs(table) < FLAT_NOISE  # NaN (undefined) compares False
     if (vanishing.sum(axis=1) >= FLAT_SAMPLES).any():
         b = int(np.argmax(vanishing.sum(axis=1)))
         where = grid[vanishing[b]]
