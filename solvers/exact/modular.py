@@ -172,9 +172,27 @@ def _tower_modulo(scene: Scene, plan: Plan, prime: int) -> tuple[RadicalTower, l
 def denominator_parts(tower: RadicalTower) -> list:
     """The distinct square-free parts of the norms of ``tower``'s denominators (over Q or
     modulo its prime): where they vanish a condition holds without its distance being the
-    known one."""
-    return square_free_parts(factor for denominator in tower.denominators
+    known one. A factor that a denominator shares with an earlier one is divided out before
+    the norm is taken (its zeros are already among the earlier norm's): the closure
+    conditions of a plan often share most of their denominator, and the norms are the cost
+    here (:func:`_without_shared_factors`)."""
+    return square_free_parts(factor for denominator in _without_shared_factors(tower.denominators)
                              for factor, _ in norm_factors(denominator, tower))
+
+
+def _without_shared_factors(polynomials) -> list:
+    """``polynomials`` (non-constant ones), each divided by every factor it shares with
+    an earlier one (repeated gcds); those left constant are dropped. The product of the
+    result has the zeros of the product of ``polynomials``. On 9/B25–B28 the two
+    denominators are one polynomial times different monomials."""
+    kept: list = []
+    for polynomial in polynomials:
+        for earlier in kept:
+            while not (common := polynomial.gcd(earlier)).is_constant():
+                polynomial = polynomial / common
+        if not polynomial.is_constant():
+            kept.append(polynomial)
+    return kept
 
 
 def candidate_images(scene: Scene, plan: Plan, prime: int, seed: int = 0,
