@@ -414,19 +414,21 @@ def radicand_norm(tower: RadicalTower, n: int) -> flint.fmpz_poly:
 
 
 def _radical_content(polynomial: flint.fmpq_mpoly, radicals: int) -> flint.fmpq_mpoly:
-    """The gcd of the coefficients of ``polynomial`` as a polynomial in the first
-    ``radicals`` generators (a polynomial in the remaining ones, monic)."""
-    groups: dict[tuple, dict] = {}
-    for exponents, coefficient in polynomial.to_dict().items():
-        groups.setdefault(tuple(exponents[:radicals]), {})[(0,) * radicals + tuple(exponents[radicals:])] = coefficient
-    context = polynomial.context()
+    """The gcd of the coefficients of ``polynomial`` (in normal form: of degree at most 1
+    in each radical) as a polynomial in the first ``radicals`` generators (a polynomial in
+    the remaining ones, monic). The coefficients are split off one radical at a time by
+    flint's division by the generator (grouping the terms in Python took 19 ms a call on
+    a nine-link instance, a tenth of its genuine curves)."""
+    coefficients = [polynomial]
+    for generator in polynomial.context().gens()[:radicals]:
+        coefficients = [part for coefficient in coefficients for part in divmod(coefficient, generator)
+                        if not part.is_zero()]
     content = None
-    for terms in sorted(groups.values(), key=len):
-        coefficient = context.from_dict(terms)
+    for coefficient in sorted(coefficients, key=len):
         content = coefficient if content is None else content.gcd(coefficient)
         if content.is_constant():
             break
-    return content if content is not None else context.constant(1)
+    return content if content is not None else polynomial.context().constant(1)
 
 
 def _univariate(polynomial: flint.fmpq_mpoly) -> flint.fmpz_poly:
