@@ -161,10 +161,8 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
         (grid[:, :, :-1, :], grid[:, :, 1:, :], failures[:, :, :-1], failures[:, :, 1:])])
     # the points and values seen by cell (i, j): four corners and the boundary points on
     # its four edges, as eight views (C, n, n, 2), gathered only for the cells kept
-    points = [grid[:, :-1, :-1], grid[:, 1:, :-1], grid[:, :-1, 1:], grid[:, 1:, 1:],
-              along_first[0][:, :, :-1], along_first[0][:, :, 1:], along_second[0][:, :-1, :], along_second[0][:, 1:, :]]
-    seen = [values[:, :-1, :-1], values[:, 1:, :-1], values[:, :-1, 1:], values[:, 1:, 1:],
-            along_first[1][:, :, :-1], along_first[1][:, :, 1:], along_second[1][:, :-1, :], along_second[1][:, 1:, :]]
+    points = _corners(grid) + _sides(along_first[0], along_second[0])
+    seen = _corners(values) + _sides(along_first[1], along_second[1])
     near_boundary = _EdgeSamples.of_cells(along_first[3], along_second[3])
     changes, suspect, distance = _classify(values, near_boundary)
     inside = _over_corners(np.logical_and, _both(np.isfinite(values)))
@@ -176,10 +174,9 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
         return Cells(cells.branch[c], grid[c, i, j], grid[c, i + 1, j + 1]), best
 
     undefined = failures < len(compiled.plan.steps)
-    window = (_over_corners(np.logical_and, undefined)
-              & _on_a_side(_both(np.isfinite(along_first[1])), _both(np.isfinite(along_second[1]))))
-    strip = points[4:] + [along_first[2][:, :, :-1], along_first[2][:, :, 1:], along_second[2][:, :-1, :],
-                          along_second[2][:, 1:, :]]
+    first, second, third, fourth = _sides(_both(np.isfinite(along_first[1])), _both(np.isfinite(along_second[1])))
+    window = _over_corners(np.logical_and, undefined) & (first | second | third | fourth)
+    strip = points[4:] + _sides(along_first[2], along_second[2])
     interior, _ = cells_of(suspect & inside)
     edge_cells, edge_best = cells_of(suspect & ~inside & ~window)
     started, started_best = cells_of(changes & inside)
@@ -200,8 +197,9 @@ class _EdgeSamples:
     """What the EDGE_SAMPLES samples between the domain boundary and a grid edge's defined
     end saw (:func:`_boundary`), per grid edge: the smallest and largest value of each
     condition there and at the boundary point itself (±inf where none), and the sample of
-    the smallest max(|f_1|, |f_2|) with that size (NaN, inf where none). Kept per edge and merged into its two cells, rather
-    than stacked as more samples of every cell, because few edges cross the boundary."""
+    the smallest max(|f_1|, |f_2|) with that size (NaN, inf where none). Kept per edge and
+    merged into its two cells, rather than stacked as more samples of every cell, because
+    few edges cross the boundary."""
 
     low: np.ndarray  # (..., 2)
     high: np.ndarray  # (..., 2)
@@ -228,8 +226,7 @@ class _EdgeSamples:
         """Per cell (i, j), the samples of its four sides merged, from the edges along the
         first axis (C, n, n + 1) and along the second (C, n + 1, n)."""
         def sides(name: str) -> list[np.ndarray]:
-            first, second = getattr(along_first, name), getattr(along_second, name)
-            return [first[:, :, :-1], first[:, :, 1:], second[:, :-1, :], second[:, 1:, :]]
+            return _sides(getattr(along_first, name), getattr(along_second, name))
         return _CellEdgeSamples(np.minimum.reduce(sides("low")), np.maximum.reduce(sides("high")), sides("best"),
                                 sides("size"))
 
@@ -257,10 +254,16 @@ def _over_corners(combine: np.ufunc, array: np.ndarray) -> np.ndarray:
     return combine(along[:, :, :-1], along[:, :, 1:])
 
 
-def _on_a_side(along_first: np.ndarray, along_second: np.ndarray) -> np.ndarray:
-    """Per cell (C, n, n), whether a flag of the edges along the first axis (C, n, n + 1)
-    or the second (C, n + 1, n) holds on one of its four sides."""
-    return along_first[:, :, :-1] | along_first[:, :, 1:] | along_second[:, :-1, :] | along_second[:, 1:, :]
+def _corners(array: np.ndarray) -> list[np.ndarray]:
+    """Per cell (C, n, n, ...), the values at its four corners, as views of ``array``
+    (C, n + 1, n + 1, ...)."""
+    return [array[:, :-1, :-1], array[:, 1:, :-1], array[:, :-1, 1:], array[:, 1:, 1:]]
+
+
+def _sides(along_first: np.ndarray, along_second: np.ndarray) -> list[np.ndarray]:
+    """Per cell (C, n, n, ...), the values of its four sides, as views of those of the
+    edges along the first axis (C, n, n + 1, ...) and along the second (C, n + 1, n, ...)."""
+    return [along_first[:, :, :-1], along_first[:, :, 1:], along_second[:, :-1, :], along_second[:, 1:, :]]
 
 
 def _best_samples(points: list[np.ndarray], seen: list[np.ndarray], near_boundary: _CellEdgeSamples,
