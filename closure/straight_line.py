@@ -146,6 +146,8 @@ class StraightLineProgram:
     residual_registers: np.ndarray
     margin_registers: np.ndarray
     steps: int
+    #: The layouts of :func:`program_layout` made so far, by branch set (None: paired).
+    layouts: dict = field(default_factory=dict, compare=False, repr=False)
 
 
 def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple) -> StraightLineProgram:
@@ -209,35 +211,127 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple)
         steps=len(plan.steps))
 
 
-#: Points per block of the compiled loop: the registers of a block stay in cache.
+#: Values per block of the compiled loop, at most: the slots of a block stay in cache.
 BLOCK = 256
+#: Bytes of slots a block may take (:func:`run_program`).
+BLOCK_BYTES = 1 << 20
 
 
-def _run(instructions, registers, constant_registers, constant_values, input_registers, inputs,
-         sign_registers, signs, paired, output_registers, steps):  # pragma: no cover - compiled by numba
-    """The compiled loop of :func:`run_program` (numba, nopython): the program over every
-    point, block by block, instruction by instruction."""
-    points = inputs.shape[0] if paired else inputs.shape[0] * signs.shape[0]
-    values = inputs.shape[0]
-    outputs = np.empty((points, output_registers.shape[0]))
-    failures = np.full(points, steps, dtype=np.int64)
-    radicands = np.full(points, np.nan)
-    memory = np.empty((registers, BLOCK))
-    for start in range(0, points, BLOCK):
-        size = min(BLOCK, points - start)
-        for n in range(constant_registers.shape[0]):
-            memory[constant_registers[n], :size] = constant_values[n]
-        for i in range(size):
-            point = start + i
-            row = point if paired else point % values
-            branch = point if paired else point // values
-            for n in range(input_registers.shape[0]):
-                memory[input_registers[n], i] = inputs[row, n]
-            for n in range(sign_registers.shape[0]):
-                memory[sign_registers[n], i] = signs[branch, n]
-        for instruction in range(instructions.shape[0]):
-            opcode, d, a = instructions[instruction, 0], instructions[instruction, 1], instructions[instruction, 2]
-            b, c = instructions[instruction, 3], instructions[instruction, 4]
+@dataclass(frozen=True)
+class Layout:
+    """A program's instructions over *slots*, for a set of *lanes* evaluated side by side
+    at every row of values (:func:`program_layout`). In the paired layout there is one
+    lane, and each row holds its parameters and its signs. In the layout of a branch set,
+    each branch is a lane, and a register that depends on k of the free signs has one
+    slot per distinct choice of those k signs among the branches. The branches share the
+    plan's steps up to their first free sign, so on the examples this is 6–32 % of the
+    instructions one run per branch executes (7/B1 24 %, 9/B28 27 %, 13-link Watt–Baranov
+    6 %).
+
+    ``operations`` has rows (opcode, d, a, b, c) over slots (FIRST_FAILURE: d is the lane);
+    ``row_slots`` are filled from each row's inputs, ``constant_slots`` with
+    ``constant_values`` (the branch sets' signs), ``instance_slots`` with the instance's
+    constants (the program's constants, known distances, link steps' signs, in
+    :func:`run_program`'s order); ``output_slots`` (lanes, outputs)."""
+
+    operations: np.ndarray
+    slots: int
+    row_slots: np.ndarray
+    constant_slots: np.ndarray
+    constant_values: np.ndarray
+    instance_slots: np.ndarray
+    output_slots: np.ndarray
+
+
+def program_layout(program: StraightLineProgram, signs: np.ndarray | None) -> Layout:
+    """The :class:`Layout` of ``program`` with every branch of ``signs`` (B, m) a lane, or
+    paired (``signs`` None: one lane, the signs are row inputs). Made once per program and
+    branch set. O(instructions × B)."""
+    key = None if signs is None else (signs.shape, signs.tobytes())
+    if key not in program.layouts:
+        if len(program.layouts) > 64:  # branch sets of one plan are few; a bound all the same
+            program.layouts.clear()
+        program.layouts[key] = _paired_layout(program) if signs is None else _branch_layout(program, signs)
+    return program.layouts[key]
+
+
+def _instance_registers(program: StraightLineProgram) -> np.ndarray:
+    return np.concatenate([program.constant_registers, program.known_registers, program.fixed_sign_registers])
+
+
+def _outputs(program: StraightLineProgram) -> np.ndarray:
+    return np.concatenate([program.residual_registers, program.margin_registers])
+
+
+def _paired_layout(program: StraightLineProgram) -> Layout:
+    operations = program.instructions.copy()
+    operations[operations[:, 0] == FIRST_FAILURE, 1] = 0  # one lane
+    empty = np.zeros(0, dtype=np.int64)
+    return Layout(operations, program.registers, np.concatenate([program.parameter_registers, program.sign_registers]),
+                  empty, np.zeros(0), _instance_registers(program), _outputs(program)[None, :])
+
+
+def _branch_layout(program: StraightLineProgram, signs: np.ndarray) -> Layout:
+    """Each register's dependence on the free signs (a bit mask), its slots (one per
+    distinct choice of those signs among the branches), and each operation's operands
+    read from the slot of a branch of its class."""
+    masks = np.zeros(program.registers, dtype=np.int64)
+    masks[program.sign_registers] = 1 << np.arange(len(program.sign_registers))
+    for _, d, a, b, _ in program.instructions.tolist():
+        masks[d] = masks[a] | (masks[b] if b >= 0 else 0)
+    classes: dict[int, tuple[int, np.ndarray]] = {}  # mask → (number of classes, class of each branch)
+    for mask in set(masks.tolist()):
+        columns = [k for k in range(signs.shape[1]) if mask >> k & 1]
+        _, first, inverse = np.unique(signs[:, columns], axis=0, return_index=True, return_inverse=True)
+        classes[mask] = (len(first), inverse.reshape(-1))
+    counts = np.array([classes[mask][0] for mask in masks.tolist()], dtype=np.int64)
+    base = np.concatenate([[0], np.cumsum(counts)[:-1]])
+
+    def slot(register: int, branch: int) -> int:
+        return int(base[register] + classes[int(masks[register])][1][branch])
+
+    operations = []
+    for opcode, d, a, b, c in program.instructions.tolist():
+        if opcode == FIRST_FAILURE:  # per lane: the failing step is a branch's
+            operations += [(opcode, lane, slot(a, lane), slot(b, lane), c) for lane in range(len(signs))]
+            continue
+        count, of_branch = classes[int(masks[d])]
+        representatives = np.unique(of_branch, return_index=True)[1]  # a branch of each class, in class order
+        operations += [(opcode, int(base[d]) + k, slot(a, branch), slot(b, branch) if b >= 0 else -1, c)
+                       for k, branch in enumerate(representatives.tolist())]
+    sign_slots, sign_values = [], []
+    for column, register in enumerate(program.sign_registers.tolist()):
+        count, of_branch = classes[int(masks[register])]
+        for branch in np.unique(of_branch, return_index=True)[1].tolist():
+            sign_slots.append(slot(register, branch))
+            sign_values.append(signs[branch, column])
+    outputs = _outputs(program)
+    return Layout(np.array(operations, dtype=np.int64).reshape(-1, 5), int(counts.sum()),
+                  base[program.parameter_registers], np.array(sign_slots, dtype=np.int64),
+                  np.array(sign_values, dtype=float), base[_instance_registers(program)],
+                  np.array([[slot(r, lane) for r in outputs.tolist()] for lane in range(len(signs))],
+                           dtype=np.int64).reshape(len(signs), len(outputs)))
+
+
+def _run(operations, slots, constant_slots, constant_values, row_slots, rows, output_slots, steps,
+         block):  # pragma: no cover - compiled by numba
+    """The compiled loop of :func:`run_program` (numba, nopython): the operations over
+    every row, block by block, operation by operation, every lane at once."""
+    count, lanes = rows.shape[0], output_slots.shape[0]
+    outputs = np.empty((lanes, count, output_slots.shape[1]))
+    failures = np.full((lanes, count), steps, dtype=np.int64)
+    radicands = np.full((lanes, count), np.nan)
+    memory = np.empty((slots, block))
+    for start in range(0, count, block):
+        size = min(block, count - start)
+        for n in range(constant_slots.shape[0]):
+            memory[constant_slots[n], :size] = constant_values[n]
+        for n in range(row_slots.shape[0]):
+            for i in range(size):
+                memory[row_slots[n], i] = rows[start + i, n]
+        for operation in range(operations.shape[0]):
+            opcode, d, a = operations[operation, 0], operations[operation, 1], operations[operation, 2]
+            b, c = operations[operation, 3], operations[operation, 4]
             if opcode == ADD:
                 for i in range(size):
                     memory[d, i] = memory[a, i] + memory[b, i]
@@ -264,14 +358,15 @@ def _run(instructions, registers, constant_registers, constant_values, input_reg
             elif opcode == FLAT_ZERO:
                 for i in range(size):
                     memory[d, i] = 0.0 if memory[a, i] == 0.0 else memory[b, i]
-            elif opcode == FIRST_FAILURE:
+            elif opcode == FIRST_FAILURE:  # d: the lane
                 for i in range(size):
-                    if failures[start + i] == steps and not np.isfinite(memory[a, i]):
-                        failures[start + i] = c
-                        radicands[start + i] = memory[b, i]
-        for n in range(output_registers.shape[0]):
-            for i in range(size):
-                outputs[start + i, n] = memory[output_registers[n], i]
+                    if failures[d, start + i] == steps and not np.isfinite(memory[a, i]):
+                        failures[d, start + i] = c
+                        radicands[d, start + i] = memory[b, i]
+        for lane in range(lanes):
+            for n in range(output_slots.shape[1]):
+                for i in range(size):
+                    outputs[lane, start + i, n] = memory[output_slots[lane, n], i]
     return outputs, failures, radicands
 
 
@@ -315,23 +410,26 @@ def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np
     """Run ``program`` on one instance (``known``: the squared distances of
     ``program.known_pairs``; ``fixed_signs``: the signs of ``program.fixed_triangles``)
     at ``parameters`` (N, p) on the branches ``signs`` (B, m): every branch at every
-    value (B·N points, branch-major), or with ``paired`` point n on branch n. Returns the
-    closure residuals (points, c), the first failing steps (points,), their relative
-    radicands (points,) and the free-sign steps' relative radicands (points, free).
+    value (B·N points, branch-major; the branches' common steps evaluated once,
+    :class:`Layout`), or with ``paired`` point n on branch n. Returns the closure
+    residuals (points, c), the first failing steps (points,), their relative radicands
+    (points,) and the free-sign steps' relative radicands (points, free).
     O(points × instructions), compiled (numba, on first use; cached on disk)."""
     global _compiled_loop
     if _compiled_loop is None:
         import numba
 
         _compiled_loop = numba.njit(cache=True, nogil=True, error_model="numpy")(_run)  # x/0: inf, NaN
-    constant_registers = np.concatenate([program.constant_registers, program.known_registers,
-                                         program.fixed_sign_registers])
-    constant_values = np.concatenate([program.constant_values, np.asarray(known, dtype=float),
-                                      np.asarray(fixed_signs, dtype=float)])
-    outputs = np.concatenate([program.residual_registers, program.margin_registers])
+    parameters = np.ascontiguousarray(parameters, dtype=float)
+    signs = np.ascontiguousarray(signs, dtype=float)
+    layout = program_layout(program, None if paired else signs)
+    rows = np.ascontiguousarray(np.column_stack([parameters, signs]) if paired else parameters)
+    instance = np.concatenate([program.constant_values, np.asarray(known, dtype=float),
+                               np.asarray(fixed_signs, dtype=float)])
     values, failures, radicands = _compiled_loop(
-        program.instructions, program.registers, constant_registers, constant_values, program.parameter_registers,
-        np.ascontiguousarray(parameters, dtype=float), program.sign_registers,
-        np.ascontiguousarray(signs, dtype=float), paired, outputs, program.steps)
+        layout.operations, layout.slots, np.concatenate([layout.instance_slots, layout.constant_slots]),
+        np.concatenate([instance, layout.constant_values]), layout.row_slots, rows, layout.output_slots,
+        program.steps, max(1, min(BLOCK, BLOCK_BYTES // (8 * layout.slots))))
+    values, failures, radicands = values.reshape(-1, values.shape[-1]), failures.reshape(-1), radicands.reshape(-1)
     closures = len(program.residual_registers)
     return values[:, :closures], failures, radicands, values[:, closures:]

@@ -108,7 +108,7 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
     low = np.array([math.sqrt(bound) * 1e-6 for bound in upper])
     high = np.array([math.sqrt(bound) for bound in upper])
     whole = Cells(np.arange(len(branches)), np.tile(low, (len(branches), 1)), np.tile(high, (len(branches), 1)))
-    interior, boundary, windows, starts = _examine(compiled, branches, whole, GRID - 1, last=None)
+    interior, boundary, windows, starts = _examine(compiled, branches, whole, GRID - 1, last=None, one_grid=True)
     all_starts, to_polish, unsearched, reason = [starts], [], Cells.concatenate([]), ""
     for depth in range(DEPTH):
         if depth >= BOUNDARY_DEPTH:
@@ -136,7 +136,8 @@ def two_parameter_roots(compiled: CompiledSystem, branches: np.ndarray, upper: t
     return roots, (polish_points, polish_branches), (unsearched, reason)
 
 
-def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: np.ndarray | None):
+def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split: int, last: np.ndarray | None,
+             one_grid: bool = False):
     """Split every cell into split × split sub-cells and sample them. Returns the suspect
     sub-cells inside the domain; the suspect sub-cells on its boundary as ``(best sample
     (u, v), cells)``; the sub-cells with no defined corner that a strip of the domain
@@ -145,7 +146,8 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     conditions change sign; at the last level (``last``: the origin of the cells' lattice)
     also the best sample of every interior suspect that is a local minimum of its
     distance from a common zero (:func:`_classify`) among its neighbours
-    (:func:`_local_minima`)."""
+    (:func:`_local_minima`). ``one_grid``: cell c is the whole box on branch c (the first
+    level), so every branch is evaluated at one grid's points."""
     count, side = len(cells), split + 1
     fractions = np.linspace(0.0, 1.0, side)
     axis = [cells.low[:, a, None] + (cells.high - cells.low)[:, a, None] * fractions for a in range(2)]
@@ -153,8 +155,12 @@ def _examine(compiled: CompiledSystem, branches: np.ndarray, cells: Cells, split
     t2 = np.broadcast_to(axis[1][:, None, :], (count, side, side))
     grid = np.stack([t1, t2], axis=-1)  # (C, side, side, 2) in the √ plane
     signs = branches[cells.branch]
-    values, failures = compiled.paired_residuals_and_failures(grid.reshape(-1, 2) ** 2,
-                                                             np.repeat(signs, side * side, axis=0))
+    if one_grid:  # cell c is branch c over one box: every branch at every grid point, their common steps once
+        profile = compiled.profile(grid[0].reshape(-1, 2) ** 2, signs)
+        values, failures = profile.residuals, profile.failures
+    else:
+        values, failures = compiled.paired_residuals_and_failures(grid.reshape(-1, 2) ** 2,
+                                                                 np.repeat(signs, side * side, axis=0))
     values, failures = values.reshape(count, side, side, 2), failures.reshape(count, side, side)
     along_first, along_second = _boundary(compiled, signs, [
         (grid[:, :-1, :, :], grid[:, 1:, :, :], failures[:, :-1], failures[:, 1:]),
