@@ -279,12 +279,13 @@ def _branch_layout(program: StraightLineProgram, signs: np.ndarray) -> Layout:
     masks[program.sign_registers] = 1 << np.arange(len(program.sign_registers))
     for _, d, a, b, _ in program.instructions.tolist():
         masks[d] = masks[a] | (masks[b] if b >= 0 else 0)
-    classes: dict[int, tuple[int, np.ndarray]] = {}  # mask → (number of classes, class of each branch)
+    # mask → (a branch of each class, in class order; the class of each branch)
+    classes: dict[int, tuple[list[int], np.ndarray]] = {}
     for mask in set(masks.tolist()):
         columns = [k for k in range(signs.shape[1]) if mask >> k & 1]
         _, first, inverse = np.unique(signs[:, columns], axis=0, return_index=True, return_inverse=True)
-        classes[mask] = (len(first), inverse.reshape(-1))
-    counts = np.array([classes[mask][0] for mask in masks.tolist()], dtype=np.int64)
+        classes[mask] = (first.tolist(), inverse.reshape(-1))
+    counts = np.array([len(classes[mask][0]) for mask in masks.tolist()], dtype=np.int64)
     base = np.concatenate([[0], np.cumsum(counts)[:-1]])
 
     def slot(register: int, branch: int) -> int:
@@ -295,14 +296,11 @@ def _branch_layout(program: StraightLineProgram, signs: np.ndarray) -> Layout:
         if opcode == FIRST_FAILURE:  # per lane: the failing step is a branch's
             operations += [(opcode, lane, slot(a, lane), slot(b, lane), c) for lane in range(len(signs))]
             continue
-        count, of_branch = classes[int(masks[d])]
-        representatives = np.unique(of_branch, return_index=True)[1]  # a branch of each class, in class order
         operations += [(opcode, int(base[d]) + k, slot(a, branch), slot(b, branch) if b >= 0 else -1, c)
-                       for k, branch in enumerate(representatives.tolist())]
+                       for k, branch in enumerate(classes[int(masks[d])][0])]
     sign_slots, sign_values = [], []
     for column, register in enumerate(program.sign_registers.tolist()):
-        count, of_branch = classes[int(masks[register])]
-        for branch in np.unique(of_branch, return_index=True)[1].tolist():
+        for branch in classes[int(masks[register])][0]:
             sign_slots.append(slot(register, branch))
             sign_values.append(signs[branch, column])
     outputs = _outputs(program)
