@@ -3,8 +3,10 @@ the trusses of one link count, the seconds of each part of a catalog entry — t
 plan, the assembly-mode count (:func:`~baranov.solvers.mode_counts.characteristic_degree`,
 modulo primes), the realization count (pyrigi) and, with ``--cartesian``, the count by
 elimination modulo primes on the Cartesian system
-(:func:`~baranov.solvers.mode_counts.cartesian_degree`, msolve) — one truss at a time in this process;
-medians, quartiles, maxima and a histogram per coupling degree, so that the full run's
+(:func:`~baranov.solvers.mode_counts.cartesian_degree`, msolve) and, with ``--plan-system``,
+on the best plan's steps and closure conditions as one system
+(:func:`~baranov.solvers.mode_counts.plan_system_degree`, msolve) — one truss at a time in
+this process; medians, quartiles, maxima and a histogram per coupling degree, so that the full run's
 time on N workers can be computed (docs/catalog-13.md).
 
     python bench/bench_catalog_costs.py --links 13 --sample 40 --seed 1
@@ -13,6 +15,8 @@ time on N workers can be computed (docs/catalog-13.md).
         --out bench/results/catalog-costs-13-coupling-3.jsonl   # all 45: realization counts only
     python bench/bench_catalog_costs.py --links 13 --coupling 3 --sample 45 --no-modes --cartesian \
         --out bench/results/catalog-costs-13-coupling-3.jsonl   # and the Cartesian counts
+    python bench/bench_catalog_costs.py --links 13 --coupling 3 --sample 45 --no-modes --plan-system \
+        --out bench/results/catalog-costs-13-coupling-3.jsonl   # and the plan's own counts
 
 Rows (one JSON object per truss) are appended to ``--out`` and a rerun measures only the
 parts a truss's row lacks (appending the completed row; the last row of an id wins, and
@@ -36,14 +40,20 @@ from pathlib import Path
 from baranov.catalog.files import write_atomically
 from baranov.enumerate import baranov_trusses
 from baranov.planner import best_plan, coupling_degree
-from baranov.solvers.mode_counts import cartesian_degree, characteristic_degree
+from baranov.solvers.mode_counts import cartesian_degree, characteristic_degree, plan_system_degree
 from baranov.topology.realizations import realization_count
 
 #: Histogram bin edges, seconds.
 EDGES = (0.1, 0.3, 1, 3, 10, 30, 100, 300, 1000, 3000)
 
 
-def measure(links: int, index: int, truss, modes: bool, cartesian: bool, row: dict | None = None) -> dict:
+#: The counts by elimination modulo primes that ``--cartesian`` and ``--plan-system`` add: the
+#: row's key prefix (``<prefix>_modes``, ``_counts``, ``_seconds``) and the function.
+ELIMINATION_COUNTS = {"cartesian": cartesian_degree, "plan_system": plan_system_degree}
+
+
+def measure(links: int, index: int, truss, modes: bool, eliminations: tuple[str, ...],
+            row: dict | None = None) -> dict:
     """The costs of one truss's entry (seconds), with the counts; only the parts that
     ``row`` (an earlier measurement) lacks are measured."""
     row = dict(row or {})
@@ -60,17 +70,18 @@ def measure(links: int, index: int, truss, modes: bool, cartesian: bool, row: di
         start = time.perf_counter()
         row["assembly_modes"], row["degrees"] = characteristic_degree(truss)
         row["assembly_modes_seconds"] = time.perf_counter() - start
-    if cartesian and "cartesian_modes" not in row:
-        start = time.perf_counter()
-        row["cartesian_modes"], row["cartesian_counts"] = cartesian_degree(truss)
-        row["cartesian_seconds"] = time.perf_counter() - start
+    for name in eliminations:
+        if f"{name}_modes" not in row:
+            start = time.perf_counter()
+            row[f"{name}_modes"], row[f"{name}_counts"] = ELIMINATION_COUNTS[name](truss)
+            row[f"{name}_seconds"] = time.perf_counter() - start
     return row
 
 
-def missing(row: dict, modes: bool, cartesian: bool) -> bool:
+def missing(row: dict, modes: bool, eliminations: tuple[str, ...]) -> bool:
     """Whether ``row`` lacks a part that this run measures."""
     return ("realization_count" not in row or (modes and row["coupling_degree"] in (1, 2) and "assembly_modes" not in row)
-            or (cartesian and "cartesian_modes" not in row))
+            or any(f"{name}_modes" not in row for name in eliminations))
 
 
 def histogram(values: list[float]) -> str:
@@ -86,7 +97,8 @@ def report(rows: list[dict]) -> None:
     """Print, per coupling degree and cost, the sample size, median, quartiles, max and histogram."""
     for degree in sorted({row["coupling_degree"] for row in rows}):
         mine = [row for row in rows if row["coupling_degree"] == degree]
-        for cost in ("plan_seconds", "realization_seconds", "assembly_modes_seconds", "cartesian_seconds"):
+        for cost in ("plan_seconds", "realization_seconds", "assembly_modes_seconds",
+                     *(f"{name}_seconds" for name in ELIMINATION_COUNTS)):
             values = sorted(row[cost] for row in mine if cost in row)
             if not values:
                 continue
@@ -98,12 +110,13 @@ def report(rows: list[dict]) -> None:
         if agree:
             same = sum(row["assembly_modes"] == row["realization_count"] for row in agree)
             print(f"coupling {degree}: assembly modes = realization count on {same} of {len(agree)}")
-        crossed = [row for row in mine if "cartesian_modes" in row]
-        if crossed:
-            same = sum(row["cartesian_modes"] == row["realization_count"] == row.get("assembly_modes", row["realization_count"])
-                       for row in crossed)
-            print(f"coupling {degree}: Cartesian count = realization count (= assembly modes where counted) on "
-                  f"{same} of {len(crossed)}")
+        for name in ELIMINATION_COUNTS:
+            crossed = [row for row in mine if f"{name}_modes" in row]
+            if crossed:
+                same = sum(row[f"{name}_modes"] == row["realization_count"]
+                           == row.get("assembly_modes", row["realization_count"]) for row in crossed)
+                print(f"coupling {degree}: {name} count = realization count (= assembly modes where counted) on "
+                      f"{same} of {len(crossed)}")
 
 
 def main() -> None:
@@ -113,9 +126,13 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--coupling", type=int, help="only trusses of this coupling degree")
     parser.add_argument("--no-modes", action="store_true", help="skip the assembly-mode counts")
-    parser.add_argument("--cartesian", action="store_true", help="also count by elimination modulo primes (msolve)")
+    parser.add_argument("--cartesian", action="store_true",
+                        help="also count by elimination modulo primes on the Cartesian system (msolve)")
+    parser.add_argument("--plan-system", action="store_true",
+                        help="also count by elimination modulo primes on the best plan's steps and closure conditions as one system (msolve)")
     parser.add_argument("--out", type=Path, default=Path("bench/results/catalog-costs.jsonl"))
     args = parser.parse_args()
+    eliminations = tuple(name for name in ELIMINATION_COUNTS if getattr(args, name))
     faulthandler.register(signal.SIGUSR1)  # kill -USR1 <pid>: where a long task is
     start = time.perf_counter()
     trusses = baranov_trusses(args.links)
@@ -138,8 +155,8 @@ def main() -> None:
             row = done.get(identifier)
             if row is None and args.coupling is not None and coupling_degree(trusses[index]) != args.coupling:
                 continue
-            if row is None or missing(row, not args.no_modes, args.cartesian):
-                row = measure(args.links, index, trusses[index], not args.no_modes, args.cartesian, row)
+            if row is None or missing(row, not args.no_modes, eliminations):
+                row = measure(args.links, index, trusses[index], not args.no_modes, eliminations, row)
                 done[identifier] = row
                 out.write(json.dumps(row) + "\n")
                 out.flush()

@@ -20,7 +20,7 @@ import numpy as np
 from baranov.closure.sliders import takes_root
 from baranov.planner import best_plan
 from baranov.planner.sliders import SliderPlanError, slider_plan
-from baranov.scene import scene_from_dict
+from baranov.scene import Scene, scene_from_dict
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.scene.slider_instances import slider_instance_dict
 from baranov.topology import KinematicChain
@@ -28,6 +28,7 @@ from baranov.topology import KinematicChain
 from .exact.characteristic import ExactMethodError, characteristic_polynomial
 from .exact.coupling_two import characteristic_polynomial_two
 from .exact.modular import characteristic_degree_modulo, random_prime
+from .exact.plan_system import plan_solution_count_modulo
 from .msolve import cartesian_jacobian_rank, msolve_solution_count_modulo
 
 #: Instances that must agree, and the most that are drawn.
@@ -94,14 +95,42 @@ def cartesian_degree(chain: KinematicChain, seed: int | None = None) -> tuple[in
     >>> [cartesian_degree(t)[0] for t in baranov_trusses(7)]  # doctest: +SKIP
     [18, 14, 16]
     """
+    return _elimination_count(chain, seed, lambda scene, prime: msolve_solution_count_modulo(scene, prime)[0])
+
+
+def plan_system_degree(chain: KinematicChain, seed: int | None = None) -> tuple[int, list[int]]:
+    """The generic number of assembly modes over C of the truss ``chain`` by its best
+    plan's own bilateration steps and closure conditions, for every coupling degree: on
+    random integer instances, each with its own random prime below 2³⁰, the number of
+    distinct solutions of the plan as one polynomial system modulo the prime
+    (:func:`~baranov.solvers.exact.plan_system.plan_solution_count_modulo`, msolve),
+    until two agree on the largest (:func:`largest_agreeing`). ``seed`` as for
+    :func:`characteristic_degree`, whose instances it draws. For coupling degrees 1 and 2
+    it is a second derivation of :func:`characteristic_degree` (no norms, no resultants,
+    no saturation by gcds); for coupling degree 3 it is the plan's only one. Needs the
+    msolve binary (:class:`~baranov.solvers.msolve.MsolveUnavailable` otherwise).
+
+    >>> from baranov.enumerate import baranov_trusses
+    >>> [plan_system_degree(t)[0] for t in baranov_trusses(7)]  # doctest: +SKIP
+    [18, 14, 16]
+    """
+    plan = best_plan(chain)
+    return _elimination_count(chain, seed, lambda scene, prime: plan_solution_count_modulo(scene, plan, prime))
+
+
+def _elimination_count(chain: KinematicChain, seed: int | None,
+                       solutions: Callable[[Scene, int], int | None]) -> tuple[int, list[int]]:
+    """:func:`largest_agreeing` over random integer instances of ``chain``, each counted by
+    ``solutions(scene, prime)`` modulo its own random prime below 2³⁰ (None, a solution
+    set of positive dimension, counts 0: the instance is not generic)."""
     seed = _chain_seed(chain) if seed is None else seed
     rng = np.random.default_rng(seed)
     primes = random.Random(seed)
 
     def count(instance: int) -> int:
-        scene = scene_of(chain, generic_integer_configuration(chain, rng))
-        solutions, _ = msolve_solution_count_modulo(scene, random_prime(primes, bits=CARTESIAN_PRIME_BITS))
-        return 0 if solutions is None else solutions  # positive dimension: no generic instance
+        found = solutions(scene_of(chain, generic_integer_configuration(chain, rng)),
+                          random_prime(primes, bits=CARTESIAN_PRIME_BITS))
+        return 0 if found is None else found
 
     return largest_agreeing(count)
 

@@ -400,7 +400,16 @@ def msolve_solution_count_modulo(scene: Scene, prime: int, timeout: float = 600.
     (6, 0)
     """
     variables, polynomials, _, signs = cartesian_system(scene)
-    return _distinct_solutions(_parametrization_modulo(variables, polynomials, prime, timeout)), len(signs)
+    return solution_count_modulo(variables, polynomials, prime, timeout), len(signs)
+
+
+def solution_count_modulo(variables: list[str], polynomials: list[dict], prime: int,
+                          timeout: float = 600.0) -> int | None:
+    """The number of distinct solutions of the system ``polynomials`` (in ``variables``,
+    :func:`msolve_text`'s form) over an algebraic closure of F_``prime``, from msolve's
+    rational parametrization; None where the solution set has positive dimension.
+    Errors as :func:`msolve_solution_count_modulo`."""
+    return _distinct_solutions(_parametrization_modulo(variables, polynomials, prime, timeout))
 
 
 def _parametrization_modulo(variables: list[str], polynomials: list[dict], prime: int, timeout: float) -> str:

@@ -33,7 +33,7 @@ dimensions.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
@@ -228,22 +228,8 @@ def radical_tower(scene: Scene, plan: Plan, prime: int | None = None) -> Radical
     generators = context.gens()
     radicals = generators[:len(free)][::-1]  # r_1, r_2, …
     radicands = []
-
-    def constant(value) -> flint.fmpq_mpoly:
-        value = Fraction(value)
-        if prime is not None:
-            return context.constant(value.numerator * pow(value.denominator, -1, prime) % prime)
-        return context.constant(flint.fmpq(value.numerator, value.denominator))
-
     parameter_of = {frozenset(pair): generators[len(free) + n] for n, pair in enumerate(plan.parameters)}
-
-    def known(u: str, v: str):
-        pair = frozenset((u, v))
-        if pair in scene.known:
-            return constant(scene.known[pair]), 1
-        if pair in parameter_of:
-            return parameter_of[pair], 1
-        return None
+    constant, known = dimension_inputs(scene, context, prime, parameter_of)
 
     def signed_root(index, step, sides, radicand):
         if not step.free_sign:  # a link's three joints: known sides, a rational area
@@ -298,6 +284,32 @@ def radical_tower(scene: Scene, plan: Plan, prime: int | None = None) -> Radical
         conditions.append(numerator)
         denominators.append(denominator)
     return RadicalTower(context, plan.parameters, tuple(radicands), tuple(conditions), tuple(denominators))
+
+
+def dimension_inputs(scene: Scene, context, prime: int | None, parameter_of: dict) -> tuple[Callable, Callable]:
+    """``constant(value)``: a dimension as a constant of the polynomial ring ``context``
+    (over Q, or modulo ``prime``: ZeroDivisionError where the prime divides its
+    denominator); ``known(u, v)``: what :func:`~baranov.closure.bilateration.place_joints`
+    asks, (s_{u,v}, 1) for a link's pair, (its generator, 1) for a parameter of
+    ``parameter_of`` (pair → generator), None for a pair the plan computes."""
+
+    def constant(value):
+        value = Fraction(value)
+        if prime is not None:
+            if value.denominator % prime == 0:
+                raise ZeroDivisionError(f"the prime {prime} divides the denominator of the dimension {value}")
+            return context.constant(value.numerator * pow(value.denominator, -1, prime) % prime)
+        return context.constant(flint.fmpq(value.numerator, value.denominator))
+
+    def known(u: str, v: str):
+        pair = frozenset((u, v))
+        if pair in scene.known:
+            return constant(scene.known[pair]), 1
+        if pair in parameter_of:
+            return parameter_of[pair], 1
+        return None
+
+    return constant, known
 
 
 def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, along_root) -> SliderPlacement:
