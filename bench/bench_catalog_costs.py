@@ -129,7 +129,7 @@ def main() -> None:
     parser.add_argument("--cartesian", action="store_true",
                         help="also count by elimination modulo primes on the Cartesian system (msolve)")
     parser.add_argument("--plan-system", action="store_true",
-                        help="also count by elimination modulo primes on the best plan's steps and closure conditions as one system (msolve)")
+                        help="also count by elimination modulo primes on the best plan as one system (msolve)")
     parser.add_argument("--out", type=Path, default=Path("bench/results/catalog-costs.jsonl"))
     args = parser.parse_args()
     eliminations = tuple(name for name in ELIMINATION_COUNTS if getattr(args, name))

@@ -5,12 +5,9 @@ atomically; a complete existing file is reused unless ``force``."""
 from __future__ import annotations
 
 import json
-import sys
 from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
-
-from tqdm import tqdm
 
 from baranov.enumerate.crosscheck import find_geng
 from baranov.enumerate.trusses import canonical_trusses
@@ -37,6 +34,7 @@ from .entries import (
     truss_entry,
 )
 from .files import gzipped, legacy_path, write_atomically
+from .progress import progress_bar
 from .slider_chains import SLIDER_MODES_MAX_LINKS, load_slider_chains, slider_chain_entries
 from .summary import render_summary
 from .tasks import ClusterLost, dask_client, run_in_shards, shard_folder
@@ -66,7 +64,7 @@ def catalog_links(links: int, show_progress: bool, client: Any = None,
         # costliest shards first, so that no worker is left with a long tail (beyond, they
         # cost alike, and finding the plans here would take the client 50 min at 13 links)
         costs = [10.0 ** best_plan(chain_from_link_graph(graph6)).number_of_parameters for _, graph6, _ in items]
-    bar = tqdm(total=len(items), desc=f"{links} links", unit="truss", disable=not show_progress, file=sys.stderr)
+    bar = progress_bar(len(items), f"{links} links", "truss", show_progress)
     with shard_folder(folder) as where:
         entries = run_in_shards(truss_entry, items, where, client, costs, bar.update)
     bar.close()

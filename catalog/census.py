@@ -20,7 +20,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import sys
 from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
@@ -28,7 +27,6 @@ from typing import Any
 
 import networkx as nx
 import pynauty
-from tqdm import tqdm
 
 from baranov.enumerate.augmentation import augmentation_roots, subtree_link_graphs
 from baranov.enumerate.crosscheck import filter_part, find_geng
@@ -37,6 +35,7 @@ from baranov.planner import best_plan
 from baranov.topology import chain_from_link_graph
 from baranov.topology.automorphisms import group_order, nauty_link_graph
 
+from .progress import progress_bar
 from .tasks import run_in_shards, shard_folder
 
 #: Vertices of the roots of method A's subtrees (1 770 roots for 15 links).
@@ -161,7 +160,7 @@ def truss_census(links: int, folder: Path | None, client: Any = None, show_progr
 
 
 def _run(what: str, function, jobs: list, folder: Path, client: Any, show_progress: bool) -> list:
-    bar = tqdm(total=len(jobs), desc=what, unit="task", disable=not show_progress, file=sys.stderr)
+    bar = progress_bar(len(jobs), what, "task", show_progress)
     try:
         return run_in_shards(function, jobs, folder, client, advance=bar.update)
     finally:

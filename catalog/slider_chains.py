@@ -25,13 +25,11 @@ the plan's degrees are kept as ``plan_degrees`` (:func:`_plan_lost_modes`).
 from __future__ import annotations
 
 import random
-import sys
 import zlib
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-from tqdm import tqdm
 
 from baranov.enumerate.sliders import slider_chains
 from baranov.scene import scene_from_dict
@@ -42,6 +40,7 @@ from baranov.solvers.msolve import MsolveUnavailable, msolve_solution_count_modu
 from baranov.topology import chain_from_link_graph
 
 from .files import load_complete_objects
+from .progress import progress_bar
 from .tasks import run_in_shards, shard_folder
 
 #: ``baranov catalog`` counts the slider chains' assembly modes up to this many links by
@@ -113,8 +112,7 @@ def slider_chain_entries(entries: list[dict], show_progress: bool, client: Any =
         for sliders in slider_chains(chain_from_link_graph(entry["link_graph6"])):
             jobs.append((entry["link_graph6"], sliders, len(jobs) % every == 0))
             owners.append(index)
-    bar = tqdm(total=len(jobs), desc=f"{links}-link slider chains", unit="chain", disable=not show_progress,
-               file=sys.stderr)
+    bar = progress_bar(len(jobs), f"{links}-link slider chains", "chain", show_progress)
     with shard_folder(folder) as where:
         results = run_in_shards(slider_chain_entry, jobs, where, client, advance=bar.update)
     bar.close()

@@ -337,7 +337,7 @@ def run_catalog(args: argparse.Namespace) -> int:
             crosscheck=not args.no_crosscheck,
             slider_modes=args.slider_modes,
             assembly_modes=args.assembly_modes,
-            show_progress=not args.quiet and sys.stderr.isatty(),
+            show_progress=not args.quiet,  # a bar on a terminal, a line every 5 min in a log
             log=log,
             scheduler=args.scheduler,
         )
