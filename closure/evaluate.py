@@ -111,7 +111,7 @@ class CompiledSystem:
             values = values[:, None]
         mapped = np.column_stack([self.searched[frozenset(pair)].value(values[:, n])
                                   if frozenset(pair) in self.searched else values[:, n]
-                                  for n, pair in enumerate(self.parameters)]) if len(self.parameters) else values
+                                  for n, pair in enumerate(self.parameters)]) if self.searched else values
         signs = np.asarray(signs, dtype=float)
         residuals, failures, radicands, margins = run_program(
             program, [self.known[pair] for pair in program.known_pairs],

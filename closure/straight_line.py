@@ -421,7 +421,7 @@ def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np
     parameters = np.ascontiguousarray(parameters, dtype=float)
     signs = np.ascontiguousarray(signs, dtype=float)
     layout = program_layout(program, None if paired else signs)
-    rows = np.ascontiguousarray(np.column_stack([parameters, signs]) if paired else parameters)
+    rows = np.concatenate([parameters, signs if signs.ndim == 2 else signs[:, None]], axis=1) if paired else parameters
     instance = np.concatenate([program.constant_values, np.asarray(known, dtype=float),
                                np.asarray(fixed_signs, dtype=float)])
     values, failures, radicands = _compiled_loop(
