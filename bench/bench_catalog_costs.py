@@ -35,6 +35,7 @@ import random
 import signal
 import statistics
 import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 from baranov.catalog.files import write_atomically
@@ -131,9 +132,11 @@ def main() -> None:
     parser.add_argument("--plan-system", action="store_true",
                         help="also count by elimination modulo primes on the best plan as one system (msolve)")
     parser.add_argument("--out", type=Path, default=Path("bench/results/catalog-costs.jsonl"))
+    parser.add_argument("--workers", type=int, default=1,
+                        help="trusses measured side by side (their times then share the cores)")
     args = parser.parse_args()
     eliminations = tuple(name for name in ELIMINATION_COUNTS if getattr(args, name))
-    faulthandler.register(signal.SIGUSR1)  # kill -USR1 <pid>: where a long task is
+    faulthandler.register(signal.SIGUSR1)  # kill -USR1 <pid> (of a worker, too): where a long task is
     start = time.perf_counter()
     trusses = baranov_trusses(args.links)
     print(f"{len(trusses)} trusses of {args.links} links enumerated in {time.perf_counter() - start:.1f} s",
@@ -146,24 +149,28 @@ def main() -> None:
     # trusses measured before come first: a rerun that adds a part need not scan for them
     order.sort(key=lambda index: f"{args.links}/N{index + 1}" not in done)
     args.out.parent.mkdir(parents=True, exist_ok=True)
-    rows, taken = [], 0
-    with args.out.open("a", encoding="utf-8") as out:
-        for index in order:
-            if taken >= args.sample:
-                break
-            identifier = f"{args.links}/N{index + 1}"
-            row = done.get(identifier)
-            if row is None and args.coupling is not None and coupling_degree(trusses[index]) != args.coupling:
-                continue
-            if row is None or missing(row, not args.no_modes, eliminations):
-                row = measure(args.links, index, trusses[index], not args.no_modes, eliminations, row)
-                done[identifier] = row
-                out.write(json.dumps(row) + "\n")
-                out.flush()
-                print(json.dumps(row), flush=True)
-            if args.coupling is None or row["coupling_degree"] == args.coupling:
-                rows.append(row)
-                taken += 1
+    selected = []  # (id, index) of the sample, in order
+    for index in order:
+        if len(selected) >= args.sample:
+            break
+        identifier = f"{args.links}/N{index + 1}"
+        if identifier not in done and args.coupling is not None and coupling_degree(trusses[index]) != args.coupling:
+            continue
+        if args.coupling is None or done.get(identifier, {}).get("coupling_degree", args.coupling) == args.coupling:
+            selected.append((identifier, index))
+    wanted = [(identifier, index) for identifier, index in selected
+              if identifier not in done or missing(done[identifier], not args.no_modes, eliminations)]
+    with args.out.open("a", encoding="utf-8") as out, ProcessPoolExecutor(args.workers, initializer=faulthandler.register,
+                                                                  initargs=(signal.SIGUSR1,)) as pool:
+        futures = [pool.submit(measure, args.links, index, trusses[index], not args.no_modes, eliminations,
+                               done.get(identifier)) for identifier, index in wanted]
+        for future in as_completed(futures):  # each row saved as it comes: a stopped run resumes
+            row = future.result()
+            done[row["id"]] = row
+            out.write(json.dumps(row) + "\n")
+            out.flush()
+            print(json.dumps(row), flush=True)
+    rows = [done[identifier] for identifier, _ in selected]
     write_atomically(args.out, "".join(json.dumps(row) + "\n" for row in done.values()))
     report(rows)
 
