@@ -105,3 +105,9 @@ def test_a_coupling_three_truss_by_its_plan():
     chain = chain_from_link_graph(graph6)
     assert best_plan(chain).number_of_parameters == 3
     assert plan_system_degree(chain) == (realizations, [realizations, realizations])
+
+
+def test_sliders_are_refused():
+    sliders = load_scene(ROOT / "examples" / "7-B3-sliders-P8-P9.json")
+    with pytest.raises(ExactMethodError, match="sliders"):
+        plan_system(sliders, exact_plan(sliders), PRIME)
