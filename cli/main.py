@@ -93,6 +93,9 @@ def _parser() -> argparse.ArgumentParser:
     show.add_argument("--reference", help="fix the reference pair, e.g. P1,P6")
     show.add_argument("--parameter", action="append", help="allow this parameter pair (repeatable), e.g. P1,P6")
     show.add_argument("--plans", type=int, default=1, help="show the N best plans (default 1)")
+    show.add_argument("--count", action="store_true",
+                      help="count the assembly modes over C on random instances, and check the count on the best "
+                           "plan as one polynomial system (msolve)")
     show.add_argument("--sliders", metavar="JOINTS",
                       help="turn these joints into sliders, e.g. P8,P9: the chain's closure condition with the "
                            "sliders at infinity (thesis ch. 4)")
@@ -365,7 +368,7 @@ def main(argv: list[str] | None = None) -> int:
             from .show import show
 
             print(show(args.chain, args.catalog, args.latex, args.reference, args.parameter, args.plans,
-                       args.sliders), end="")
+                       args.sliders, args.count), end="")
             return 0
     except (UsageError, ValueError) as error:
         print(f"baranov: error: {error}", file=sys.stderr)

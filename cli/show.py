@@ -7,12 +7,15 @@ from pathlib import Path
 
 import networkx as nx
 
+from baranov.catalog.entries import assembly_mode_count
 from baranov.catalog.lookup import TRUSS_NAME, named_truss
 from baranov.closure import closure_system
 from baranov.closure.slider_notation import slider_closure_text
-from baranov.planner import bilateration_plans
+from baranov.planner import best_plan, bilateration_plans
 from baranov.planner.search import ALTERNATIVE_PLANS
 from baranov.planner.sliders import slider_plan_obstacle
+from baranov.solvers.mode_counts import plan_system_degree, slider_chain_degree
+from baranov.solvers.msolve import MsolveUnavailable
 from baranov.topology import (
     JointKind,
     KinematicChain,
@@ -114,9 +117,36 @@ def _plans(chain: KinematicChain, sliders: list[str], plans: int, reference: str
                                 "a chain with msolve; the plans below are the truss's")
 
 
+def _counts(chain: KinematicChain, slider_names: list[str]) -> list[str]:
+    """``--count``: the number of assembly modes over C of the truss (or of its slider
+    chain), counted on random integer instances as the catalog counts it
+    (:func:`~baranov.catalog.entries.assembly_mode_count`,
+    :func:`~baranov.solvers.mode_counts.slider_chain_degree`), and for a truss the check
+    by its best plan as one polynomial system
+    (:func:`~baranov.solvers.mode_counts.plan_system_degree`, msolve). Seconds up to 11
+    links, minutes for some 13-link trusses."""
+    if not is_baranov_truss(chain):
+        raise ShowError("--count: assembly modes are counted for Baranov trusses and their slider chains; "
+                        "this chain is not a Baranov truss")
+    if slider_names:
+        modes, degrees, how = slider_chain_degree(chain, slider_names)
+        return [f"assembly modes over C: {modes} (slider chain, {how}; on random instances: "
+                f"{', '.join(map(str, degrees))})"]
+    modes, evidence = assembly_mode_count(chain, best_plan(chain), True)
+    lines = [f"assembly modes over C: {modes if modes is not None else 'not counted'} ({evidence})"]
+    try:
+        check, counts = plan_system_degree(chain)
+    except MsolveUnavailable as error:
+        return [*lines, f"not checked on the best plan's system: {error}"]
+    verdict = "the same" if check == modes else "DIFFERENT"
+    return [*lines, f"best plan as one polynomial system modulo random primes: {check} ({verdict}; on random "
+                    f"instances: {', '.join(map(str, counts))})"]
+
+
 def show(argument: str, catalog: Path | None = None, latex: bool = False, reference: str | None = None,
-         parameters: list[str] | None = None, plans: int = 1, sliders: str | None = None) -> str:
-    """The text that ``baranov show`` prints."""
+         parameters: list[str] | None = None, plans: int = 1, sliders: str | None = None,
+         count: bool = False) -> str:
+    """The text that ``baranov show`` prints (with ``count``, :func:`_counts` too)."""
     title, chain = resolve_chain(argument, catalog)
     group = automorphism_group(chain)
     slider_names = _sliders(chain, sliders)
@@ -135,6 +165,8 @@ def show(argument: str, catalog: Path | None = None, latex: bool = False, refere
         f"coupling degree {ranked[0].number_of_parameters}"
         + (" (with the given constraints)" if reference or parameters else ""),
     ]
+    if count:
+        lines += _counts(chain, slider_names)
     if slider_names:  # the truss's plans and conditions, then the sliders at infinity (thesis ch. 4)
         lines.insert(2, f"slider joints: {', '.join(slider_names)} (an Assur kinematic chain derived from this "
                         "truss, thesis ch. 4: the truss's closure conditions with the sliders at infinity)")

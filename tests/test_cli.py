@@ -10,6 +10,7 @@ import pytest
 from baranov.catalog import iter_objects
 from baranov.cli.main import main
 from baranov.enumerate.crosscheck import find_geng
+from baranov.solvers.msolve import find_msolve
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -216,6 +217,22 @@ def test_show_sliders_prints_the_thesis_substitutions_and_case():
     assert by_name.returncode == 0 and "slider joints: P4" in by_name.stdout and "δ1 → ∞" in by_name.stdout
     unsuited = run("show", "9/N3", "--sliders", "P5,P6,P11").stdout  # every 7-link chain has a plan now
     assert "none of the 46 best plans suits these sliders (the best: step P5 from P11, P6: three sliders)" in unsuited
+
+
+def test_show_count_counts_the_modes_and_checks_them_on_the_plan():
+    """``baranov show 7/B1 --count``: the catalog's count (characteristic degree on random
+    instances) and, with msolve, the same number from the best plan as one system; for a
+    slider chain its own count."""
+    result = run("show", "7/B1", "--count")
+    assert result.returncode == 0, result.stderr
+    assert "assembly modes over C: 14 (degree of the characteristic polynomial" in result.stdout
+    if find_msolve() is not None:
+        assert "best plan as one polynomial system modulo random primes: 14 (the same;" in result.stdout
+    else:
+        assert "not checked on the best plan's system: msolve not found" in result.stdout
+    sliders = run("show", "7/B1", "--sliders", "P8,P9", "--count")
+    assert sliders.returncode == 0, sliders.stderr
+    assert "assembly modes over C: 12 (slider chain" in sliders.stdout
 
 
 def test_show_finds_catalog_names_from_any_folder(tmp_path):
