@@ -82,6 +82,18 @@ def test_a_prime_dividing_a_dimension_is_refused():
         plan_solution_count_modulo(scene, best_plan(truss), 7)
 
 
+def test_a_prime_dividing_a_step_denominator_is_refused():
+    """The first step divides by the reference pair's squared distance, 981 = 3² · 109 on
+    this instance: modulo 109 that step would read 0 = 0, so the prime is refused, not
+    used."""
+    truss = baranov_trusses(7)[0]
+    plan = best_plan(truss)
+    scene = scene_of(truss, generic_integer_configuration(truss, np.random.default_rng(0)))
+    assert scene.known[frozenset(plan.reference)] == 981
+    with pytest.raises(ExactMethodError, match="prime 109 divides"):
+        plan_system(scene, plan, 109)
+
+
 @needs_msolve
 @settings(max_examples=15, deadline=None)
 @given(st.integers(0, 2**32), st.integers(0, 27))

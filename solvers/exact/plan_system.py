@@ -93,7 +93,8 @@ def plan_system(scene: Scene, plan: Plan, prime: int) -> tuple[list[str], list[d
             frozenset(pair): variable[f"t{n + 1}"] for n, pair in enumerate(plan.parameters)})
         equations, undefined = _step_equations(scene, plan, variable, constant, known)
     except ZeroDivisionError:
-        raise ExactMethodError(f"the prime {prime} divides a denominator of the dimensions") from None
+        raise ExactMethodError(f"the prime {prime} divides a denominator of the dimensions, or a "
+                               "dimension that a step divides by") from None
     saturations = [f"{SATURATION}{k}" for k in range(len(undefined))]
     polynomials = [_terms(polynomial, tuple(names)) for polynomial in equations]
     for saturation, denominator in zip(saturations, undefined, strict=True):
@@ -122,8 +123,7 @@ def _step_equations(scene: Scene, plan: Plan, variable: dict, constant, known) -
         index = step_of["index"]
         x, y = variable[f"x{index}"], variable[f"y{index}"]
         equations.extend([x_numerator - x * denominator, y_numerator - y * denominator])
-        if not _is_constant(denominator):
-            undefined.append(denominator)
+        _undefined_where(denominator, undefined)
         return x, y, 1
 
     _, _, distance = place_joints(plan, known, signed_root, reduced_point=placed)
@@ -131,13 +131,19 @@ def _step_equations(scene: Scene, plan: Plan, variable: dict, constant, known) -
         numerator, denominator = distance(u, v, computed=True)
         target = Fraction(scene.known[frozenset((u, v))])
         equations.append(numerator * target.denominator - denominator * constant(target.numerator))
-        if not _is_constant(denominator):
-            undefined.append(denominator)
+        _undefined_where(denominator, undefined)
     return equations, undefined
 
 
-def _is_constant(value) -> bool:
-    return isinstance(value, int) or value.is_constant()
+def _undefined_where(denominator, undefined: list) -> None:
+    """Add ``denominator`` to the ones saturated away, unless it is a constant; a constant
+    0 (a dimension ≡ 0 modulo the prime) raises ZeroDivisionError: the prime is bad for
+    this instance."""
+    if isinstance(denominator, int) or denominator.is_constant():
+        if denominator == 0:
+            raise ZeroDivisionError("a step's constant denominator vanishes modulo the prime")
+        return
+    undefined.append(denominator)
 
 
 def plan_solution_count_modulo(scene: Scene, plan: Plan, prime: int, timeout: float = 600.0) -> int | None:
