@@ -115,14 +115,22 @@ def plan_system_degree(chain: KinematicChain, seed: int | None = None) -> tuple[
     [18, 14, 16]
     """
     plan = best_plan(chain)
-    return _elimination_count(chain, seed, lambda scene, prime: plan_solution_count_modulo(scene, plan, prime))
+
+    def solutions(scene, prime: int) -> int | None:
+        try:
+            return plan_solution_count_modulo(scene, plan, prime)
+        except ExactMethodError:  # the prime divides a dimension a step needs: this instance counts 0
+            return None
+
+    return _elimination_count(chain, seed, solutions)
 
 
 def _elimination_count(chain: KinematicChain, seed: int | None,
                        solutions: Callable[[Scene, int], int | None]) -> tuple[int, list[int]]:
     """:func:`largest_agreeing` over random integer instances of ``chain``, each counted by
-    ``solutions(scene, prime)`` modulo its own random prime below 2³⁰ (None, a solution
-    set of positive dimension, counts 0: the instance is not generic)."""
+    ``solutions(scene, prime)`` modulo its own random prime below 2³⁰ (None — a solution
+    set of positive dimension, or a prime the instance cannot use — counts 0, and another
+    instance is drawn)."""
     seed = _chain_seed(chain) if seed is None else seed
     rng = np.random.default_rng(seed)
     primes = random.Random(seed)
