@@ -37,6 +37,20 @@ def test_a_log_gets_a_line_every_interval_with_rate_and_time_left():
     lines.update(24)  # 24 trusses in 6 min: 240 an hour, 12 397 left
     assert log.getvalue().splitlines()[-1] == (
         "13 links: 8 040 of 20 437 trusses (39.3 %), 240 trusses an hour over the last 6 min, about 51 h 39 min left")
+    clock.now = 720
+    lines.update(12397)
+    lines.close()  # the final count, since the last line said less
+    assert log.getvalue().splitlines()[-1].startswith("13 links: 20 437 of 20 437 trusses (100.0 %)")
+    assert len(log.getvalue().splitlines()) == 3
+
+
+def test_a_short_stage_writes_nothing():
+    log, clock = io.StringIO(), Clock()
+    lines = ProgressLines(10, "7 links", "truss", log, every=300, clock=clock)
+    clock.now = 12
+    lines.update(10)
+    lines.close()
+    assert log.getvalue() == ""
 
 
 def test_the_stream_decides_between_bar_and_lines():
