@@ -31,7 +31,7 @@ Each polynomial stays of low degree because every step starts from unknowns, not
 the expanded expressions of the earlier steps: the radical tower of
 :mod:`~baranov.solvers.exact.characteristic`, which substitutes them, has conditions of
 up to 26 640 terms and denominators of up to 529 793 terms on the coupling-3 trusses of 13
-links, which msolve did not count in 7 minutes (13/N20129). Substituting the expressions
+links, which msolve had not counted after 6 min 40 s of CPU (13/N20129). Substituting the expressions
 of the steps whose denominator is a constant (fewer unknowns, larger equations) made no
 difference that mattered (31.6 against 30.5 s on 13/N4962).
 """
