@@ -48,8 +48,9 @@ class ProgressLines:
         text = f"{self.description}: {self.done:,} of {self.total:,} {units} ({share:.1f} %)".replace(",", " ")
         if self.last is not None and now > self.last[0]:
             rate = (self.done - self.last[1]) / (now - self.last[0])  # per second, over the last interval
-            text += f", {rate * 3600:.0f} {units} an hour over the last {(now - self.last[0]) / 60:.0f} min"
-            if rate > 0:
+            hourly = f"{rate * 3600:,.0f}".replace(",", " ")
+            text += f", {hourly} {units} an hour over the last {(now - self.last[0]) / 60:.0f} min"
+            if rate > 0 and self.done < self.total:
                 text += f", about {_duration((self.total - self.done) / rate)} left"
         return text
 

@@ -40,7 +40,8 @@ def test_a_log_gets_a_line_every_interval_with_rate_and_time_left():
     clock.now = 720
     lines.update(12397)
     lines.close()  # the final count, since the last line said less
-    assert log.getvalue().splitlines()[-1].startswith("13 links: 20 437 of 20 437 trusses (100.0 %)")
+    assert log.getvalue().splitlines()[-1] == (
+        "13 links: 20 437 of 20 437 trusses (100.0 %), 743 820 trusses an hour over the last 1 min")  # no "left"
     assert len(log.getvalue().splitlines()) == 3
 
 
