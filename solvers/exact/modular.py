@@ -159,19 +159,13 @@ def characteristic_polynomial_modulo(scene: Scene, plan: Plan, prime: int, seed:
     return _monic(polynomial)
 
 
-def tower_modulo(scene: Scene, plan: Plan, prime: int) -> RadicalTower:
-    """The radical tower of ``plan`` modulo ``prime``; :class:`ExactMethodError` if the
-    prime divides a denominator of the dimensions."""
-    try:
-        return radical_tower(scene, plan, prime)
-    except ZeroDivisionError:
-        raise ExactMethodError(f"the prime {prime} divides a denominator of the dimensions") from None
-
-
 def _tower_modulo(scene: Scene, plan: Plan, prime: int) -> tuple[RadicalTower, list]:
     """The radical tower modulo ``prime`` and the square-free parts of its denominators'
     norms."""
-    tower = tower_modulo(scene, plan, prime)
+    try:
+        tower = radical_tower(scene, plan, prime)
+    except ZeroDivisionError:
+        raise ExactMethodError(f"the prime {prime} divides a denominator of the dimensions") from None
     return tower, denominator_parts(tower)
 
 
@@ -181,12 +175,12 @@ def denominator_parts(tower: RadicalTower) -> list:
     known one. A factor that a denominator shares with an earlier one is divided out before
     the norm is taken (its zeros are already among the earlier norm's): the closure
     conditions of a plan often share most of their denominator, and the norms are the cost
-    here (:func:`without_shared_factors`)."""
-    return square_free_parts(factor for denominator in without_shared_factors(tower.denominators)
+    here (:func:`_without_shared_factors`)."""
+    return square_free_parts(factor for denominator in _without_shared_factors(tower.denominators)
                              for factor, _ in norm_factors(denominator, tower))
 
 
-def without_shared_factors(polynomials) -> list:
+def _without_shared_factors(polynomials) -> list:
     """``polynomials`` (non-constant ones), each divided by every factor it shares with
     an earlier one (repeated gcds); those left constant are dropped. The product of the
     result has the zeros of the product of ``polynomials``. On 9/B25–B28 the two

@@ -96,9 +96,10 @@ def plan_system(scene: Scene, plan: Plan, prime: int) -> tuple[list[str], list[d
         raise ExactMethodError(f"the prime {prime} divides a denominator of the dimensions, or a "
                                "dimension that a step divides by") from None
     saturations = [f"{SATURATION}{k}" for k in range(len(undefined))]
-    polynomials = [_terms(polynomial, tuple(names)) for polynomial in equations]
+    ring_names = tuple(names)
+    polynomials = [_terms(polynomial, ring_names) for polynomial in equations]
     for saturation, denominator in zip(saturations, undefined, strict=True):
-        terms = {(saturation, *monomial): c for monomial, c in _terms(denominator, tuple(names)).items()}
+        terms = {(saturation, *monomial): c for monomial, c in _terms(denominator, ring_names).items()}
         terms[()] = terms.get((), Fraction(0)) - 1
         polynomials.append(terms)
     return saturations + names, polynomials
@@ -108,10 +109,9 @@ def _step_equations(scene: Scene, plan: Plan, variable: dict, constant, known) -
     """The equations of every step and closure pair (module docstring) and the
     non-constant denominators d_k, D_c whose zeros are saturated away."""
     equations, undefined = [], []
-    step_of = {}
+    step_indices = iter(range(len(plan.steps)))  # the kernel places one point per step, in order
 
     def signed_root(index, step, sides, radicand):
-        step_of["index"] = index
         if not step.free_sign:  # a link's three joints: known sides, a rational area
             return constant(link_area_root(scene, step.triangle))
         root = variable[f"r{index}"]
@@ -120,7 +120,7 @@ def _step_equations(scene: Scene, plan: Plan, variable: dict, constant, known) -
 
     def placed(point):
         x_numerator, y_numerator, denominator = point
-        index = step_of["index"]
+        index = next(step_indices)
         x, y = variable[f"x{index}"], variable[f"y{index}"]
         equations.extend([x_numerator - x * denominator, y_numerator - y * denominator])
         _undefined_where(denominator, undefined)
