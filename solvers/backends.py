@@ -62,6 +62,9 @@ register_backend("exact", "baranov.solvers.exact:solve_exact",
                  "with rational axis frames, coupling degree 1", sliders=True)
 register_backend("msolve", "baranov.solvers.msolve_backend:solve_msolve",
                  "msolve (exact Groebner-basis solver) on the Cartesian system; slider joints too", sliders=True)
+register_backend("homotopy", "baranov.solvers.homotopy:solve_homotopy",
+                 "total-degree homotopy on the Cartesian system: every complex solution followed, any coupling degree "
+                 "(three included); exact dimensions, revolute joints (docs/homotopy.md)")
 register_backend("cartesian", "baranov.baselines.cartesian:solve_cartesian",
                  "baseline: Gauss-Newton on the Cartesian system from random starts (no completeness)")
 register_backend("loop-equations", "baranov.baselines.loop_equations:solve_loop_equations",

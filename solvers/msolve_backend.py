@@ -34,7 +34,7 @@ def solve_msolve(scene: Scene, timeout: float = 600.0) -> Solution:
     >>> [round(mode.parameters["s1,6"], 4) for mode in solution.assembly_modes]  # doctest: +SKIP
     [49.5561, 50.1965, 50.627, 85.0]
     """
-    plan = _plan(scene)
+    plan = description_plan(scene)
     return Solution("msolve", plan.number_of_parameters, tuple(_names(scene, plan)),
                     () if scene.sliders else plan.free_sign_triangles, verified_modes(scene, plan, timeout))
 
@@ -54,16 +54,23 @@ def verified_modes(scene: Scene, plan: Plan, timeout: float = 600.0) -> tuple[As
                                   "dimensions (or a complex curve of solutions passes through its real ones)")
     if result.status != "finite":
         raise SolverError(f"msolve: {result.message}")
+    return modes_of_configurations(scene, plan, result.configurations, "msolve")
+
+
+def modes_of_configurations(scene: Scene, plan: Plan, configurations, method: str) -> tuple[AssemblyMode, ...]:
+    """Real configurations of ``scene`` found by a Cartesian ``method`` (msolve, the
+    homotopy), each verified on every link dimension and slider and described in
+    ``plan``'s terms, sorted. Raises :class:`SolverError` for one that does not verify."""
     modes = []
-    for configuration in result.configurations:
+    for configuration in configurations:
         residual = joint_residual(scene, {j: complex(*p) for j, p in configuration.items()})
         if residual >= RESIDUAL_TOLERANCE:
-            raise SolverError(f"msolve's configuration does not verify (residual {residual:.1e})")
+            raise SolverError(f"{method}'s configuration does not verify (residual {residual:.1e})")
         modes.append(described_mode(scene, plan, configuration, residual))
     return sorted_modes(modes)
 
 
-def _plan(scene: Scene) -> Plan:
+def description_plan(scene: Scene) -> Plan:
     """The plan whose terms describe the modes: the one the numeric method runs (with
     sliders, :func:`~baranov.planner.slider_plan`), else the truss's best."""
     if scene.sliders:

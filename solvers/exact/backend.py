@@ -109,7 +109,8 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         notes.append(LIFTING_NOTE)
     else:
         raise ExactMethodError(
-            f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2")
+            f"coupling degree {plan.number_of_parameters}: the exact method solves coupling degrees 0 to 2; "
+            "--method homotopy solves any (docs/homotopy.md)")
     zero_settled = False  # the parameter's joints coinciding (s = 0) examined, or impossible
     if plan.number_of_parameters and coincidences:
         solver = None if scene.sliders else (lambda other: solve_exact(scene, other, coincidences=False))

@@ -78,7 +78,8 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         polished = _polished(scene, compiled, stalled, branches[stalled_branches])
         undecided += _unsearched_cells(compiled, branches, unsearched, reason)
     else:
-        raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2")
+        raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2; "
+                          "--method homotopy solves any (docs/homotopy.md)")
     modes = assembly_modes(scene, compiled, candidates, polished)
     if degree > 0 and coincidences:
         modes, unsettled = _modes_of_coincident_joints(scene, plan, samples, modes)

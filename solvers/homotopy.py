@@ -1,0 +1,401 @@
+"""Every complex solution of the Cartesian system by a total-degree homotopy, for any
+coupling degree: the numeric method for trusses whose plans need three parameters (the
+45 thirteen-link trusses of coupling degree 3, which the bilateration backends do not
+solve), and a check of the others.
+
+**The system.** The Cartesian system of :func:`~baranov.solvers.msolve.cartesian_system`
+(each moving link: its first two joints' squared distance, and linear placement
+equations for its other joints) has, for a rigid truss of L links, L − 1 quadratic
+equations and as many linear ones as it takes to fix every other joint. The linear ones
+are solved exactly (``fmpq_mat.rref``) and substituted, which leaves m quadratic
+equations q_i(y) = 0 in m unknowns y (m = L − 1, plus one per link with an irrational
+area, whose square root is an unknown), homogenised as Y^T Q_i Y with Y = (y_0, y).
+
+**The homotopy** (Sommese, Wampler, *The Numerical Solution of Systems of Polynomials
+Arising in Engineering and Science*, 2005, §8.4): from the start system
+g_i = y_i² − y_0² (its 2^m solutions (1, ±1, …, ±1)),
+
+    H(Y, t) = (1 − t) γ g(Y) + t q(Y),     c · Y = 1,
+
+with a random complex γ, and a random affine chart c so that paths that go to infinity
+stay bounded in projective space (Y_0 → 0). With probability one every path is smooth
+for t < 1 and every isolated solution of q is the end of at least one path (ibid.,
+Theorem 8.4.1). Paths are followed all together (numpy, one batched linear solve per
+stage): a Runge–Kutta predictor on dY/dt = −H_Y⁻¹ H_t and three Newton corrections,
+the step halved where the corrector does not contract and doubled after three successes.
+
+**What is checked.** The ends with |Y_0| small are at infinity; the others are
+solutions, polished by Newton's method at t = 1. Two paths ending at the same
+nonsingular solution mean one jumped: then every path is followed again with another γ
+and a smaller largest step, up to :data:`ATTEMPTS` times, and the solutions found are
+pooled. A path that fails, or a duplicate that stays, is said in ``undecided``. The
+number of distinct finite solutions is the instance's number of complex assembly modes
+(the catalog's count); the real ones, refined by Newton's method in real arithmetic, are
+the modes. Cost: 2^m paths (4 096 for 13 links), each some hundred steps of O(m³).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+import flint
+import numpy as np
+
+from baranov.scene import Scene
+
+from .modes import Solution, SolverError
+from .msolve import cartesian_system
+from .msolve_backend import description_plan, modes_of_configurations
+from .verification import distance_bound
+
+#: Newton corrections per step; a step is accepted when the last correction is below
+#: CORRECTION (relative to |Y|) and the corrections contract.
+CORRECTIONS = 3
+CORRECTION = 1e-8
+#: Corrections below this (relative) are rounding: they need not contract.
+ROUNDING = 1e-12
+#: The largest and smallest steps in t; a path whose step falls below the smallest fails.
+LARGEST_STEP = 0.05
+SMALLEST_STEP = 1e-9
+#: At most this many steps per path.
+MOST_STEPS = 5000
+#: An end is at infinity when |Y_0| / |Y| is below this.
+AT_INFINITY = 1e-7
+#: Paths to infinity end in singular points, where the steps collapse: after
+#: t = 1 − ENDGAME a path with |Y_0| / |Y| below DIVERGING is taken to infinity and
+#: left there. A real configuration has
+#: |Y_0| / |Y| ≥ 1 / √(1 + m B²) for B its largest coordinate over the scale: where B
+#: is known, :func:`solve_system` takes a tenth of that instead of DIVERGING.
+ENDGAME = 1e-2
+DIVERGING = 1e-3
+#: A path whose step collapses in the endgame is taken to infinity below this many
+#: times the diverging ratio (still half the least ratio of a real configuration).
+COLLAPSED = 5
+#: Path statuses returned by :func:`track`.
+FINISHED, INFINITE, FAILED = 0, 1, 2
+#: A solution is real when its imaginary parts are below this (relative to its size).
+REAL = 1e-6
+#: Ends closer than this (relative to the larger) are one solution: a large complex
+#: solution reached by two paths can differ by 3e-7 after polishing (a 9-link instance).
+SAME = 1e-6
+#: Tracking attempts (another γ, half the largest step each time).
+ATTEMPTS = 3
+
+
+@dataclass(frozen=True)
+class QuadraticSystem:
+    """m homogenised quadratic equations Y^T Q_i Y = 0 in Y = (y_0, y_1, …, y_m) and the
+    map back to the Cartesian system's variables: x = x0 + X y · scale (y in the scaled
+    unknowns)."""
+
+    forms: np.ndarray  # (m, m + 1, m + 1) real symmetric
+    variables: list[str]  # the Cartesian system's variables
+    offset: np.ndarray  # (n,) x at y = 0
+    directions: np.ndarray  # (n, m) ∂x/∂y
+    scale: float
+
+    @property
+    def unknowns(self) -> int:
+        return self.forms.shape[0]
+
+    def cartesian(self, y: np.ndarray) -> np.ndarray:
+        """The Cartesian variables at solutions ``y`` (K, m) of the scaled unknowns."""
+        return self.offset + (self.scale * y) @ self.directions.T
+
+
+@dataclass
+class HomotopyResult:
+    """The finite solutions (scaled unknowns, complex (K, m)), how many paths were
+    followed and how many ended at infinity, and what failed."""
+
+    solutions: np.ndarray
+    paths: int
+    at_infinity: int
+    seconds: float
+    undecided: list[str] = field(default_factory=list)
+
+
+def _matrix(polynomial: dict, index: dict[str, int], size: int) -> np.ndarray:
+    """The symmetric matrix M with polynomial = (1, x)^T M (1, x) (degree at most 2)."""
+    matrix = np.zeros((size + 1, size + 1))
+    for monomial, coefficient in polynomial.items():
+        positions = [index[v] + 1 for v in monomial] + [0] * (2 - len(monomial))
+        if len(positions) != 2:
+            raise ValueError(f"the Cartesian system has a term of degree {len(monomial)}: quadratic systems only")
+        i, j = positions
+        matrix[i, j] += float(coefficient) / (1 if i == j else 2)
+        if i != j:
+            matrix[j, i] += float(coefficient) / 2
+    return matrix
+
+
+def quadratic_system(variables: list[str], polynomials: list[dict], scale: float = 1.0) -> QuadraticSystem:
+    """The system's linear equations solved exactly and substituted into its quadratic
+    ones (module docstring), the unknowns divided by ``scale`` and each equation by its
+    largest coefficient. Raises ValueError where the quadratic equations are not as many
+    as the unknowns left (the linkage is not rigid, or the system is inconsistent)."""
+    index = {v: n for n, v in enumerate(variables)}
+    size = len(variables)
+    linear = [p for p in polynomials if max((len(m) for m in p), default=0) <= 1]
+    quadratic = [p for p in polynomials if max((len(m) for m in p), default=0) == 2]
+    rows = [[p.get((v,), 0) for v in variables] + [p.get((), 0)] for p in linear]
+    entries = [flint.fmpq(Fraction(c).numerator, Fraction(c).denominator) for row in rows for c in row]
+    reduced, rank = flint.fmpq_mat(len(rows), size + 1, entries).rref() if rows else (None, 0)
+    pivots, offset = [], np.zeros(size)
+    directions_exact = []
+    for r in range(rank):
+        row = [reduced[r, c] for c in range(size + 1)]
+        pivot = next(c for c in range(size) if row[c] != 0)
+        if pivot == size:
+            raise ValueError("the linear equations of the Cartesian system are inconsistent")
+        pivots.append(pivot)
+        directions_exact.append(row)
+    free = [c for c in range(size) if c not in pivots]
+    directions = np.zeros((size, len(free)))
+    for c, f in enumerate(free):
+        directions[f, c] = 1.0
+    for pivot, row in zip(pivots, directions_exact, strict=True):  # x_p = −Σ row_f x_f − row_const
+        offset[pivot] = -float(row[size])
+        for c, f in enumerate(free):
+            directions[pivot, c] = -float(row[f])
+    if len(quadratic) != len(free):
+        raise ValueError(f"{len(quadratic)} quadratic equations in {len(free)} unknowns after the linear ones: "
+                         "the linkage is not rigid with these dimensions")
+    substitution = np.zeros((size + 1, len(free) + 1))  # (1, x) = S (1, y)
+    substitution[0, 0] = 1.0
+    substitution[1:, 0] = offset
+    substitution[1:, 1:] = directions * scale
+    forms = np.array([substitution.T @ _matrix(p, index, size) @ substitution for p in quadratic])
+    forms /= np.abs(forms).max(axis=(1, 2), keepdims=True)
+    return QuadraticSystem(forms, variables, offset, directions, scale)
+
+
+def _jacobian(forms: np.ndarray, chart: np.ndarray, gamma: complex, t: np.ndarray, y: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """(H_Y with the chart's row, H) at (Y, t) for every path: (P, m + 1, m + 1), (P, m + 1)."""
+    paths, width = y.shape
+    target_rows = 2 * np.einsum("ijk,pk->pij", forms, y)  # ∂(Y^T Q_i Y)/∂Y
+    target = 0.5 * np.einsum("pij,pj->pi", target_rows, y)
+    start = y[:, 1:] ** 2 - y[:, :1] ** 2
+    start_rows = np.zeros((paths, width - 1, width), dtype=complex)
+    diagonal = np.arange(width - 1)
+    start_rows[:, diagonal, diagonal + 1] = 2 * y[:, 1:]
+    start_rows[:, :, 0] = -2 * y[:, :1]
+    weight = ((1 - t) * gamma)[:, None]
+    jacobian = np.empty((paths, width, width), dtype=complex)
+    jacobian[:, :-1] = weight[:, :, None] * start_rows + t[:, None, None] * target_rows
+    jacobian[:, -1] = chart
+    values = np.empty((paths, width), dtype=complex)
+    values[:, :-1] = weight * start + t[:, None] * target
+    values[:, -1] = y @ chart - 1
+    return jacobian, values
+
+
+def _solve(matrices: np.ndarray, vectors: np.ndarray) -> np.ndarray:
+    """A⁻¹ b for every path; NaN for a singular A (that path's step then fails)."""
+    try:
+        return np.linalg.solve(matrices, vectors[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        out = np.full(vectors.shape, np.nan, dtype=np.result_type(matrices, vectors))
+        for k, (matrix, vector) in enumerate(zip(matrices, vectors, strict=True)):
+            try:
+                out[k] = np.linalg.solve(matrix, vector)
+            except np.linalg.LinAlgError:
+                pass
+        return out
+
+
+def _velocity(forms, chart, gamma, t, y) -> np.ndarray:
+    """dY/dt = −H_Y⁻¹ H_t (H_t = q(Y) − γ g(Y); the chart does not move)."""
+    jacobian, _ = _jacobian(forms, chart, gamma, t, y)
+    rate = np.zeros(y.shape, dtype=complex)
+    rate[:, :-1] = np.einsum("ijk,pj,pk->pi", forms, y, y) - gamma * (y[:, 1:] ** 2 - y[:, :1] ** 2)
+    return -_solve(jacobian, rate)
+
+
+def _corrected(forms, chart, gamma, t, y) -> tuple[np.ndarray, np.ndarray]:
+    """Newton's corrections at t: the corrected points and whether they converged."""
+    size = np.linalg.norm(y, axis=1)
+    previous = np.full(len(y), np.inf)
+    contracting = np.ones(len(y), dtype=bool)
+    for _ in range(CORRECTIONS):
+        jacobian, values = _jacobian(forms, chart, gamma, t, y)
+        step = _solve(jacobian, values)
+        y = y - step
+        change = np.linalg.norm(step, axis=1) / size
+        contracting &= (change <= np.minimum(previous, 1.0)) | (change < ROUNDING)  # at rounding, no contraction
+        previous = change
+    return y, contracting & (previous < CORRECTION) & np.all(np.isfinite(y), axis=1)
+
+
+def track(forms: np.ndarray, rng: np.random.Generator, largest_step: float = LARGEST_STEP,
+          diverging: float = DIVERGING) -> tuple[np.ndarray, np.ndarray]:
+    """Every path of the total-degree homotopy for ``forms`` from t = 0 to 1 (module
+    docstring): the last points Y (P, m + 1) and each path's status: FINISHED at t = 1,
+    INFINITE (after t = 1 − ENDGAME, |Y_0| below ``diverging`` of |Y|, or below
+    COLLAPSED times that where the step collapses), or FAILED (its step fell below the
+    smallest otherwise)."""
+    m = forms.shape[0]
+    gamma = complex(np.exp(2j * np.pi * rng.random()))
+    chart = rng.normal(size=m + 1) + 1j * rng.normal(size=m + 1)
+    signs = np.array(np.meshgrid(*([[1.0, -1.0]] * m), indexing="ij")).reshape(m, -1).T
+    y = np.hstack([np.ones((len(signs), 1)), signs]).astype(complex)
+    y /= (y @ chart)[:, None]
+    paths = len(y)
+    t = np.zeros(paths)
+    step = np.full(paths, largest_step / 4)
+    successes = np.zeros(paths, dtype=int)
+    done = np.zeros(paths, dtype=bool)
+    failed = np.zeros(paths, dtype=bool)
+    infinite = np.zeros(paths, dtype=bool)
+    for _ in range(MOST_STEPS):
+        active = np.flatnonzero(~done & ~failed & ~infinite)
+        if not len(active):
+            break
+        ya, ta = y[active], t[active]
+        last = step[active] >= 1 - ta
+        h = np.where(last, 1 - ta, step[active])
+        k1 = _velocity(forms, chart, gamma, ta, ya)
+        k2 = _velocity(forms, chart, gamma, ta + h / 2, ya + (h / 2)[:, None] * k1)
+        k3 = _velocity(forms, chart, gamma, ta + h / 2, ya + (h / 2)[:, None] * k2)
+        k4 = _velocity(forms, chart, gamma, ta + h, ya + h[:, None] * k3)
+        predicted = ya + (h / 6)[:, None] * (k1 + 2 * k2 + 2 * k3 + k4)
+        corrected, converged = _corrected(forms, chart, gamma, ta + h, predicted)
+        accepted = active[converged]
+        y[accepted] = corrected[converged]
+        t[accepted] = np.where(last[converged], 1.0, ta[converged] + h[converged])  # t = 1 exactly at the end
+        successes[accepted] += 1
+        grow = accepted[successes[accepted] >= 3]
+        step[grow] = np.minimum(2 * step[grow], largest_step)
+        successes[grow] = 0
+        rejected = active[~converged]
+        step[rejected] /= 2
+        successes[rejected] = 0
+        done |= t >= 1
+        ratio = np.abs(y[:, 0]) / np.linalg.norm(y, axis=1)
+        endgame = (t > 1 - ENDGAME) & ~done
+        infinite |= endgame & (ratio < diverging)
+        collapsed = (step < SMALLEST_STEP) & ~done & ~infinite
+        infinite |= collapsed & endgame & (ratio < COLLAPSED * diverging)  # singular, and not a real mode
+        failed |= collapsed & ~infinite
+    return y, np.where(done, FINISHED, np.where(infinite, INFINITE, FAILED))
+
+
+def _distinct(points: np.ndarray) -> tuple[np.ndarray, int]:
+    """``points`` (K, m) without repeats (within SAME relative to the larger of two), and
+    how many were repeats. O(K²)."""
+    kept: list[np.ndarray] = []
+    for point in points:
+        size = max(1.0, float(np.abs(point).max(initial=0.0)))
+        if not any(np.abs(point - other).max() <= SAME * max(size, float(np.abs(other).max())) for other in kept):
+            kept.append(point)
+    return np.array(kept).reshape(-1, points.shape[1]), len(points) - len(kept)
+
+
+def _polished(system: QuadraticSystem, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Newton's method at t = 1 on the affine equations, from the ends y (K, m): the
+    points and whether each converged to a nonsingular solution."""
+    forms = system.forms
+    for _ in range(8):
+        full = np.hstack([np.ones((len(y), 1)), y])
+        rows = 2 * np.einsum("ijk,pk->pij", forms, full)[:, :, 1:]
+        values = np.einsum("ijk,pj,pk->pi", forms, full, full)
+        y = y - _solve(rows, values)
+    full = np.hstack([np.ones((len(y), 1)), y])
+    values = np.abs(np.einsum("ijk,pj,pk->pi", forms, full, full)).max(axis=1)
+    rows = 2 * np.einsum("ijk,pk->pij", forms, full)[:, :, 1:]
+    conditioned = np.linalg.cond(rows) < 1e12
+    return y, (values < 1e-10 * np.maximum(1.0, np.abs(full).max(axis=1) ** 2)) & conditioned
+
+
+def _finite_ends(system: QuadraticSystem, ends: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Which path ends (P, m + 1) lead by Newton's method at t = 1 to a nonsingular finite
+    solution, and those solutions (in path order)."""
+    chart = np.abs(ends[:, 0]) >= AT_INFINITY * np.linalg.norm(ends, axis=1)
+    reached = np.zeros(len(ends), dtype=bool)
+    with np.errstate(all="ignore"):  # ends near infinity overflow: they do not converge
+        points, converged = _polished(system, ends[chart, 1:] / ends[chart, :1])
+    reached[np.flatnonzero(chart)[converged]] = True
+    return reached, points[converged]
+
+
+def solve_system(system: QuadraticSystem, seed: int = 0, bound: float = 0.0) -> HomotopyResult:
+    """Every finite solution of ``system`` (module docstring), in its scaled unknowns;
+    ``bound``: the largest coordinate (scaled) of a real solution, if known."""
+    diverging = 0.1 / math.sqrt(1 + system.unknowns * bound**2) if bound else DIVERGING
+    start = time.perf_counter()
+    rng = np.random.default_rng(seed)
+    found = np.zeros((0, system.unknowns), dtype=complex)
+    undecided: list[str] = []
+    largest_step = LARGEST_STEP
+    at_infinity = 0
+    for attempt in range(ATTEMPTS):
+        ends, status = track(system.forms, rng, largest_step, diverging)
+        reached, points = _finite_ends(system, ends)
+        finished = reached & (status == FINISHED)
+        own, repeats = _distinct(points[finished[reached]])
+        # a path taken to infinity, or whose step collapsed, may still be near a finite
+        # solution: Newton's method at t = 1 from its last point settles it (kept if new)
+        found, _ = _distinct(np.vstack([found, own, points[~finished[reached]]]))
+        at_infinity = int((~reached & (status != FAILED)).sum())
+        failures = int((~reached & (status == FAILED)).sum()) + int((~reached & (status == FINISHED) & (
+            np.abs(ends[:, 0]) >= AT_INFINITY * np.linalg.norm(ends, axis=1))).sum())
+        if not repeats and not failures:
+            undecided = []
+            break
+        undecided = [f"homotopy: {failures} of {len(ends)} paths failed and {repeats} ended at a solution another "
+                     f"path had reached (path jumping) in {attempt + 1} attempts; the solutions found are "
+                     "pooled, and a solution may be missing"]
+        largest_step /= 2
+    return HomotopyResult(found, len(ends), at_infinity, time.perf_counter() - start, undecided)
+
+
+def homotopy_configurations(scene: Scene, seed: int = 0) -> tuple[list[dict[str, tuple[float, float]]],
+                                                                    HomotopyResult]:
+    """Every real configuration of ``scene`` (exact dimensions) from the finite solutions
+    of its Cartesian system, refined in real arithmetic, and the homotopy's result."""
+    variables, polynomials, names, signs = cartesian_system(scene)
+    scale = max(1.0, max(abs(float(x)) for point in scene.world.values() for x in point))
+    scale = max(scale, math.sqrt(max(float(v) for link in scene.links for v in link.squared_distances.values())))
+    system = quadratic_system(variables, polynomials, scale)
+    reach = distance_bound(scene) + max(abs(float(x)) for point in scene.world.values() for x in point)
+    result = solve_system(system, seed, reach / scale)
+    real = result.solutions[np.abs(result.solutions.imag).max(axis=1, initial=0.0) <= REAL]
+    refined, converged = _polished(system, real.real)
+    index = {v: n for n, v in enumerate(variables)}
+    configurations = []
+    for x in system.cartesian(refined[converged]):
+        if any(x[index[m]] * sign < 0 for m, sign in signs.items()):
+            continue  # the auxiliary square root has the wrong sign: a mirrored link
+        point = {j: (float(x[index[a]]), float(x[index[b]])) for j, (a, b) in names.items()}
+        point.update({scene.point_name(scene.ground, j): (float(a), float(b)) for j, (a, b) in scene.world.items()})
+        configurations.append(point)
+    return configurations, result
+
+
+def solve_homotopy(scene: Scene, seed: int = 0) -> Solution:
+    """All real assembly modes of ``scene`` (exact dimensions, revolute joints) from every
+    complex solution of its Cartesian system (module docstring), each verified on every
+    link dimension and described in the terms of the truss's best plan, whatever its
+    coupling degree. What the homotopy could not settle is in ``undecided``. Raises
+    :class:`SolverError` for inexact dimensions or a system that is not square after its
+    linear equations (a linkage that is not rigid).
+
+    >>> from baranov.scene import load_scene
+    >>> solution = solve_homotopy(load_scene("examples/7-B1.json"))
+    >>> len(solution.assembly_modes), solution.undecided
+    (8, ())
+    """
+    if not scene.exact:
+        raise SolverError("the homotopy method needs exact dimensions (integers, decimals or fractions such as "
+                          "\"9/5\"; a float from Python is binary): its linear equations are solved exactly")
+    try:
+        configurations, result = homotopy_configurations(scene, seed)
+    except ValueError as error:
+        raise SolverError(f"homotopy: {error}") from None
+    plan = description_plan(scene)
+    modes = modes_of_configurations(scene, plan, configurations, "homotopy")
+    return Solution.of_plan("homotopy", scene, plan, modes, undecided=tuple(result.undecided))
