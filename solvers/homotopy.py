@@ -72,8 +72,9 @@ AT_INFINITY = 1e-7
 ENDGAME = 1e-2
 DIVERGING = 1e-3
 #: A path whose step collapses in the endgame is taken to infinity below this many
-#: times the diverging ratio (still half the least ratio of a real configuration).
-COLLAPSED = 5
+#: times the diverging ratio: nine tenths of the least ratio of a real configuration, so
+#: that it cannot be ending at a real mode (a real double mode, singular too, lies above).
+COLLAPSED = 9
 #: Path statuses returned by :func:`track`.
 FINISHED, INFINITE, FAILED = 0, 1, 2
 #: A solution is real when its imaginary parts are below this (relative to its size).
@@ -81,6 +82,10 @@ REAL = 1e-6
 #: Ends closer than this (relative to the larger) are one solution: a large complex
 #: solution reached by two paths can differ by 3e-7 after polishing (a 9-link instance).
 SAME = 1e-6
+#: Solutions from another attempt (another γ), or from a path's last point, are new
+#: beyond this: two attempts' copies of an ill-conditioned solution (|y| ≈ 150 on
+#: 13/N4962) differed by 7e-6.
+POOLED = 1e-4
 #: Tracking attempts (another γ, half the largest step each time).
 ATTEMPTS = 3
 
@@ -284,13 +289,13 @@ def track(forms: np.ndarray, rng: np.random.Generator, largest_step: float = LAR
     return y, np.where(done, FINISHED, np.where(infinite, INFINITE, FAILED))
 
 
-def _distinct(points: np.ndarray) -> tuple[np.ndarray, int]:
-    """``points`` (K, m) without repeats (within SAME relative to the larger of two), and
-    how many were repeats. O(K²)."""
+def _distinct(points: np.ndarray, tolerance: float = SAME) -> tuple[np.ndarray, int]:
+    """``points`` (K, m) without repeats (within ``tolerance`` relative to the larger of
+    two), and how many were repeats. O(K²)."""
     kept: list[np.ndarray] = []
     for point in points:
         size = max(1.0, float(np.abs(point).max(initial=0.0)))
-        if not any(np.abs(point - other).max() <= SAME * max(size, float(np.abs(other).max())) for other in kept):
+        if not any(np.abs(point - other).max() <= tolerance * max(size, float(np.abs(other).max())) for other in kept):
             kept.append(point)
     return np.array(kept).reshape(-1, points.shape[1]), len(points) - len(kept)
 
@@ -339,7 +344,7 @@ def solve_system(system: QuadraticSystem, seed: int = 0, bound: float = 0.0) -> 
         own, repeats = _distinct(points[finished[reached]])
         # a path taken to infinity, or whose step collapsed, may still be near a finite
         # solution: Newton's method at t = 1 from its last point settles it (kept if new)
-        found, _ = _distinct(np.vstack([found, own, points[~finished[reached]]]))
+        found, _ = _distinct(np.vstack([found, own, points[~finished[reached]]]), POOLED)
         at_infinity = int((~reached & (status != FAILED)).sum())
         failures = int((~reached & (status == FAILED)).sum()) + int((~reached & (status == FINISHED) & (
             np.abs(ends[:, 0]) >= AT_INFINITY * np.linalg.norm(ends, axis=1))).sum())
