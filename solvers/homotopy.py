@@ -153,7 +153,7 @@ def quadratic_system(variables: list[str], polynomials: list[dict], scale: float
     directions_exact = []
     for r in range(rank):
         row = [reduced[r, c] for c in range(size + 1)]
-        pivot = next(c for c in range(size) if row[c] != 0)
+        pivot = next(c for c in range(size + 1) if row[c] != 0)  # the constant column: 0 = c ≠ 0
         if pivot == size:
             raise ValueError("the linear equations of the Cartesian system are inconsistent")
         pivots.append(pivot)

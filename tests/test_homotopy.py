@@ -107,3 +107,10 @@ def test_a_system_that_is_not_square_is_refused():
                    {("c",): Fraction(1), ("d",): Fraction(-1)}]
     with pytest.raises(ValueError, match="not rigid"):
         quadratic_system(["a", "b", "c", "d"], polynomials)
+
+
+def test_inconsistent_linear_equations_are_refused():
+    polynomials = [{("a", "a"): Fraction(1), (): Fraction(-1)}, {("b",): Fraction(1)},
+                   {("b",): Fraction(1), (): Fraction(-1)}]
+    with pytest.raises(ValueError, match="inconsistent"):
+        quadratic_system(["a", "b"], polynomials)
