@@ -327,6 +327,17 @@ def _finite_ends(system: QuadraticSystem, ends: np.ndarray) -> tuple[np.ndarray,
     return reached, points[converged]
 
 
+def _how_complex(ends: np.ndarray) -> str:
+    """How far from real the failed paths' last points are (the least of max |Im y| / |y|
+    over them), so that a reader can judge whether a real mode could be among them."""
+    if not len(ends):
+        return ""
+    with np.errstate(all="ignore"):
+        points = ends[:, 1:] / ends[:, :1]
+        least = float(np.nanmin(np.abs(points.imag).max(axis=1) / np.abs(points).max(axis=1)))
+    return f" (their last points' imaginary parts: at least {least:.2g} of their size)"
+
+
 def solve_system(system: QuadraticSystem, seed: int = 0, bound: float = 0.0) -> HomotopyResult:
     """Every finite solution of ``system`` (module docstring), in its scaled unknowns;
     ``bound``: the largest coordinate (scaled) of a real solution, if known."""
@@ -351,9 +362,9 @@ def solve_system(system: QuadraticSystem, seed: int = 0, bound: float = 0.0) -> 
         if not repeats and not failures:
             undecided = []
             break
-        undecided = [f"homotopy: {failures} of {len(ends)} paths failed and {repeats} ended at a solution another "
-                     f"path had reached (path jumping) in {attempt + 1} attempts; the solutions found are "
-                     "pooled, and a solution may be missing"]
+        undecided = [f"homotopy: {failures} of {len(ends)} paths failed{_how_complex(ends[~reached & (status == FAILED)])}"
+                     f" and {repeats} ended at a solution another path had reached (path jumping) in {attempt + 1} "
+                     "attempts; the solutions found are pooled, and a solution may be missing"]
         largest_step /= 2
     return HomotopyResult(found, len(ends), at_infinity, time.perf_counter() - start, undecided)
 
