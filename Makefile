@@ -47,7 +47,7 @@ test-slow: $(STAMP)  ## long checks (not timed as a whole; README gives the part
 fuzz: $(STAMP)  ## the long fuzz run of the scene loader and the solvers (tests/test_fuzz.py, FUZZ cases per test, default 10⁴)
 	BARANOV_FUZZ_EXAMPLES=$(FUZZ) $(BIN)/pytest -q tests/test_fuzz.py --hypothesis-show-statistics
 
-bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (21 min 32 s measured at e732c59, 2 cores, msolve included)
+bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (21 min 32 s measured on 2026-11-27 beside a niced catalog job, 2 cores, msolve and the homotopy included)
 	$(BIN)/python bench/speed_vs_accuracy.py
 	$(BIN)/python bench/stability.py
 
