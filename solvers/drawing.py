@@ -68,7 +68,9 @@ def modes_figure(scene: Scene, solution: Solution, columns: int | None = None) -
     margin = 0.12 * extent
     # panels as tall as the drawings need (a flat 3-RPR left wide empty bands before)
     shape = min(max((max(ys) - min(ys) + 2 * margin) / (max(xs) - min(xs) + 2 * margin), 0.45), 1.6)
-    figure = Figure(figsize=(3.6 * columns, 3.6 * shape * rows + 0.8), layout="constrained")
+    titles = [_title(index, mode) for index, mode in enumerate(modes)]
+    extra_lines = max((title.count("\n") for title in titles), default=0)  # coupling degree 3: three-line titles
+    figure = Figure(figsize=(3.6 * columns, (3.6 * shape + 0.2 * extra_lines) * rows + 0.8), layout="constrained")
     axes = figure.subplots(rows, columns, squeeze=False)
     for index, axis in enumerate(axes.flat):
         axis.set_aspect("equal")
@@ -82,14 +84,23 @@ def modes_figure(scene: Scene, solution: Solution, columns: int | None = None) -
                 axis.text(0.5, 0.5, "no assembly mode", ha="center", va="center", transform=axis.transAxes)
             continue
         draw_mode(axis, scene, modes[index], extent)
-        values = ", ".join(f"{name} = {value:.6g}" for name, value in modes[index].parameters.items())
-        signs = "".join({1: "+", -1: "-", 0: "0"}[sign] for sign in modes[index].signs)
-        axis.set_title(f"mode {index + 1}" + (f" ({signs})" if signs else "") + (f": {values}" if values else ""),
-                       fontsize=9)
+        axis.set_title(titles[index], fontsize=9)
     legend = "ground hatched" + ("; (+-…): signs of the plan's free-sign triangles"
                                  if any(mode.signs for mode in modes) else "")
     figure.suptitle(f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} ({legend})", fontsize=11)
     return figure
+
+
+def _title(index: int, mode) -> str:
+    """"mode k (signs): s = …, t = …"; with three parameters or more (coupling degree 3),
+    the values two to a line below the mode's number, so that titles stay within their
+    panels."""
+    values = [f"{name} = {value:.6g}" for name, value in mode.parameters.items()]
+    signs = "".join({1: "+", -1: "-", 0: "0"}[sign] for sign in mode.signs)
+    heading = f"mode {index + 1}" + (f" ({signs})" if signs else "")
+    if len(values) <= 2:
+        return heading + (f": {', '.join(values)}" if values else "")
+    return heading + "\n" + "\n".join(", ".join(values[n:n + 2]) for n in range(0, len(values), 2))
 
 
 def draw_mode(axis, scene: Scene, mode, extent: float) -> None:

@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 
+from baranov.planner import best_plan
 from baranov.scene import load_scene
 from baranov.solvers import solve
 from baranov.solvers.drawing import modes_figure, render_modes
@@ -33,6 +34,8 @@ def _figure(example: str):
         if find_msolve() is None:
             pytest.skip("slider chains are solved by msolve, not installed")
         return modes_figure(scene, solve(scene, method="msolve"))
+    if best_plan(scene.chain).number_of_parameters > 2:  # only the homotopy solves coupling degree 3
+        return modes_figure(scene, solve(scene, method="homotopy"))
     return modes_figure(scene, solve(scene))
 
 
