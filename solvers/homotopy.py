@@ -93,11 +93,10 @@ ATTEMPTS = 3
 @dataclass(frozen=True)
 class QuadraticSystem:
     """m homogenised quadratic equations Y^T Q_i Y = 0 in Y = (y_0, y_1, …, y_m) and the
-    map back to the Cartesian system's variables: x = x0 + X y · scale (y in the scaled
-    unknowns)."""
+    map back to the Cartesian system's variables (in its order): x = offset + directions ·
+    (scale y), y in the scaled unknowns."""
 
     forms: np.ndarray  # (m, m + 1, m + 1) real symmetric
-    variables: list[str]  # the Cartesian system's variables
     offset: np.ndarray  # (n,) x at y = 0
     directions: np.ndarray  # (n, m) ∂x/∂y
     scale: float
@@ -175,12 +174,13 @@ def quadratic_system(variables: list[str], polynomials: list[dict], scale: float
     substitution[1:, 1:] = directions * scale
     forms = np.array([substitution.T @ _matrix(p, index, size) @ substitution for p in quadratic])
     forms /= np.abs(forms).max(axis=(1, 2), keepdims=True)
-    return QuadraticSystem(forms, variables, offset, directions, scale)
+    return QuadraticSystem(forms, offset, directions, scale)
 
 
 def _jacobian(forms: np.ndarray, chart: np.ndarray, gamma: complex, t: np.ndarray, y: np.ndarray
-              ) -> tuple[np.ndarray, np.ndarray]:
-    """(H_Y with the chart's row, H) at (Y, t) for every path: (P, m + 1, m + 1), (P, m + 1)."""
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(H_Y with the chart's row, H, H_t) at (Y, t) for every path: (P, m + 1, m + 1),
+    (P, m + 1), (P, m + 1); H_t = q(Y) − γ g(Y), and 0 for the chart, which does not move."""
     paths, width = y.shape
     target_rows = 2 * np.einsum("ijk,pk->pij", forms, y)  # ∂(Y^T Q_i Y)/∂Y
     target = 0.5 * np.einsum("pij,pj->pi", target_rows, y)
@@ -196,7 +196,9 @@ def _jacobian(forms: np.ndarray, chart: np.ndarray, gamma: complex, t: np.ndarra
     values = np.empty((paths, width), dtype=complex)
     values[:, :-1] = weight * start + t[:, None] * target
     values[:, -1] = y @ chart - 1
-    return jacobian, values
+    rate = np.zeros(y.shape, dtype=complex)
+    rate[:, :-1] = target - gamma * start
+    return jacobian, values, rate
 
 
 def _solve(matrices: np.ndarray, vectors: np.ndarray) -> np.ndarray:
@@ -214,10 +216,8 @@ def _solve(matrices: np.ndarray, vectors: np.ndarray) -> np.ndarray:
 
 
 def _velocity(forms, chart, gamma, t, y) -> np.ndarray:
-    """dY/dt = −H_Y⁻¹ H_t (H_t = q(Y) − γ g(Y); the chart does not move)."""
-    jacobian, _ = _jacobian(forms, chart, gamma, t, y)
-    rate = np.zeros(y.shape, dtype=complex)
-    rate[:, :-1] = np.einsum("ijk,pj,pk->pi", forms, y, y) - gamma * (y[:, 1:] ** 2 - y[:, :1] ** 2)
+    """dY/dt = −H_Y⁻¹ H_t along every path."""
+    jacobian, _, rate = _jacobian(forms, chart, gamma, t, y)
     return -_solve(jacobian, rate)
 
 
@@ -227,7 +227,7 @@ def _corrected(forms, chart, gamma, t, y) -> tuple[np.ndarray, np.ndarray]:
     previous = np.full(len(y), np.inf)
     contracting = np.ones(len(y), dtype=bool)
     for _ in range(CORRECTIONS):
-        jacobian, values = _jacobian(forms, chart, gamma, t, y)
+        jacobian, values, _ = _jacobian(forms, chart, gamma, t, y)
         step = _solve(jacobian, values)
         y = y - step
         change = np.linalg.norm(step, axis=1) / size
