@@ -24,8 +24,11 @@ Theorem 8.4.1). Paths are followed all together (numpy, one batched linear solve
 stage): a Runge–Kutta predictor on dY/dt = −H_Y⁻¹ H_t and three Newton corrections,
 the step halved where the corrector does not contract and doubled after three successes.
 
-**What is checked.** The ends with |Y_0| small are at infinity; the others are
-solutions, polished by Newton's method at t = 1. Two paths ending at the same
+**What is checked.** A path is taken to infinity once t > 1 − ENDGAME with |Y_0| / |Y|
+below a tenth of the least value a real configuration can have (so never where a real
+mode could end), or where its step collapses there below nine tenths of it. Every path's
+last point is polished by Newton's method at t = 1, and the nonsingular solutions are
+kept once each. Two paths ending at the same
 nonsingular solution mean one jumped: then every path is followed again with another γ
 and a smaller largest step, up to :data:`ATTEMPTS` times, and the solutions found are
 pooled. A path that fails, or a duplicate that stays, is said in ``undecided``. The
