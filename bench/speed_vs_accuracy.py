@@ -313,7 +313,7 @@ def chart(table: dict, path: Path, title: str) -> None:
     for axis in axes:
         axis.grid(True, which="major", alpha=0.3)
     handles, labels = axes[0].get_legend_handles_labels()
-    figure.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=9)
+    figure.legend(handles, labels, loc="outside lower center", ncol=min(len(labels), 5), fontsize=9)
     figure.suptitle(title)
     figure.savefig(path, dpi=110)
     plt.close(figure)
