@@ -319,6 +319,14 @@ def chart(table: dict, path: Path, title: str) -> None:
     plt.close(figure)
 
 
+def draw(rows: list[dict]) -> dict:
+    """Summarise ``rows`` and draw docs/bench/speed-vs-accuracy.png; return the summary."""
+    table = summary(rows)
+    chart(table, OUT / "speed-vs-accuracy.png",
+          f"Assembly modes of {len({r['instance'] for r in rows})} linkages: the project's backends vs baselines")
+    return table
+
+
 def document(table: dict, rows: list[dict], args, elapsed: float) -> str:
     """docs/benchmarks.md: how the run was made and the medians per method and link count."""
     lines = [
@@ -378,7 +386,14 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=None, help="solves per (method, instance); median")
     parser.add_argument("--instances", type=int, default=None, help="random instances per truss up to 9 links")
     parser.add_argument("--time-limit", type=float, default=None, help="seconds per solve")
+    parser.add_argument("--chart-only", action="store_true",
+                        help="redraw the chart from the committed docs/bench/results.csv; solve nothing")
     args = parser.parse_args()
+    if args.chart_only:
+        with open(OUT / "results.csv", newline="", encoding="utf-8") as handle:
+            rows = list(csv.DictReader(handle))
+        draw(rows)
+        return
     args.repeats = args.repeats or (1 if args.quick else 3)
     args.instances = args.instances or (1 if args.quick else 3)
     args.time_limit = args.time_limit or (20.0 if args.quick else 60.0)
@@ -398,9 +413,7 @@ def main() -> None:
         writer.writeheader()
         writer.writerows(rows)
     (OUT / "results.csv.tmp").replace(OUT / "results.csv")
-    table = summary(rows)
-    chart(table, OUT / "speed-vs-accuracy.png",
-          f"Assembly modes of {len({r['instance'] for r in rows})} linkages: the project's backends vs baselines")
+    table = draw(rows)
     text = document(table, rows, args, elapsed)
     (ROOT / "docs" / "benchmarks.md.tmp").write_text(text, encoding="utf-8")
     (ROOT / "docs" / "benchmarks.md.tmp").replace(ROOT / "docs" / "benchmarks.md")
