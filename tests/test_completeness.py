@@ -5,7 +5,8 @@ assembly modes whose parameter values the exact method certifies as real roots. 
 polynomial was lifted from primes: their tests, one per truss, took 12 to 48 min each on
 2 cores (1 h 53 min in all), the coupling-1 one about 14 min. With the polynomial lifted
 by Newton's iteration and the compiled numeric kernel, all five tests took 32 min 42 s
-(2026-11-26, a niced catalog job beside them).
+(2026-11-26, a niced catalog job beside them); at 6d5bcb5, after issue 21's speed-ups
+(each with the search's raw output unchanged), 20 min 26 s (2026-11-27, likewise).
 
 Slow (`make test-slow`): two worker processes; a miss prints the instance's coordinates,
 to be saved under tests/regressions/.
