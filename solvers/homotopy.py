@@ -28,13 +28,16 @@ the step halved where the corrector does not contract and doubled after three su
 below a tenth of the least value a real configuration can have (so never where a real
 mode could end), or where its step collapses there below nine tenths of it. Every path's
 last point is polished by Newton's method at t = 1, and the nonsingular solutions are
-kept once each. Two paths ending at the same
-nonsingular solution mean one jumped: then every path is followed again with another γ
-and a smaller largest step, up to :data:`ATTEMPTS` times, and the solutions found are
-pooled. A path that fails, or a duplicate that stays, is said in ``undecided``. The
-number of distinct finite solutions is the instance's number of complex assembly modes
-(the catalog's count); the real ones, refined by Newton's method in real arithmetic, are
-the modes. Cost: 2^m paths (4 096 for 13 links), each some hundred steps of O(m³).
+kept once each, with the conjugate of each non-real one (the equations are real). Two
+paths ending at the same nonsingular solution mean one jumped: then every path is
+followed again with another γ and a smaller largest step, up to :data:`ATTEMPTS` times,
+and the solutions found are pooled. A path that fails, or a duplicate that stays, is
+said in ``undecided``. The number of distinct finite solutions is the instance's number
+of complex assembly modes (the catalog's count) but for complex solutions far larger than
+any real configuration, whose paths may be taken to infinity (13/N20086: a conjugate pair
+at |y| ≈ 4.9·10³ scaled, against real coordinates below 9: docs/homotopy.md); the real
+ones, refined by Newton's method in real arithmetic, are the modes. Cost: 2^m paths
+(4 096 for 13 links), each some hundred steps of O(m³).
 """
 
 from __future__ import annotations
@@ -58,8 +61,12 @@ from .verification import distance_bound
 #: CORRECTION (relative to |Y|) and the corrections contract.
 CORRECTIONS = 3
 CORRECTION = 1e-8
-#: Corrections below this (relative) are rounding: they need not contract.
-ROUNDING = 1e-12
+#: Corrections below this (relative) are rounding: they need not contract. Near an
+#: ill-conditioned solution Newton's corrections stall at about the condition number
+#: times 1e-16 instead of contracting: 13/N20086 has complex solutions with |y| ≈ 2·10³
+#: to 5·10³ (scaled) and condition numbers 4·10¹⁰ to 6·10¹¹. With 1e-12 here, 51 of its
+#: paths had their steps collapse near t = 1 (none with a tenth of CORRECTION).
+ROUNDING = CORRECTION / 10
 #: The largest and smallest steps in t; a path whose step falls below the smallest fails.
 LARGEST_STEP = 0.05
 SMALLEST_STEP = 1e-9
@@ -294,13 +301,16 @@ def track(forms: np.ndarray, rng: np.random.Generator, largest_step: float = LAR
 
 def _distinct(points: np.ndarray, tolerance: float = SAME) -> tuple[np.ndarray, int]:
     """``points`` (K, m) without repeats (within ``tolerance`` relative to the larger of
-    two), and how many were repeats. O(K²)."""
-    kept: list[np.ndarray] = []
-    for point in points:
-        size = max(1.0, float(np.abs(point).max(initial=0.0)))
-        if not any(np.abs(point - other).max() <= tolerance * max(size, float(np.abs(other).max())) for other in kept):
-            kept.append(point)
-    return np.array(kept).reshape(-1, points.shape[1]), len(points) - len(kept)
+    two), and how many were repeats. O(K²) comparisons, one array operation per point."""
+    largest = np.abs(points).max(axis=1, initial=0.0)
+    kept: list[int] = []
+    for k, point in enumerate(points):
+        if kept:
+            limit = tolerance * np.maximum(max(1.0, largest[k]), largest[kept])
+            if (np.abs(points[kept] - point).max(axis=1) <= limit).any():
+                continue
+        kept.append(k)
+    return points[kept].reshape(-1, points.shape[1]), len(points) - len(kept)
 
 
 def _polished(system: QuadraticSystem, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -315,7 +325,9 @@ def _polished(system: QuadraticSystem, y: np.ndarray) -> tuple[np.ndarray, np.nd
     full = np.hstack([np.ones((len(y), 1)), y])
     values = np.abs(np.einsum("ijk,pj,pk->pi", forms, full, full)).max(axis=1)
     rows = 2 * np.einsum("ijk,pk->pij", forms, full)[:, :, 1:]
-    conditioned = np.linalg.cond(rows) < 1e12
+    conditioned = np.zeros(len(y), dtype=bool)
+    finite = np.isfinite(rows).all(axis=(1, 2))  # an end near infinity overflows; the SVD would not converge
+    conditioned[finite] = np.linalg.cond(rows[finite]) < 1e12
     return y, (values < 1e-10 * np.maximum(1.0, np.abs(full).max(axis=1) ** 2)) & conditioned
 
 
@@ -328,6 +340,22 @@ def _finite_ends(system: QuadraticSystem, ends: np.ndarray) -> tuple[np.ndarray,
         points, converged = _polished(system, ends[chart, 1:] / ends[chart, :1])
     reached[np.flatnonzero(chart)[converged]] = True
     return reached, points[converged]
+
+
+def _with_conjugates(system: QuadraticSystem, found: np.ndarray) -> np.ndarray:
+    """``found`` (K, m) and the complex conjugate of each non-real solution whose conjugate
+    is not among them, polished at t = 1 and kept where Newton's method converges: the
+    equations are real, so the conjugate of a solution is one. A path that ends at one
+    of a pair does not make the other's path end well (13/N20086: a solution with
+    |y| ≈ 1.9·10³ reached, its conjugate not). O(K²)."""
+    size = np.maximum(1.0, np.abs(found).max(axis=1, initial=0.0))
+    non_real = np.abs(found.imag).max(axis=1, initial=0.0) > REAL * size
+    conjugates = found[non_real].conj()
+    if not len(conjugates):
+        return found
+    with np.errstate(all="ignore"):
+        polished, converged = _polished(system, conjugates)
+    return _distinct(np.vstack([found, polished[converged]]), POOLED)[0]
 
 
 def _how_complex(ends: np.ndarray) -> str:
@@ -369,6 +397,7 @@ def solve_system(system: QuadraticSystem, seed: int = 0, bound: float = 0.0) -> 
                      f" and {repeats} ended at a solution another path had reached (path jumping) in {attempt + 1} "
                      "attempts; the solutions found are pooled, and a solution may be missing"]
         largest_step /= 2
+    found = _with_conjugates(system, found)
     return HomotopyResult(found, len(ends), at_infinity, time.perf_counter() - start, undecided)
 
 

@@ -19,14 +19,20 @@ from baranov.enumerate import baranov_trusses
 from baranov.scene import load_scene, scene_from_dict
 from baranov.scene.instances import generic_integer_configuration, instance_dict, scene_of
 from baranov.solvers import SolverError, solve
-from baranov.solvers.homotopy import homotopy_configurations, quadratic_system
-from baranov.solvers.msolve import match_configurations
+from baranov.solvers.homotopy import _polished, _with_conjugates, homotopy_configurations, quadratic_system, solve_system
+from baranov.solvers.msolve import cartesian_system, match_configurations
 from baranov.solvers.verification import same_mode
 from baranov.topology import chain_from_link_graph
 
 ROOT = Path(__file__).resolve().parents[1]
 CATALOG = {links: [json.loads(line) for line in (ROOT / "catalog" / f"trusses-{links}.jsonl").read_text().splitlines()]
            for links in (5, 7, 9)}
+
+
+def _system(scene):
+    """The scene's Cartesian system as homogenised quadratics, scaled by 10."""
+    variables, polynomials, _, _ = cartesian_system(scene)
+    return quadratic_system(variables, polynomials, 10.0)
 
 
 def _same_modes(first, second, scene) -> bool:
@@ -114,3 +120,28 @@ def test_inconsistent_linear_equations_are_refused():
                    {("b",): Fraction(1), (): Fraction(-1)}]
     with pytest.raises(ValueError, match="inconsistent"):
         quadratic_system(["a", "b"], polynomials)
+
+
+def test_a_missing_conjugate_is_restored():
+    """The equations are real: the conjugate of a non-real solution is one, and is added
+    where the paths missed it (13/N20086 had a solution with |y| ≈ 1.9·10³ reached and its
+    conjugate not)."""
+    system = _system(load_scene(ROOT / "examples" / "7-B1.json"))
+    result = solve_system(system)
+    imaginary = result.solutions.imag
+    largest = imaginary[np.arange(len(imaginary)), np.abs(imaginary).argmax(axis=1)]
+    assert (np.abs(largest) > 1e-6).sum() == 6  # 14 complex assembly modes, 8 real: three conjugate pairs
+    kept = result.solutions[largest <= 1e-6]  # one of each pair
+    restored = _with_conjugates(system, kept)
+    assert len(restored) == len(result.solutions)
+    assert all(np.abs(restored - solution).max(axis=1).min() < 1e-9 for solution in result.solutions)
+
+
+def test_ends_near_infinity_are_not_solutions_and_raise_nothing():
+    """An end whose Newton iterates overflow is not a solution (the condition number is
+    not asked of a matrix of infinities, where the SVD would not converge)."""
+    system = _system(load_scene(ROOT / "examples" / "7-B1.json"))
+    ends = np.full((2, system.unknowns), 1e300 + 1e300j)
+    with np.errstate(all="ignore"):
+        _, converged = _polished(system, ends)
+    assert not converged.any()
