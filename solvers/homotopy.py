@@ -347,9 +347,10 @@ def _finite_ends(system: QuadraticSystem, ends: np.ndarray) -> tuple[np.ndarray,
 
 
 def _with_conjugates(system: QuadraticSystem, found: np.ndarray) -> np.ndarray:
-    """``found`` (K, m) and the complex conjugate of each non-real solution whose conjugate
-    is not among them, polished at t = 1 and kept where Newton's method converges: the
-    equations are real, so the conjugate of a solution is one. A path that ends at one
+    """``found`` (K, m) and the complex conjugate of each non-real solution, polished at
+    t = 1 and kept where Newton's method converges and it is not already among them (the
+    conjugates already found are dropped as repeats): the equations are real, so the
+    conjugate of a solution is one. A path that ends at one
     of a pair does not make the other's path end well (13/N20086: a solution with
     |y| ≈ 1.9·10³ reached, its conjugate not). O(K²)."""
     size = np.maximum(1.0, np.abs(found).max(axis=1, initial=0.0))
