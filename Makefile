@@ -36,9 +36,10 @@ catalog-15: $(STAMP)  ## the 15-link census (counts, invariants, coupling-degree
 catalog-13: $(STAMP)  ## the 13-link class too, with plans, no assembly modes (22 min measured on 2 busy cores; not committed; docs/catalog-13.md)
 	$(BIN)/baranov catalog --links 3-13 --out catalog-13
 
-catalog-13-modes: $(STAMP)  ## the 13-link assembly modes (about 18 core-hours), resumed from the finished shards committed in catalog/shards-13/ (docs/catalog-13.md)
+catalog-13-modes: $(STAMP)  ## the 13-link assembly modes (about 18 core-hours), resumed from the finished shards committed in catalog/shards-13/; then copies catalog-13/trusses-13.jsonl.gz and its cross-check into catalog/ and regenerates catalog/summary.md (docs/catalog-13.md)
 	$(BIN)/python -m baranov.catalog.shard_archive restore catalog/shards-13 catalog-13/.shards/trusses-13
 	$(BIN)/baranov catalog --links 13 --out catalog-13 --assembly-modes 13
+	$(BIN)/python -m baranov.catalog.publish catalog-13 catalog 13
 
 test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default test suite (about 7 min on 2 cores)
 	$(BIN)/ruff check .

@@ -46,8 +46,9 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
     ]
     censuses = {census["links"]: census for path in sorted(out.glob("census-*.json"))
                 if (census := load_census(path)) is not None}
-    lines += _counts(catalogs, checks, censuses) + _invariants(catalogs, censuses)
-    lines += _coupling({**compact, **catalogs}, censuses) + _assembly_modes({**compact, **catalogs})
+    known = {**compact, **catalogs}
+    lines += _counts(known, checks, censuses) + _invariants(known, censuses)
+    lines += _coupling(known, censuses) + _assembly_modes(known)
     lines += _slider_chains(out)
     lines += ["", "## Where this differs from the literature", "", *DISCREPANCY_NOTE, ""]
     return "\n".join(lines)
@@ -70,9 +71,7 @@ def _counts(catalogs: dict[int, list[dict]], checks: dict[int, dict], censuses: 
             a_count = assur = sliders = None
         else:
             a_count = len(entries)
-            assur = sum(e["assur_groups"] for e in entries)
-            slider_values = [e["slider_chains"] for e in entries]
-            sliders = None if None in slider_values else sum(slider_values)
+            assur, sliders = _total(entries, "assur_groups"), _total(entries, "slider_chains")
         b_count = None
         if check:
             same = "yes" if check["same_isomorphism_classes"] else "NO"
@@ -83,6 +82,12 @@ def _counts(catalogs: dict[int, list[dict]], checks: dict[int, dict], censuses: 
             f"{_cell(literature.get('slider_chains'))} |"
         )
     return lines
+
+
+def _total(entries: list[dict], field: str) -> int | None:
+    """The sum of ``field`` over ``entries``; None where one lacks it (a compact file)."""
+    values = [entry.get(field) for entry in entries]
+    return None if None in values else sum(values)
 
 
 def _invariants(catalogs: dict[int, list[dict]], censuses: dict[int, dict]) -> list[str]:
