@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from collections import Counter
 from pathlib import Path
+from statistics import median
 
 from baranov.literature.counts import (
     DISCREPANCY_NOTE,
@@ -152,6 +153,7 @@ def _assembly_modes(catalogs: dict[int, list[dict]]) -> list[str]:
             f"| {links} | " + (_listed(derived) or "—") + " | " + (_listed(counted) or "—") + f" | {len(both)} | "
             + f"{sum(e['assembly_modes'] == e['realization_count'] for e in both)} |"
         )
+    lines += _modes_by_coupling(catalogs)
     if 9 in catalogs:
         ours = sorted(e["realization_count"] for e in catalogs[9])
         published = sorted(APPENDIX_A_ASSEMBLY_MODES.values())
@@ -163,6 +165,20 @@ def _assembly_modes(catalogs: dict[int, list[dict]]) -> list[str]:
                   "", "Nine-link thesis names given (`name_evidence` in the catalog says how each was identified): "
                   + ", ".join(sorted((e["name"] for e in catalogs[9] if e["name"].startswith("9/B")),
                                      key=lambda n: int(n[3:]))) + "."]
+    return lines
+
+
+def _modes_by_coupling(catalogs: dict[int, list[dict]]) -> list[str]:
+    """Smallest, median and largest assembly-mode count per link count and coupling degree."""
+    lines = ["", "By coupling degree:", "",
+             "| links | coupling degree | trusses | counted | fewest | median | most |", "|---|---|---|---|---|---|---|"]
+    for links, entries in sorted(catalogs.items()):
+        for coupling in sorted({e["coupling_degree"] for e in entries}):
+            group = [e for e in entries if e["coupling_degree"] == coupling]
+            modes = [e["assembly_modes"] for e in group if e["assembly_modes"] is not None]
+            low, middle, high = (min(modes), f"{median(modes):g}", max(modes)) if modes else (None, None, None)
+            lines.append(f"| {links} | {coupling} | {len(group)} | {len(modes)} | {_cell(low)} | "
+                         f"{_cell(middle)} | {_cell(high)} |")
     return lines
 
 
