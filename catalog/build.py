@@ -97,6 +97,20 @@ def _reused(path: Path, load: Callable[[Path], list[dict] | None]) -> list[dict]
     return objects
 
 
+def read_crosschecks(out: Path) -> dict[int, dict]:
+    """The brute-force cross-checks in ``out/crosscheck.json`` by link count ({} if the file
+    is absent or unreadable: the job then recomputes them)."""
+    try:
+        return {int(k): v for k, v in json.loads((out / "crosscheck.json").read_text(encoding="utf-8")).items()}
+    except (OSError, ValueError):
+        return {}
+
+
+def write_crosschecks(out: Path, checks: dict[int, dict]) -> None:
+    """Write ``checks`` to ``out/crosscheck.json`` atomically, by ascending link count."""
+    write_atomically(out / "crosscheck.json", json.dumps({str(k): checks[k] for k in sorted(checks)}, indent=2) + "\n")
+
+
 def _census(links: int, out: Path, client: Any, force: bool, crosscheck: bool, show_progress: bool,
             log: Progress) -> None:
     """Write (or reuse) ``census-<L>.json``: counts without entries (:mod:`.census`)."""
@@ -135,8 +149,7 @@ def _catalog_files(links: int, out: Path, client: Any, force: bool, crosscheck: 
     if geng and (force or links not in checks or checks[links].get("trusses") != len(entries)):
         log(f"{links} links: brute-force cross-check")
         checks[links] = crosscheck_links(links, entries, client)
-        write_atomically(out / "crosscheck.json",
-                         json.dumps({str(k): checks[k] for k in sorted(checks)}, indent=2) + "\n")
+        write_crosschecks(out, checks)
     if links <= slider_modes:
         path = out / f"slider-chains-{links}.jsonl"
         if force or _reused(path, load_slider_chains) is None:
@@ -173,11 +186,7 @@ def build_catalog(
     :data:`~baranov.catalog.entries.COMPACT_FIELDS` only) and ``slider-chains-<L>.jsonl``,
     JSON lines (one object per
     line, :func:`~baranov.catalog.files.iter_objects` streams them)."""
-    crosscheck_path = out / "crosscheck.json"
-    try:
-        checks = {int(k): v for k, v in json.loads(crosscheck_path.read_text(encoding="utf-8")).items()}
-    except (OSError, ValueError):
-        checks = {}
+    checks = read_crosschecks(out)
     geng = find_geng() if crosscheck else None
     attempts = 1 if scheduler else EMBEDDED_RESTARTS + 1
     for attempt in range(1, attempts + 1):

@@ -15,10 +15,10 @@ Command line (the last step of ``make catalog-13-modes``)::
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
+from .build import read_crosschecks, write_crosschecks
 from .entries import COMPACT_FIELDS
 from .files import load_complete_objects, write_atomically
 from .summary import render_summary
@@ -26,13 +26,6 @@ from .summary import render_summary
 
 class UnfinishedCatalogError(ValueError):
     """The job's folder lacks a complete compact file for the link count asked for."""
-
-
-def _checks(path: Path) -> dict[int, dict]:
-    """A ``crosscheck.json`` by link count ({} if it is absent)."""
-    if not path.exists():
-        return {}
-    return {int(links): check for links, check in json.loads(path.read_text(encoding="utf-8")).items()}
 
 
 def publish_link_count(source: Path, catalog: Path, links: int) -> str:
@@ -55,11 +48,10 @@ def publish_link_count(source: Path, catalog: Path, links: int) -> str:
         raise UnfinishedCatalogError(
             f"{source} has no complete trusses-{links}.jsonl.gz (run the catalog job for {links} links to its end)")
     write_atomically(catalog / compact.name, compact.read_bytes())
-    checks = _checks(catalog / "crosscheck.json")
-    if links in (found := _checks(source / "crosscheck.json")):
+    checks = read_crosschecks(catalog)
+    if links in (found := read_crosschecks(source)):
         checks[links] = found[links]
-        write_atomically(catalog / "crosscheck.json",
-                         json.dumps({str(k): checks[k] for k in sorted(checks)}, indent=2) + "\n")
+        write_crosschecks(catalog, checks)
     write_atomically(catalog / "summary.md", render_summary(catalog, checks))
     counted = sum(entry["assembly_modes"] is not None for entry in entries)
     return (f"{links} links: {len(entries)} trusses ({counted} with assembly modes) published in {catalog}"
