@@ -1,6 +1,6 @@
 """One link count's results moved from a separate catalog job into the committed catalog
 (issue 20: the 13-link assembly modes are computed by ``baranov catalog --links 13 --out
-catalog-13 --assembly-modes 13``, whose full file is about 117 MB and is not committed).
+catalog-13 --assembly-modes 13``, whose full file is about 122 MB and is not committed).
 
 :func:`publish_link_count` copies the compact file ``trusses-<L>.jsonl.gz``
 (:data:`~baranov.catalog.entries.COMPACT_FIELDS`) and the link count's brute-force

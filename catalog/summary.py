@@ -32,7 +32,7 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
         entries = load_entries(path)
         if entries:
             catalogs[entries[0]["links"]] = entries
-    compact = {}  # link counts with only the compact file (13 links: the full one is 117 MB)
+    compact = {}  # link counts with only the compact file (13 links: the full one is 122 MB)
     for path in sorted(out.glob("trusses-*.jsonl.gz")):
         entries = load_complete_objects(path, COMPACT_FIELDS)
         if entries and (links := int(entries[0]["id"].split("/")[0])) not in catalogs:
