@@ -54,3 +54,12 @@ def test_an_unfinished_job_is_refused_and_nothing_is_written(tmp_path, capsys):
     error = capsys.readouterr().err
     assert error.startswith("error: ") and error.count("\n") == 1
     assert main([str(job), str(catalog), "thirteen"]) == 2
+
+
+def test_the_committed_summary_is_what_the_committed_files_say():
+    """``catalog/summary.md`` is regenerated, never edited: rendering it again from the
+    committed files (the 13-link compact file and cross-check included) gives the same text."""
+    from baranov.catalog.build import read_crosschecks
+    from baranov.catalog.summary import render_summary
+
+    assert render_summary(CATALOG, read_crosschecks(CATALOG)) == (CATALOG / "summary.md").read_text(encoding="utf-8")
