@@ -64,7 +64,7 @@ def main(arguments: list[str]) -> int:
         case [source, catalog, links] if links.isdigit():
             try:
                 print(publish_link_count(Path(source), Path(catalog), int(links)))
-            except (UnfinishedCatalogError, OSError, ValueError) as error:
+            except (OSError, ValueError) as error:  # UnfinishedCatalogError among them
                 print(f"error: {error}", file=sys.stderr)
                 return 2
             return 0
