@@ -97,31 +97,53 @@ DIVIDED_BY_ROUNDING = 1e12
 
 
 def slider_plan_undefined(scene: Scene, plan: Plan) -> str | None:
-    """Why a slider chain's ``plan`` is undefined for the scene's dimensions, or None: its
-    constructions divide by an exact 0 (two joints of a slider's link at one point, an
-    axis through them undefined), or — where msolve can list the modes instead (an exact
-    scene) — the closure condition is undefined at every one of PROBES samples per
-    parameter over its searched range on every branch (two parallel axes fixed in one
-    link, "a point on two axes" dividing by 0), or it divides by a rounding-level 0 at most
-    samples (DIVIDED_BY_ROUNDING). Found by issue 18's random robots: the
-    exact backend raised ZeroDivisionError and the numeric one found 0 of msolve's modes.
-    Cost: one vectorised evaluation of PROBES^p points × 2^m branches."""
+    """Why a slider chain's ``plan`` is undefined for the scene's dimensions, or None.
+
+    Undefined means that the plan divides by 0, not that its triangles cannot be built:
+
+    * by an exact 0: a bilateration base (or the reference) of two joints at known
+      squared distance 0, or a slider construction of an exact 0 (two joints of a
+      slider's link at one point, an axis through them undefined);
+    * where msolve can list the modes instead (an exact scene): at none of PROBES samples
+      per parameter over its searched range, on any branch, is the closure condition
+      defined, and at some of them it is 0/0 (a step's radicand NaN, or every step built
+      and the condition NaN: two parallel axes fixed in one link, "a point on two axes"
+      dividing by 0); or it divides by a rounding-level 0 at most samples
+      (DIVIDED_BY_ROUNDING).
+
+    Samples at which a triangle cannot be built (a radicand below 0) say nothing of
+    definedness: a plan whose feasible range falls between two samples is defined (issue
+    55: a 7/N3 chain with sliders P1, P7 whose real range of t1,9 is [-44.3, -41.7], 2.6
+    wide between samples 5.1 apart, was declared undefined and handed to msolve). Found
+    by issue 18's random robots: the exact backend raised ZeroDivisionError and the
+    numeric one found 0 of msolve's modes. Cost: one vectorised evaluation of PROBES^p
+    points × 2^m branches."""
+    coincident = ({frozenset(plan.reference)} | {frozenset(step.base) for step in plan.steps}) & scene.coincident_pairs
+    if coincident:
+        pairs = ", ".join(sorted(",".join(sorted(pair)) for pair in coincident))
+        return f"divides by 0 for these dimensions (joints {pairs} at one point are a bilateration base)"
     try:
         compiled = compile_scene(scene, plan)
         upper = [compiled.search_bound(n, scene.largest_distance(u, v) ** 2) for n, (u, v) in enumerate(plan.parameters)]
         axes = [np.linspace(0, math.sqrt(bound), PROBES + 1)[1:] ** 2 for bound in upper]
         points = np.stack([grid.ravel() for grid in np.meshgrid(*axes, indexing="ij")], axis=-1) if axes else np.zeros((1, 0))
         with np.errstate(all="ignore"):
-            residuals = compiled.residuals(points, sign_branches(len(plan.free_sign_triangles)))
+            profile = compiled.profile(points, sign_branches(len(plan.free_sign_triangles)))
     except ZeroDivisionError:
         return "divides by 0 for these dimensions (two joints of a slider's link at one point?)"
     if find_msolve() is None or not scene.exact:
         return None
+    residuals = profile.residuals
+    built = profile.failures == len(plan.steps)
+    defined = np.isfinite(residuals).all(axis=-1) & (built if residuals.shape[-1] == 0 else True)
+    if not defined.any():
+        zero_over_zero = (built & ~defined) | (~built & np.isnan(profile.radicands))
+        if not zero_over_zero.any():
+            return None  # no triangle of the plan can be built at the samples: a narrow range, not a division
+        return (f"is undefined (0/0) at {int(zero_over_zero.sum())} and defined at none of its {defined.size} "
+                "samples of its parameters and branches (two parallel axes fixed in one link?)")
     finite = np.abs(residuals[np.isfinite(residuals)])
-    if finite.size == 0:
-        return (f"is undefined at all {len(points)} samples of its parameters on every branch (two parallel axes "
-                "fixed in one link?)")
-    if np.median(finite) > DIVIDED_BY_ROUNDING:
+    if finite.size and np.median(finite) > DIVIDED_BY_ROUNDING:
         return (f"divides by a rounding-level 0 at most of its {len(points)} probe points (its closure "
                 f"condition's median size {np.median(finite):.1e}; two parallel axes?)")
     return None

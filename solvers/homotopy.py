@@ -410,7 +410,7 @@ def homotopy_configurations(scene: Scene, seed: int = 0) -> tuple[list[dict[str,
                                                                     HomotopyResult]:
     """Every real configuration of ``scene`` (exact dimensions) from the finite solutions
     of its Cartesian system, refined in real arithmetic, and the homotopy's result."""
-    variables, polynomials, names, signs = cartesian_system(scene)
+    variables, polynomials, names, signs = cartesian_system(scene, rounded_ground=True)
     scale = max(1.0, max(abs(float(x)) for point in scene.world.values() for x in point))
     scale = max(scale, math.sqrt(max(float(v) for link in scene.links for v in link.squared_distances.values())))
     system = quadratic_system(variables, polynomials, scale)

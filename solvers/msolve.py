@@ -38,6 +38,7 @@ import time
 from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
+from itertools import combinations
 from pathlib import Path
 
 import flint
@@ -161,7 +162,8 @@ def msolve_input(variables: list[str], polynomials: list[dict], prime: int = 0) 
 
 
 def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = (),
-                     parallel: Iterable[frozenset[str]] = (), distances: Iterable[tuple[str, str]] = ()
+                     parallel: Iterable[frozenset[str]] = (), distances: Iterable[tuple[str, str]] = (),
+                     rounded_ground: bool = False
                      ) -> tuple[list[str], list[dict], dict[str, tuple[str, str]], dict[str, int]]:
     """(variables, polynomials, point → (x variable, y variable), auxiliary variable →
     required sign) of the Cartesian system described in the module docstring, with
@@ -169,11 +171,17 @@ def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = (),
     ``parallel`` their axes parallel (a cross product of their directions). Each pair
     (u, v) of ``distances`` adds a last variable ``s0``, ``s1``, … and the equation
     s_k = |P_v − P_u|² (a plan's parameter, :func:`eliminating_polynomial_modulo`). Needs
-    exact dimensions (integers or rationals)."""
+    exact dimensions (integers or rationals). A ground whose world coordinates are not
+    exact (:func:`exact_ground`) is placed by its distances, its length an auxiliary root;
+    with ``rounded_ground``, at its rounded coordinates instead: a nearby instance, for a
+    solver in floating point whose modes are verified on the scene itself (the homotopy),
+    which then follows half the paths."""
     if not scene.exact:
         raise ValueError("the msolve oracle needs exact (integer or rational) dimensions")
     ground = scene.link_of(scene.ground)
-    world = {scene.point_name(ground.name, j): (Fraction(x), Fraction(y)) for j, (x, y) in scene.world.items()}
+    pinned = rounded_ground or exact_ground(scene)
+    world = {scene.point_name(ground.name, j): (Fraction(x), Fraction(y)) for j, (x, y) in scene.world.items()
+             if pinned or j == ground.joints[0]}
     points = sorted({scene.point_name(link.name, j) for link in scene.links for j in link.joints} - set(world))
     names = {point: (f"x{n}", f"y{n}") for n, point in enumerate(points)}
     variables = [v for point in points for v in names[point]]
@@ -183,8 +191,12 @@ def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = (),
         return _linear({None: world[point][axis]}) if point in world else _linear({names[point][axis]: 1})
 
     polynomials = []
+    if not pinned:  # the ground's own frame (scene/model.py): second joint on +x, a root of its squared length
+        second = names[scene.point_name(ground.name, ground.joints[1])]
+        polynomials.append(_linear({second[1]: 1}))
+        signs[second[0]] = 1
     for link in scene.links:
-        if link.name == ground.name:
+        if link.name == ground.name and pinned:
             continue
         a, b = link.joints[:2]
         s = {pair: Fraction(value) for pair, value in link.squared_distances.items()}
@@ -229,6 +241,29 @@ def cartesian_system(scene: Scene, coincident: Iterable[frozenset[str]] = (),
         polynomials.append(_cross(_axis_direction(scene, first, first.axes[0].link, coordinate),
                                   _axis_direction(scene, second, second.axes[0].link, coordinate)))
     return variables, polynomials, names, signs
+
+
+def exact_ground(scene: Scene) -> bool:
+    """Whether the ground's world coordinates are exact and give the ground link's squared
+    distances exactly; where they are not (a ground given by distances with an irrational
+    length or area: its frame is placed in floats), :func:`cartesian_system` places the
+    ground by its distances too, from its first joint at the origin, its second on +x
+    (issue 55: a slider on a ground of squared length 1097, whose rounded coordinates
+    made the slider's equations inconsistent, lost both modes).
+
+    >>> from baranov.scene import load_scene
+    >>> exact_ground(load_scene("examples/9-B28.json")), exact_ground(load_scene("examples/7-B1.json"))
+    (False, True)
+    """
+    world = scene.world
+    if not all(isinstance(c, int | Fraction) for point in world.values() for c in point):
+        return False
+    for u, v in combinations(world, 2):
+        known = scene.known.get(frozenset((u, v)))
+        (xu, yu), (xv, yv) = world[u], world[v]
+        if known is not None and (Fraction(xu) - xv) ** 2 + (Fraction(yu) - yv) ** 2 != Fraction(known):
+            return False
+    return True
 
 
 def _axis_direction(scene: Scene, slider, link: str, coordinate) -> tuple[dict, dict]:
@@ -550,7 +585,8 @@ def msolve_modes(scene: Scene, timeout: float = 600.0, precision: int = PRECISIO
         width = max(width, *(float(hi - lo) for lo, hi in box))
         point = {j: (float((box[index[x]][0] + box[index[x]][1]) / 2), float((box[index[y]][0] + box[index[y]][1]) / 2))
                  for j, (x, y) in names.items()}
-        point.update({scene.point_name(scene.ground, j): (float(x), float(y)) for j, (x, y) in scene.world.items()})
+        point.update({name: (float(x), float(y)) for j, (x, y) in scene.world.items()
+                      if (name := scene.point_name(scene.ground, j)) not in names})
         configurations.append(point)
     return OracleResult("finite", tuple(configurations), width, seconds, **size)
 

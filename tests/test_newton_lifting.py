@@ -145,8 +145,8 @@ def test_msolve_images_lift_by_primes_where_newton_does_not_apply():
 @needs_msolve
 def test_a_ground_in_floats_is_left_to_the_resultants():
     """The 9/B28 example is given by distances, its ground placed in floats: msolve's
-    Cartesian system is a nearby instance (its image at a prime is another polynomial),
-    so msolve's images are not used."""
+    Cartesian system places it by those distances with an auxiliary root (it then solves
+    the mirrored ground too), so msolve's images are not used."""
     scene = load_scene(EXAMPLES / "9-B28.json")
     assert not msolve_images.exact_ground(scene) and not msolve_images.msolve_images_apply(scene)
     assert characteristic_by_msolve(scene, best_plan(scene.chain), genuine_curves(scene, best_plan(scene.chain))) is None

@@ -456,6 +456,56 @@ def test_degenerate_slider_plans_fall_back_to_msolve(path):
         assert compare_modes(found, oracle) == (0, 0, 0), method
 
 
+ISSUE_55 = Path(__file__).parent / "regressions" / "sliders" / "issue-55-ground-by-squared-length.json"
+
+
+def test_a_slider_plan_whose_range_falls_between_probes_is_defined():
+    """Issue 55: the real range of t1,9 is [-44.3, -41.7], between two of the probe's
+    samples 5.1 apart; no triangle of the plan can be built at any sample, which says
+    nothing of a division by 0: the plan is defined (it was declared undefined, and the
+    modes left to msolve)."""
+    from baranov.planner import slider_plan
+    from baranov.solvers.coincidence import slider_plan_undefined
+
+    scene = load_scene(ISSUE_55)
+    plan = slider_plan(scene.chain, [slider.joint for slider in scene.sliders])
+    assert slider_plan_undefined(scene, plan) is None
+
+
+@needs_msolve
+@pytest.mark.parametrize("method", ["numeric", "exact", "msolve"])
+def test_a_slider_on_a_ground_given_by_squared_length_keeps_its_modes(method):
+    """Issue 55: sliders P1, P7 of a 7/N3 chain, the ground P1P2 by its squared length
+    1097 (irrational length), drawn around a configuration at t1,9 = -43.2: both real
+    modes in every method, by the plan in the numeric and exact backends (no msolve
+    note), the exact one certified; each the mode msolve finds with the ground placed by
+    its distances (an auxiliary root for its length: rounded coordinates made the
+    slider's equations inconsistent and msolve found none)."""
+    scene = load_scene(ISSUE_55)
+    solution = solve(scene, method=method)
+    assert [round(mode.parameters["t1,9"], 6) for mode in solution.assembly_modes] == [-43.2, -41.978762]
+    assert not solution.undecided
+    oracle = list(msolve_modes(scene).configurations)
+    assert compare_modes([mode.joints for mode in solution.assembly_modes], oracle) == (0, 0, 0)
+    if method == "exact":
+        assert solution.certificate.complete and solution.certificate.probabilistic is None
+
+
+@needs_msolve
+def test_msolve_places_an_irrational_ground_exactly():
+    """The 5/B1 example's ground P1P2P3 is given by distances whose frame is irrational:
+    msolve's model places it by those distances (an auxiliary root, kept positive) rather
+    than in rounded coordinates, and finds the numeric backend's 6 modes, mode for mode."""
+    from baranov.solvers.msolve import cartesian_system, exact_ground
+
+    scene = load_scene(EXAMPLES / "5-B1.json")
+    assert not exact_ground(scene)
+    assert cartesian_system(scene)[3]  # the ground's length is an auxiliary root
+    oracle = msolve_modes(scene)
+    found = [mode.joints for mode in solve(scene).assembly_modes]
+    assert len(found) == 6 and compare_modes(found, list(oracle.configurations)) == (0, 0, 0)
+
+
 @needs_msolve
 @pytest.mark.parametrize(("truss", "sliders", "seed"), [
     ("5/N1", ["P1", "P3", "P5"], 0),              # the pentad with a ternary link all sliders (a robot's platform)

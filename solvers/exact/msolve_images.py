@@ -34,15 +34,14 @@ from __future__ import annotations
 
 import random
 from collections.abc import Iterator, Sequence
-from fractions import Fraction
-from itertools import chain, combinations, islice
+from itertools import chain, islice
 
 import flint
 
 from baranov.planner import Plan
 from baranov.scene import Scene
 
-from ..msolve import cartesian_system, eliminating_polynomial_of, find_msolve
+from ..msolve import cartesian_system, eliminating_polynomial_of, exact_ground, find_msolve
 from .characteristic import ExactMethodError
 from .lifting_by_primes import lifted_from_images, primitive_polynomial, reduced_modulo
 from .modular import candidate_images, random_prime
@@ -61,28 +60,10 @@ def msolve_images_apply(scene: Scene) -> bool:
     are not distances) whose link areas are rational. An irrational area needs an auxiliary
     root in the Cartesian system, which then also solves the linkage with that link
     mirrored. The ground's world coordinates must be exact too: a scene given by distances
-    places its ground in floats (the 9/B28 example: √6610/3), and the Cartesian system is
-    then a nearby instance with another polynomial."""
+    places its ground in floats (the 9/B28 example: √6610/3), and the Cartesian system then
+    places it by its distances with an auxiliary root (it was a nearby instance in rounded
+    coordinates, with another polynomial, before issue 55)."""
     return not scene.sliders and find_msolve() is not None and exact_ground(scene)
-
-
-def exact_ground(scene: Scene) -> bool:
-    """Whether the ground's world coordinates are exact and give the ground link's squared
-    distances exactly.
-
-    >>> from baranov.scene import load_scene
-    >>> exact_ground(load_scene("examples/9-B28.json")), exact_ground(load_scene("examples/7-B1.json"))
-    (False, True)
-    """
-    world = scene.world
-    if not all(isinstance(c, int | Fraction) for point in world.values() for c in point):
-        return False
-    for u, v in combinations(world, 2):
-        known = scene.known.get(frozenset((u, v)))
-        (xu, yu), (xv, yv) = world[u], world[v]
-        if known is not None and (Fraction(xu) - xv) ** 2 + (Fraction(yu) - yv) ** 2 != Fraction(known):
-            return False
-    return True
 
 
 def msolve_images(scene: Scene, plan: Plan, seed: int = 0) -> Iterator[flint.nmod_poly | None]:
