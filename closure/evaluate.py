@@ -101,11 +101,16 @@ class CompiledSystem:
         mapping = self.searched.get(frozenset(self.parameters[n]))
         return bound if mapping is None else mapping.scale**2
 
+    def straight_line_program(self) -> StraightLineProgram:
+        """The plan's straight-line program (:mod:`.straight_line`), traced once per plan
+        and its link pairs and link steps. Not for plans with slider joints."""
+        return _straight_line_program(self.plan, tuple(self.known), tuple(self.fixed_signs))
+
     def program_profile(self, parameter_values: np.ndarray, signs: np.ndarray, paired: bool = False) -> Profile:
         """:meth:`profile` (with ``paired``, before its first axis is dropped) by the
         plan's straight-line program (:mod:`.straight_line`), compiled: the same values
         bit for bit. Not for plans with slider joints."""
-        program = _straight_line_program(self.plan, tuple(self.known), tuple(self.fixed_signs))
+        program = self.straight_line_program()
         values = np.asarray(parameter_values, dtype=float)
         if values.ndim == 1:
             values = values[:, None]

@@ -1,0 +1,360 @@
+"""Certified real roots of a one-parameter closure condition by interval branch-and-prune
+(issue 56; the CUIK idea of Porta, Ros and Thomas, IEEE T-RO 21(2), 2005, on the plan's
+parameter).
+
+On every free-sign branch the closure condition f(s) of a coupling-1 plan (thesis
+§3.2–3.3) is a function of one squared distance s over the searched domain [0, S], S the
+squared sum of the link diameters (no two joints are farther apart: every assembly mode has
+its s in it), narrowed by the triangle inequalities of the steps with s as a side
+(:func:`parameter_domain`). The domain is cut into boxes (intervals of s), each decided by one
+evaluation of the plan's straight-line program in interval arithmetic with its derivative
+(:mod:`baranov.closure.interval_program`):
+
+* *excluded*: some triangle of the branch cannot be built anywhere in the box (a radicand
+  certainly negative), or 0 ∉ f(box);
+* *certified*: every radicand is positive in the box, 0 ∉ f′(box) (f is strictly monotone:
+  at most one root), and the interval Newton operator N(X) = m − f(m)/f′(X) maps the box
+  into its interior (Moore; Neumaier, *Interval methods for systems of equations*, 1990,
+  Thm. 5.1.7): exactly one root lies in it, and the box is then contracted by the same
+  operator to a few ulps;
+* N(X) ∩ X empty: excluded; N(X) ∩ X much smaller than X: kept instead of X;
+* otherwise bisected, down to a width of ``minimum_width`` × S; a box that small and not
+  decided is *unresolved* and named with its reason: a domain edge inside it (a radicand's
+  interval holds 0: a root on a flat triangle, or only the edge itself), or a derivative
+  that may vanish or is unbounded (a double root, joints that the plan divides by at one
+  point).
+
+Every branch's boxes run in one compiled loop (numba). What the loop proves: each
+certified box holds exactly one real root of its branch, and no real root of any branch
+lies in [0, S] outside the certified and unresolved boxes.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from itertools import combinations
+
+import numba
+import numpy as np
+
+from baranov.closure import CompiledSystem
+from baranov.closure.interval_program import (
+    EDGE,
+    FEASIBLE,
+    INFEASIBLE,
+    SYMBOLS,
+    enclosing,
+    evaluate_models,
+    instance_registers,
+    interval_program,
+    load_box,
+    model_range,
+    rounded_down,
+    rounded_up,
+)
+
+#: Why a box was left undecided (:attr:`PrunedRoots.unresolved`'s last column).
+AT_EDGE, FLAT_DERIVATIVE, OVER_BUDGET = 1, 2, 3
+REASONS = {AT_EDGE: "a domain edge of the branch (a triangle flat) lies in it",
+           FLAT_DERIVATIVE: "the closure condition's derivative may vanish or is unbounded there (a double root, "
+                            "or joints the plan divides by at one point)",
+           OVER_BUDGET: "not examined within the evaluation budget"}
+#: Boxes narrower than this fraction of the domain are not bisected further.
+MINIMUM_WIDTH = 1e-12
+#: Interval evaluations allowed per solve, over all branches.
+EVALUATION_BUDGET = 200_000
+#: Newton contractions of a certified box at most (each at least halves it, quadratically near the root).
+CONTRACTIONS = 30
+
+
+@dataclass(frozen=True)
+class PrunedRoots:
+    """What :func:`prune_one_parameter` proved.
+
+    Attributes:
+        roots: (K, 3): lower end, upper end and branch index of each certified box,
+            holding exactly one real root of that branch's closure condition.
+        unresolved: (U, 4): lower end, upper end, branch index and reason (AT_EDGE,
+            FLAT_DERIVATIVE, OVER_BUDGET) of each undecided box, adjacent boxes merged.
+        evaluations: interval evaluations of the program made.
+        domain: the parameter's range searched, (lower, upper).
+    """
+
+    roots: np.ndarray
+    unresolved: np.ndarray
+    evaluations: int
+    domain: tuple[float, float]
+
+    @property
+    def complete(self) -> bool:
+        """Every box of every branch was excluded or certified."""
+        return len(self.unresolved) == 0
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _divide(al, ah, bl, bh):  # pragma: no cover - compiled
+    """[al, ah] ÷ [bl, bh] (0 ∉ [bl, bh]), rounded outward."""
+    q1, q2, q3, q4 = al / bl, al / bh, ah / bl, ah / bh
+    return rounded_down(min(min(q1, q2), min(q3, q4))), rounded_up(max(max(q1, q2), max(q3, q4)))
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _decide(instructions, base_c, base_e, work, parameter, sign_registers, signs, residual, derivative, a, b
+            ):  # pragma: no cover - compiled
+    """The models of f and f′ over [a, b] (one evaluation): (status, f's center, slope,
+    remainder with the other symbols' terms, f′'s range low and high, the box's radius,
+    the range of u where the triangles at an edge can exist)."""
+    c, g, e, radius, feasible, low, high, parameters = work
+    low[0], high[0] = a, b
+    load_box(base_c, base_e, parameters, sign_registers, low, high, signs, c, g, e, radius)
+    feasible[0], feasible[1] = -np.inf, np.inf
+    status = evaluate_models(instructions, c, g, e, radius, feasible)
+    rest = e[residual] + abs(g[residual, 1]) * radius[1] + abs(g[residual, 2]) * radius[2]
+    g0, g1 = model_range(c, g, e, radius, derivative)
+    return (status, c[residual], g[residual, 0], rest * (1.0 + 2.0**-49) + 1e-300, g0, g1, radius[0], feasible[0],
+            feasible[1])
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _linear_zeros(center, slope, rest, middle, radius, a, b):  # pragma: no cover - compiled
+    """The part of [a, b] where center + slope (x − middle) ± rest can vanish, |x − middle| ≤ radius."""
+    if slope == 0.0:
+        return (a, b) if abs(center) <= rest else (1.0, 0.0)
+    first, second = (-center - rest) / slope, (-center + rest) / slope
+    low, high = min(first, second), max(first, second)
+    return max(a, rounded_down(middle + rounded_down(low))), min(b, rounded_up(middle + rounded_up(high)))
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _contracted(instructions, base_c, base_e, work, parameter, sign_registers, signs, residual, derivative, n0, n1
+                ):  # pragma: no cover - compiled
+    """A box [n0, n1] known to hold exactly one root, on which f is monotone, shrunk to
+    where f's linear model can vanish and to its Newton image while that takes off a
+    tenth; (lower, upper, evaluations)."""
+    evaluations = 0
+    for _ in range(CONTRACTIONS):
+        evaluations += 1
+        status, center, slope, rest, g0, g1, radius, _, _ = _decide(instructions, base_c, base_e, work, parameter,
+                                                                    sign_registers, signs, residual, derivative, n0, n1)
+        if status != FEASIBLE or not (g0 > 0.0 or g1 < 0.0):
+            break
+        c0, c1 = _linear_zeros(center, slope, rest, 0.5 * (n0 + n1), radius, n0, n1)
+        m0, m1 = _newton_image(n0, n1, g0, g1, center, rest)
+        c0, c1 = max(c0, m0), min(c1, m1)
+        if c0 > c1 or c1 - c0 >= 0.9 * (n1 - n0):
+            break
+        n0, n1 = c0, c1
+    return n0, n1, evaluations
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _certified_in(instructions, base_c, base_e, work, parameter, sign_registers, signs, residual, derivative, a, b
+                  ):  # pragma: no cover - compiled
+    """Whether [a, b] holds exactly one root (1, and the Newton image holding it), none
+    (0) or is undecided (-1), by one evaluation."""
+    status, center, slope, rest, g0, g1, _, _, _ = _decide(instructions, base_c, base_e, work, parameter,
+                                                           sign_registers, signs, residual, derivative, a, b)
+    if status == INFEASIBLE:
+        return 0, a, b
+    if status != FEASIBLE or not (g0 > 0.0 or g1 < 0.0):
+        return -1, a, b
+    n0, n1 = _newton_image(a, b, g0, g1, center, rest)
+    if n1 < a or n0 > b:
+        return 0, a, b
+    if a < n0 and n1 < b:
+        return 1, n0, n1
+    return -1, a, b
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _newton_image(a, b, g0, g1, center, rest):  # pragma: no cover - compiled
+    """N([a, b]) = m − f(m)/f′(X): f(m) in center ± rest, f′(X) in [g0, g1] (0 excluded)."""
+    m = 0.5 * (a + b)
+    q0, q1 = _divide(rounded_down(center - rest), rounded_up(center + rest), g0, g1)
+    return rounded_down(m - q1), rounded_up(m - q0)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _prune(instructions, base_c, base_e, parameter, sign_registers, branches, residual, derivative, low, high,
+           minimum_width, budget):  # pragma: no cover - compiled
+    """The branch-and-prune loop of :func:`prune_one_parameter` over every branch."""
+    registers = base_c.shape[0]
+    work = (np.empty(registers), np.zeros((registers, SYMBOLS)), np.empty(registers), np.zeros(SYMBOLS), np.empty(2),
+            np.empty(1), np.empty(1), np.array([parameter]))
+    stack = [(low, high, 0)]
+    stack.pop()
+    for k in range(branches.shape[0]):
+        stack.append((low, high, k))
+    roots = [(0.0, 0.0, 0, 0.0, 0.0)]
+    roots.pop()
+    unresolved = [(0.0, 0.0, 0, 0)]
+    unresolved.pop()
+    evaluations = 0
+    while len(stack) > 0:
+        a, b, k = stack.pop()
+        if evaluations >= budget:
+            unresolved.append((a, b, k, OVER_BUDGET))
+            continue
+        signs = branches[k]
+        evaluations += 1
+        status, center, slope, rest, g0, g1, radius, u0, u1 = _decide(instructions, base_c, base_e, work, parameter,
+                                                                     sign_registers, signs, residual, derivative, a, b)
+        if status == INFEASIBLE:
+            continue
+        middle = 0.5 * (a + b)
+        # where the triangles at an edge can exist, and where f's linear model can vanish
+        c0, c1 = max(a, rounded_down(middle + u0)), min(b, rounded_up(middle + u1))
+        z0, z1 = _linear_zeros(center, slope, rest, middle, radius, c0, c1)
+        if z0 > z1:
+            continue
+        if status == FEASIBLE and (g0 > 0.0 or g1 < 0.0):  # f monotone on [a, b]: one root at most
+            n0, n1 = _newton_image(a, b, g0, g1, center, rest)
+            if n1 < a or n0 > b:
+                continue
+            if a < n0 and n1 < b:  # exactly one root, in [n0, n1]
+                n0, n1, spent = _contracted(instructions, base_c, base_e, work, parameter, sign_registers, signs,
+                                            residual, derivative, n0, n1)
+                evaluations += spent
+                roots.append((n0, n1, k, a, b))
+                continue
+            z0, z1 = max(z0, n0), min(z1, n1)
+            if z0 > z1:
+                continue
+            # f is monotone on [a, b], so its one root, if any, is in [z0, z1], where f's
+            # linear model vanishes: certify it on a box three times as wide as that set,
+            # centred on the model's root (it may reach past [a, b]: a root found twice is
+            # merged by its uniqueness boxes)
+            estimate, spread = middle - center / slope, 3.0 * rest / abs(slope)
+            y0, y1 = estimate - spread, estimate + spread
+            if slope != 0.0:
+                evaluations += 1
+                found, n0, n1 = _certified_in(instructions, base_c, base_e, work, parameter, sign_registers, signs,
+                                              residual, derivative, y0, y1)
+                if found == 1 and (n1 < a or n0 > b):
+                    continue  # the root of [y0, y1] lies outside [a, b], which then holds none
+                if found == 1:
+                    n0, n1, spent = _contracted(instructions, base_c, base_e, work, parameter, sign_registers,
+                                                signs, residual, derivative, n0, n1)
+                    evaluations += spent
+                    roots.append((n0, n1, k, y0, y1))
+                    continue
+                if found == 0:  # no root in [y0, y1] ⊇ [z0, z1], hence none in [a, b]
+                    continue
+        if z1 - z0 < 0.5 * (b - a):
+            stack.append((z0, z1, k))
+            continue
+        if b - a <= minimum_width:
+            unresolved.append((a, b, k, AT_EDGE if status == EDGE else FLAT_DERIVATIVE))
+            continue
+        middle = 0.5 * (z0 + z1)
+        stack.append((middle, z1, k))
+        stack.append((z0, middle, k))
+    found = np.empty((len(roots), 5))
+    for n in range(len(roots)):
+        found[n, 0], found[n, 1], found[n, 2], found[n, 3], found[n, 4] = roots[n]
+    left = np.empty((len(unresolved), 4))
+    for n in range(len(unresolved)):
+        left[n, 0], left[n, 1], left[n, 2], left[n, 3] = unresolved[n]
+    return found, left, evaluations
+
+
+def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: tuple[float, float],
+                        exact_known=None, minimum_width: float = MINIMUM_WIDTH,
+                        budget: int = EVALUATION_BUDGET) -> PrunedRoots:
+    """Every real root of a coupling-1 plan's closure condition in ``domain`` (an
+    interval of the parameter holding every mode: :func:`parameter_domain`) on each of
+    ``branches`` (B, m), certified or left in a named undecided box (module
+    docstring). ``exact_known``: the known squared distances as exact numbers (a pair →
+    int, Fraction, …), so that the boxes are decided for them and not for their floats.
+    Not for plans with slider joints. Cost: O(boxes × instructions); the boxes are about
+    the roots' and edges' number times the bisections to isolate them.
+    """
+    program = compiled.straight_line_program()
+    reduced = interval_program(program)
+    known = [(exact_known or {}).get(pair, compiled.known[pair]) for pair in program.known_pairs]
+    base_c, base_e = instance_registers(reduced, *enclosing(known),
+                                        np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float))
+    low, high = (float(end) for end in domain)
+    found, left, evaluations = _prune(reduced.instructions, base_c, base_e, int(program.parameter_registers[0]),
+                                      program.sign_registers, np.ascontiguousarray(branches, dtype=float),
+                                      int(program.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
+                                      low, high, minimum_width * high, budget)
+    return PrunedRoots(_distinct(found), _merged(left), evaluations, (low, high))
+
+
+def _distinct(roots: np.ndarray) -> np.ndarray:
+    """Certified roots (rows: enclosure, branch, uniqueness box) without repeats: two of
+    one branch are one root where the enclosure of either lies in the other's uniqueness
+    box (a box holding exactly one root). Returns rows (enclosure, branch), by value."""
+    roots = roots[np.lexsort((roots[:, 0], roots[:, 2]))]
+    kept: list[np.ndarray] = []
+    for root in roots:
+        same = [n for n, other in enumerate(kept) if other[2] == root[2] and (
+            (other[3] <= root[0] and root[1] <= other[4]) or (root[3] <= other[0] and other[1] <= root[4]))]
+        if not same:
+            kept.append(root)
+        elif root[1] - root[0] < kept[same[0]][1] - kept[same[0]][0]:
+            kept[same[0]] = root
+    distinct = np.array(kept).reshape(-1, 5)[:, :3]
+    return distinct[np.argsort(distinct[:, 0], kind="stable")]
+
+
+def _merged(boxes: np.ndarray) -> np.ndarray:
+    """Undecided boxes with adjacent ones of the same branch and reason merged."""
+    if len(boxes) == 0:
+        return boxes
+    boxes = boxes[np.lexsort((boxes[:, 0], boxes[:, 3], boxes[:, 2]))]
+    merged = [boxes[0].copy()]
+    for box in boxes[1:]:
+        last = merged[-1]
+        if box[2] == last[2] and box[3] == last[3] and box[0] <= last[1]:
+            last[1] = max(last[1], box[1])
+        else:
+            merged.append(box.copy())
+    return np.array(merged)
+
+
+def parameter_domain(scene, plan, upper: float) -> tuple[float, float]:
+    """The range of a coupling-1 plan's parameter s that can hold a mode: [0, ``upper``]
+    (S, :func:`domain_upper_bound`) cut by every step whose triangle has s as one side and
+    two known squared sides a, b, which exists only for (√a − √b)² ≤ s ≤ (√a + √b)²
+    (the critical values of :func:`~.one_parameter.critical_values`), with the roots
+    rounded outward. O(steps).
+
+    >>> from baranov.scene import load_scene
+    >>> from baranov.solvers.coincidence import solvable_plan
+    >>> scene = load_scene("examples/7-B1.json")
+    >>> [round(end, 6) for end in parameter_domain(scene, solvable_plan(scene), 1e4)]
+    [25.504902, 104.148049]
+    """
+    parameter = frozenset(plan.parameters[0])
+    low, high = 0.0, upper
+    for step in plan.steps:
+        sides = [frozenset(pair) for pair in combinations(step.triangle, 2)]
+        known = [scene.known.get(side) for side in sides if side != parameter]
+        if parameter not in sides or any(value is None for value in known):
+            continue
+        (a_lo, a_hi), (b_lo, b_hi) = (_root_enclosure(value) for value in known)
+        difference = max(a_lo - b_hi, b_lo - a_hi, 0.0)
+        low = max(low, math.nextafter(difference * difference, -math.inf) if difference > 0 else 0.0)
+        total = math.nextafter(a_hi + b_hi, math.inf)
+        high = min(high, math.nextafter(total * total, math.inf))
+    return low, high
+
+
+def _root_enclosure(value) -> tuple[float, float]:
+    """An interval of floats holding √value (value exact: an int, Fraction, … or float)."""
+    low, high = (float(x[0]) for x in enclosing([value]))
+    return (max(0.0, math.nextafter(math.sqrt(max(low, 0.0)), -math.inf)),
+            math.nextafter(math.sqrt(high), math.inf))
+
+
+def domain_upper_bound(diameters: list[float]) -> float:
+    """S = (Σ link diameters)², rounded up: no two joints of an assembled linkage are
+    farther apart than the sum of the link diameters (a path of links joins them), so
+    every mode's squared distance lies in [0, S]."""
+    total = 0.0
+    for diameter in diameters:
+        total = math.nextafter(total + math.nextafter(diameter, math.inf), math.inf)
+    return math.nextafter(total * total, math.inf)

@@ -1,0 +1,175 @@
+"""The plan's straight-line program on intervals (closure/interval_program.py, issue 56):
+at every point of a box the exact value of each closure residual and of its partial
+derivatives lies in the computed intervals, with and without the mean-value tightening;
+a box called infeasible holds no point where the branch's triangles exist. The oracle is
+the same program run on flint's arb balls at 256 bits, with forward-mode derivatives, at
+points of random boxes of random instances of every truss to nine links (coupling 1 and
+2)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from flint import arb, ctx
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from baranov.closure.evaluate import sign_branches
+from baranov.closure.interval_program import (
+    FEASIBLE,
+    INFEASIBLE,
+    enclosing,
+    evaluate_boxes,
+    interval_program,
+)
+from baranov.closure.straight_line import (
+    ADD,
+    DIVIDE,
+    FIRST_FAILURE,
+    FLAT_ZERO,
+    GUARDED_ROOT,
+    MAXIMUM,
+    MULTIPLY,
+    NEGATE,
+    SUBTRACT,
+)
+from baranov.enumerate import baranov_trusses
+from baranov.scene import load_scene
+from baranov.scene.instances import generic_integer_configuration, scene_of
+from baranov.solvers.coincidence import solvable_plan
+from baranov.solvers.placement import compile_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+TRUSSES = [(links, index) for links in (5, 7, 9) for index in range(len(baranov_trusses(links)))]
+
+
+def _arb_program(reduced, known, fixed_signs, point, signs):
+    """(feasible, residuals, derivatives): the plan's program (all of it, not the reduced
+    and differentiated one) at ``point`` in arb balls with dual numbers (value,
+    gradient); feasible False where a radicand is certainly negative, None where one
+    holds 0."""
+    program = reduced.program
+    p = len(point)
+    value: dict[int, arb] = {}
+    gradient: dict[int, list[arb]] = {}
+    zero = [arb(0)] * p
+    for register, constant in zip(program.constant_registers, program.constant_values, strict=True):
+        value[int(register)], gradient[int(register)] = arb(float(constant)), zero
+    for register, number in zip(program.known_registers, known, strict=True):
+        value[int(register)], gradient[int(register)] = arb(number.numerator) / number.denominator, zero
+    for register, sign in zip(program.fixed_sign_registers, fixed_signs, strict=True):
+        value[int(register)], gradient[int(register)] = arb(float(sign)), zero
+    for k, register in enumerate(program.parameter_registers):
+        value[int(register)] = arb(float(point[k]))
+        gradient[int(register)] = [arb(1) if j == k else arb(0) for j in range(p)]
+    for register, sign in zip(program.sign_registers, signs, strict=True):
+        value[int(register)], gradient[int(register)] = arb(float(sign)), zero
+    feasible = True
+    for opcode, d, a, b, _ in program.instructions.tolist():
+        if opcode == FIRST_FAILURE:
+            continue
+        x, dx = value[a], gradient[a]
+        y, dy = (value[b], gradient[b]) if b in value else (None, None)  # a root's b: the float guard's
+        if opcode == ADD:
+            value[d], gradient[d] = x + y, [u + v for u, v in zip(dx, dy, strict=True)]
+        elif opcode == SUBTRACT:
+            value[d], gradient[d] = x - y, [u - v for u, v in zip(dx, dy, strict=True)]
+        elif opcode == MULTIPLY:
+            value[d], gradient[d] = x * y, [u * y + x * v for u, v in zip(dx, dy, strict=True)]
+        elif opcode == DIVIDE:
+            q = x / y
+            value[d], gradient[d] = q, [(u - q * v) / y for u, v in zip(dx, dy, strict=True)]
+        elif opcode == MAXIMUM:
+            value[d], gradient[d] = (x, dx) if x.mid() >= y.mid() else (y, dy)
+        elif opcode == NEGATE:
+            value[d], gradient[d] = -x, [-u for u in dx]
+        elif opcode == GUARDED_ROOT:
+            if x < 0:
+                return False, None, None
+            if not x > 0:
+                feasible = None
+                x = x.union(arb(0)).intersection(arb(0).union(x.upper()))
+            root = x.sqrt()
+            value[d], gradient[d] = root, [u / (2 * root) for u in dx]
+        elif opcode == FLAT_ZERO:
+            value[d], gradient[d] = (arb(0), zero) if x == 0 else (y, dy)
+    outputs = [int(r) for r in program.residual_registers]
+    return feasible, [value[r] for r in outputs], [gradient[r] for r in outputs]
+
+
+def _instance(truss, seed):
+    """A random integer instance: (rng, compiled system, program, known distances, link
+    steps' signs, the parameters at the generating configuration)."""
+    links, index = truss
+    rng = np.random.default_rng(seed)
+    chain = baranov_trusses(links)[index]
+    coordinates = generic_integer_configuration(chain, rng)
+    scene = scene_of(chain, coordinates)
+    plan = solvable_plan(scene)
+    compiled = compile_scene(scene, plan)
+    program = compiled.straight_line_program()
+    known = [scene.known[pair] for pair in program.known_pairs]
+    fixed = np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float)
+    generating = np.array([float((coordinates[u][0] - coordinates[v][0]) ** 2 + (coordinates[u][1] - coordinates[v][1]) ** 2)
+                           for u, v in plan.parameters])
+    return rng, compiled, program, known, fixed, generating
+
+
+def _contains(interval, ball) -> bool:
+    return float(interval[0]) <= float(ball.lower()) and float(ball.upper()) <= float(interval[1])
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(TRUSSES), st.integers(0, 2**32 - 1))
+def test_the_intervals_hold_the_exact_values_at_every_point_of_the_box(truss, seed):
+    rng, compiled, program, known, fixed, generating = _instance(truss, seed)
+    reduced = interval_program(program)
+    size = float(max(compiled.known.values()))
+    p = len(compiled.parameters)
+    branches = sign_branches(len(compiled.free_triangles)).astype(float)
+    ctx.prec = 256
+    for draw in range(12):  # boxes around the generating configuration's parameters, and anywhere
+        width = size * 10.0 ** rng.uniform(-8, 0, p)
+        low = generating - width * rng.uniform(0, 1, p) if draw % 3 else rng.uniform(0, 2 * size, p)
+        branch = branches[rng.integers(len(branches))]
+        values, jacobians, status = evaluate_boxes(reduced, *enclosing(known), fixed, low[None], (low + width)[None],
+                                                   branch[None])
+        for point in low + width * rng.uniform(0, 1, (4, p)):
+            feasible, residuals, gradients = _arb_program(reduced, known, fixed, point, branch)
+            if status[0] == INFEASIBLE:
+                assert feasible is False, "a box called infeasible holds a feasible point"
+                continue
+            if feasible is False:
+                continue
+            for c, ball in enumerate(residuals):
+                assert _contains(values[0, c], ball), (values[0, c], ball)
+                if feasible and status[0] == FEASIBLE:
+                    for k in range(p):
+                        assert _contains(jacobians[0, c, k], gradients[c][k]), k
+    ctx.prec = 53
+
+
+def test_the_models_are_tight_to_second_order():
+    """7/B1 (the thesis example), the box [45, 45 + w] of s1,4 on every branch: the
+    ranges of the residual and of its derivative exceed their true ranges (sampled) by
+    terms of order w²: measured, at w = 0.001 by at most 9 % and 1 %, at w = 0.01 by at
+    most 94 % and 23 % (the branch whose residual barely moves), at w = 1 by up to 27 and
+    11 times (plain interval arithmetic: 200 times at w = 0.001)."""
+    scene = load_scene(ROOT / "examples" / "7-B1.json")
+    compiled = compile_scene(scene, solvable_plan(scene))
+    program = compiled.straight_line_program()
+    reduced = interval_program(program)
+    known = enclosing([scene.known[pair] for pair in program.known_pairs])
+    fixed = np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float)
+    branches = sign_branches(len(compiled.free_triangles)).astype(float)
+    for width, factor in ((0.001, 1.15), (0.01, 2.5)):
+        low = np.full((len(branches), 1), 45.0)
+        values, jacobians, status = evaluate_boxes(reduced, *known, fixed, low, low + width, branches)
+        assert (status == FEASIBLE).all()
+        points = np.linspace(45.0, 45.0 + width, 401)
+        residuals = compiled.residuals(points[:, None], branches)[..., 0]
+        slopes = np.diff(residuals, axis=1) / np.diff(points)
+        for b in range(len(branches)):
+            assert values[b, 0, 1] - values[b, 0, 0] <= factor * np.ptp(residuals[b]) + 1e-12
+            assert jacobians[b, 0, 0, 1] - jacobians[b, 0, 0, 0] <= factor * np.ptp(slopes[b]) + 1e-12
