@@ -20,6 +20,7 @@ $(STAMP): pyproject.toml Makefile
 	$(BIN)/pip install --quiet -e ".[test]"
 	$(BIN)/pip install --quiet --no-deps "$(GENG_WHEEL)" || echo "geng unavailable: the brute-force cross-check will be skipped"
 	$(BIN)/pip install --quiet --no-deps "$(MSOLVE_WHEEL)" || echo "msolve unavailable: its oracle tests will be skipped"
+	$(BIN)/python -c "from baranov.solvers.numeric.branch_and_prune import compile_kernels; compile_kernels()"
 	touch $(STAMP)
 
 help:  ## this list: every target and what it does

@@ -249,11 +249,12 @@ def run_solve(args: argparse.Namespace) -> int:
     modes = solution.assembly_modes
     print(f"{args.scene}: coupling degree {solution.coupling_degree}, "
           f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} ({solution.method})")
-    if isinstance(solution, ExactSolution):
-        if solution.characteristic_polynomial is not None:
-            print("\n".join(characteristic_lines(solution)))
-        print(f"assembly modes: {solution.certificate.summary()}")
     width = shutil.get_terminal_size((100, 24)).columns if sys.stdout.isatty() else 100
+    if isinstance(solution, ExactSolution) and solution.characteristic_polynomial is not None:
+        print("\n".join(characteristic_lines(solution)))
+    if solution.certificate is not None:
+        print(textwrap.fill(f"assembly modes: {solution.certificate.summary()}", width=width, subsequent_indent="  ",
+                            break_on_hyphens=False))
     for sentence in solution.undecided:  # long sentences: wrapped, continuation indented
         print(textwrap.fill(f"undecided: {sentence}", width=width, subsequent_indent="  ", break_on_hyphens=False))
     if not modes:

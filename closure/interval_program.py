@@ -35,12 +35,12 @@ model's deviation from c):
 
 Square roots of a step. A radicand whose range is certainly negative makes the box
 *infeasible* on that branch (:data:`INFEASIBLE`). A range that holds 0 is a domain edge in
-the box (:data:`EDGE`): the root, which exists only on part of the box, is enclosed by
-[0, √U] as a model with a symbol of its own, u_aux ∈ [−1, 1] (the first such root per
-evaluation; later ones as a constant model), so that what follows keeps its linear
-dependence on the root; its derivative is unbounded. With one parameter the radicand's
-model also bounds the part of the box where the triangle can exist (c + g u + e ≥ 0): a
-contraction of the box towards its feasible side. The float program's rounding guard (a
+the box (:data:`EDGE`): the root, which exists only on part of the box, is enclosed by the
+constant model of [0, √U], and its derivative is unbounded. (A symbol of its own for such
+a root, to keep what follows linear in it, decided no more boxes on 7/B1 and a nine-link
+truss: the products downstream put the root's width into the remainders anyway.) With one
+parameter the radicand's model also bounds the part of the box where the triangle can
+exist (c + g u + e ≥ 0): a contraction of the box towards its feasible side. The float program's rounding guard (a
 radicand a rounding error below 0 taken as 0) is not applied: the models hold the values
 of exact arithmetic. The free signs and the link steps' orientation signs are exact (±1,
 or 0 for a flat triangle); the program's constants are small integers and powers of two
@@ -92,13 +92,15 @@ class IntervalProgram:
     """A plan's straight-line program reduced to what decides a box and differentiated:
     the instructions that the closure residuals and the radicands of the signed roots
     depend on (the failure profile, the relative radicands and the float rounding guard's
-    threshold dropped), each followed by the instructions of its partial derivatives
-    (forward mode as a transformation of the program, :func:`interval_program`), over
+    threshold dropped), then the instructions of their partial derivatives (forward mode
+    as a transformation of the program, :func:`interval_program`; the first ``values``
+    rows compute the values, so that a box their models decide needs no more), over
     ``registers`` registers: the program's, then the derivatives' and the constants
     1 and 2 (``extra_constants``). ``residual_derivatives`` (c, p): the register of each
     residual's derivative by each parameter, −1 where it is 0."""
 
     instructions: np.ndarray
+    values: int
     registers: int
     program: StraightLineProgram
     extra_constants: np.ndarray
@@ -107,10 +109,10 @@ class IntervalProgram:
 
 def interval_program(program: StraightLineProgram) -> IntervalProgram:
     """The instructions of ``program`` that its residuals and signed roots need (a
-    backward pass), each followed by those of its derivatives by the parameters (a
-    forward pass: (a ± b)′ = a′ ± b′, (ab)′ = a′b + ab′, (a/b)′ = (a′ − (a/b) b′)/b,
-    (±√r)′ = (±√r)·… written r′/(2v) with v the signed root, a derivative known to be 0
-    not computed). O(instructions × parameters).
+    backward pass), then those of their derivatives by the parameters (a forward pass:
+    (a ± b)′ = a′ ± b′, (ab)′ = a′b + ab′, (a/b)′ = (a′ − (a/b) b′)/b, (√r)′ = r′/(2√r), a
+    derivative known to be 0 not computed). O(instructions × parameters), once per
+    program (cached on it).
 
     >>> from baranov.scene import load_scene
     >>> from baranov.solvers.placement import compile_scene
@@ -120,6 +122,13 @@ def interval_program(program: StraightLineProgram) -> IntervalProgram:
     >>> len(program.instructions), len(interval_program(program).instructions)
     (276, 383)
     """
+    if "interval" not in program.derived:
+        program.derived["interval"] = _differentiated(program)
+    return program.derived["interval"]
+
+
+def _differentiated(program: StraightLineProgram) -> IntervalProgram:
+    """:func:`interval_program`, made."""
     needed = _needed(program)
     registers = [program.registers]
     constants: dict[float, int] = {}
@@ -134,10 +143,11 @@ def interval_program(program: StraightLineProgram) -> IntervalProgram:
         return constants[value]
 
     out: list[tuple[int, int, int, int, int]] = []
+    tail: list[tuple[int, int, int, int, int]] = []  # the derivatives, after every value
 
     def emit(opcode: int, a: int, b: int = -1) -> int:
         d = new()
-        out.append((opcode, d, a, b, 0))
+        tail.append((opcode, d, a, b, 0))
         return d
 
     parameters = len(program.parameter_registers)
@@ -154,8 +164,8 @@ def interval_program(program: StraightLineProgram) -> IntervalProgram:
     residual_derivatives = np.array([[wrt.get(int(r), -1) for wrt in derivative] for r in program.residual_registers],
                                     dtype=np.int64).reshape(len(program.residual_registers), parameters)
     extra = np.array(sorted((register, value) for value, register in constants.items()), dtype=float).reshape(-1, 2)
-    return IntervalProgram(np.array(out, dtype=np.int64).reshape(-1, 5), registers[0], program, extra,
-                           residual_derivatives)
+    return IntervalProgram(np.array(out + tail, dtype=np.int64).reshape(-1, 5), len(out), registers[0], program,
+                           extra, residual_derivatives)
 
 
 def _needed(program: StraightLineProgram) -> np.ndarray:
@@ -217,9 +227,8 @@ _COMPILE = dict(cache=True, nogil=True, error_model="numpy")
 _SLACK = 2.0**-50
 #: An absolute slack covering underflow (at most 2^-1074 per operation).
 _TINY = 1e-300
-#: Symbols of a model: the parameters (at most two), and one for a root at a domain edge.
-SYMBOLS = 3
-AUX = 2
+#: Symbols of a model: the parameters (at most two).
+SYMBOLS = 2
 
 
 @numba.njit(**_COMPILE)
@@ -301,18 +310,18 @@ def _reciprocal(cb, gb, eb, radius, g_out):  # pragma: no cover - compiled
 
 
 @numba.njit(**_COMPILE)
-def _root(c, g, e, d, a, radius, auxiliary, feasible):  # pragma: no cover - compiled
-    """Model d = √a: (status, whether the edge symbol is now used); at an edge, [0, √U]
-    on the edge symbol (if still free), and ``feasible`` narrowed (module docstring)."""
+def _root(c, g, e, d, a, radius, feasible):  # pragma: no cover - compiled
+    """Model d = √a and the status of its step; at an edge, the constant model of
+    [0, √U], and ``feasible`` narrowed (module docstring)."""
     deviation = _deviation(g[a], e[a], radius)
     low, high = rounded_down(c[a] - deviation), rounded_up(c[a] + deviation)
     if high < 0.0:
-        return INFEASIBLE, auxiliary
+        return INFEASIBLE
     for k in range(SYMBOLS):
         g[d, k] = 0.0
     if e[a] == np.inf:
         c[d], e[d] = 0.0, np.inf
-        return EDGE, auxiliary
+        return EDGE
     if low > 0.0:
         root = np.sqrt(c[a])
         floor = np.sqrt(low) * (1.0 - _SLACK)
@@ -323,31 +332,27 @@ def _root(c, g, e, d, a, radius, auxiliary, feasible):  # pragma: no cover - com
             magnitude += abs(g[d, k]) * radius[k]
         quadratic = deviation * deviation / (twice * (floor + root) * (floor + root) * (1.0 - _SLACK))
         c[d], e[d] = root, _up(_up(e[a] / twice + quadratic) + _SLACK * magnitude)
-        return FEASIBLE, auxiliary
-    if feasible.shape[0] == 2 and g[a, AUX] == 0.0 and g[a, 1] == 0.0 and g[a, 0] != 0.0:
-        reach = rounded_up(c[a] + e[a])  # c + g u + e ≥ 0 for some u: one parameter
+        return FEASIBLE
+    if feasible.shape[0] == 2 and g[a, 1] == 0.0 and g[a, 0] != 0.0:  # one parameter
+        reach = rounded_up(c[a] + e[a])  # c + g u + e ≥ 0 for some u
         if g[a, 0] > 0.0:
             feasible[0] = max(feasible[0], rounded_down(-reach / g[a, 0]))
         else:
             feasible[1] = min(feasible[1], rounded_up(-reach / g[a, 0]))
     top = rounded_up(np.sqrt(high))
-    if not auxiliary:
-        c[d], g[d, AUX], e[d] = 0.5 * top, 0.5 * top, _up(_SLACK * top)
-        return EDGE, True
     c[d], e[d] = 0.5 * top, _up(0.5 * top)
-    return EDGE, auxiliary
+    return EDGE
 
 
 @numba.njit(**_COMPILE)
 def evaluate_models(instructions, c, g, e, radius, feasible):  # pragma: no cover - compiled
     """Run the differentiated program's ``instructions`` on the registers' models (``c``
     (R,), ``g`` (R, SYMBOLS), ``e`` (R,)), the inputs filled in; ``radius`` (SYMBOLS,) the
-    box's half-widths (and 1 for the edge symbol). Returns the box's status (FEASIBLE,
+    box's half-widths. Returns the box's status (FEASIBLE,
     EDGE, or INFEASIBLE at the first radicand certainly below 0). With one parameter,
     ``feasible`` (2,) is narrowed to the range of u_0 where every radicand at an edge can
     be ≥ 0 (an empty array: not asked)."""
     status = FEASIBLE
-    auxiliary = False
     scratch, other = np.empty(SYMBOLS), np.empty(SYMBOLS)
     for index in range(instructions.shape[0]):
         opcode, d, a, b = instructions[index, 0], instructions[index, 1], instructions[index, 2], instructions[index, 3]
@@ -367,7 +372,7 @@ def evaluate_models(instructions, c, g, e, radius, feasible):  # pragma: no cove
             for k in range(SYMBOLS):
                 g[d, k] = -g[a, k]
         elif opcode == GUARDED_ROOT:
-            step, auxiliary = _root(c, g, e, d, a, radius, auxiliary, feasible)
+            step = _root(c, g, e, d, a, radius, feasible)
             if step == INFEASIBLE:
                 return INFEASIBLE
             if step == EDGE:
@@ -415,14 +420,13 @@ def load_box(base_c, base_e, parameter_registers, sign_registers, low, high, sig
              ):  # pragma: no cover - compiled
     """The registers' models for one instance (``base_c``, ``base_e``: constants, known
     distances and link signs; NaN elsewhere) on the box [low, high] (p,) and the branch
-    ``signs``; ``radius`` set to the box's half-widths and 1 for the edge symbol."""
+    ``signs``; ``radius`` set to the box's half-widths."""
     for r in range(c.shape[0]):  # loops: numba compiles slice assignments slowly (5 s here)
         c[r], e[r] = base_c[r], base_e[r]
         for k in range(SYMBOLS):
             g[r, k] = 0.0
     for k in range(SYMBOLS):
         radius[k] = 0.0
-    radius[AUX] = 1.0
     for k in range(low.shape[0]):
         r = parameter_registers[k]
         middle = 0.5 * (low[k] + high[k])

@@ -148,6 +148,9 @@ class StraightLineProgram:
     steps: int
     #: The layouts of :func:`program_layout` made so far, by branch set (None: paired).
     layouts: dict = field(default_factory=dict, compare=False, repr=False)
+    #: Forms derived from the program once (the interval program of
+    #: :func:`~.interval_program.interval_program`), by name.
+    derived: dict = field(default_factory=dict, compare=False, repr=False)
 
 
 def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple) -> StraightLineProgram:

@@ -60,6 +60,9 @@ class Certificate:
     complete: bool
     probabilistic: str | None = None
     gaps: tuple[str, ...] = ()
+    #: how completeness was proven, where the method says (the numeric backend: the
+    #: interval branch-and-prune's domain and boxes)
+    proof: str | None = None
 
     def summary(self) -> str:
         """One line for the command line."""
@@ -67,7 +70,14 @@ class Certificate:
             return "NOT certified complete: " + "; ".join(self.gaps)
         if self.probabilistic:
             return f"certified complete (one Monte Carlo step: {self.probabilistic})"
-        return "certified complete"
+        return f"certified complete ({self.proof})" if self.proof else "certified complete"
+
+    def to_dict(self) -> dict:
+        """The JSON form, in ``baranov solve --json``."""
+        result = {"complete": self.complete, "probabilistic": self.probabilistic, "gaps": list(self.gaps)}
+        if self.proof:
+            result["proof"] = self.proof
+        return result
 
 
 @dataclass(frozen=True)
@@ -83,6 +93,8 @@ class Solution:
     #: what the method could not resolve, one sentence each (numeric: e.g. a stretch where
     #: the closure condition is flat to rounding, reported as one mode)
     undecided: tuple[str, ...] = ()
+    #: what is proven about the list of modes; None where the method proves nothing
+    certificate: Certificate | None = None
 
     @classmethod
     def of_plan(cls, method: str, scene, plan, modes: tuple[AssemblyMode, ...], **extra) -> Solution:
@@ -108,6 +120,8 @@ class Solution:
         }
         if self.undecided:
             result["undecided"] = list(self.undecided)
+        if self.certificate is not None:
+            result["certificate"] = self.certificate.to_dict()
         return result
 
 
@@ -124,7 +138,4 @@ class ExactSolution(Solution):
         result = super().to_dict()
         if self.characteristic_polynomial is not None:
             result["characteristic_polynomial"] = self.characteristic_polynomial.to_dict()
-        result["certificate"] = {"complete": self.certificate.complete,
-                                 "probabilistic": self.certificate.probabilistic,
-                                 "gaps": list(self.certificate.gaps)}
         return result

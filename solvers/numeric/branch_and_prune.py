@@ -6,27 +6,31 @@ On every free-sign branch the closure condition f(s) of a coupling-1 plan (thesi
 §3.2–3.3) is a function of one squared distance s over the searched domain [0, S], S the
 squared sum of the link diameters (no two joints are farther apart: every assembly mode has
 its s in it), narrowed by the triangle inequalities of the steps with s as a side
-(:func:`parameter_domain`). The domain is cut into boxes (intervals of s), each decided by one
-evaluation of the plan's straight-line program in interval arithmetic with its derivative
-(:mod:`baranov.closure.interval_program`):
+(:func:`parameter_domain`). The domain is cut into boxes (intervals X of s), each decided
+by one evaluation of the plan's straight-line program on first-order Taylor models
+(:mod:`baranov.closure.interval_program`: f = c + g (s − m) ± e on the box), its
+derivative's models computed only where the values leave the box undecided:
 
 * *excluded*: some triangle of the branch cannot be built anywhere in the box (a radicand
-  certainly negative), or 0 ∉ f(box);
-* *certified*: every radicand is positive in the box, 0 ∉ f′(box) (f is strictly monotone:
-  at most one root), and the interval Newton operator N(X) = m − f(m)/f′(X) maps the box
-  into its interior (Moore; Neumaier, *Interval methods for systems of equations*, 1990,
-  Thm. 5.1.7): exactly one root lies in it, and the box is then contracted by the same
-  operator to a few ulps;
-* N(X) ∩ X empty: excluded; N(X) ∩ X much smaller than X: kept instead of X;
+  certainly negative), or f's model cannot vanish on it;
+* *contracted* to where the triangles at an edge can exist and f's linear model can vanish
+  (c + g (s − m) within ±e of 0), where that is less than half the box;
+* *certified*: every radicand is positive on the box, 0 ∉ f′(X) (f strictly monotone: one
+  root at most), and the interval Newton operator N(X) = m − f(m)/f′(X) maps the box into
+  its interior (Moore; Neumaier, *Interval methods for systems of equations*, 1990,
+  Thm. 5.1.7): exactly one root lies in it, and the box is contracted by the same operator
+  and the linear model. Where f is monotone but N(X) is not inside X (the root near an end
+  of X, or rounding keeping f(m) too wide), the same test runs on a box three times as wide
+  as the linear model's zero set, centred on it; such a box may reach past X, so a root
+  certified twice is merged by its uniqueness boxes;
 * otherwise bisected, down to a width of ``minimum_width`` × S; a box that small and not
   decided is *unresolved* and named with its reason: a domain edge inside it (a radicand's
-  interval holds 0: a root on a flat triangle, or only the edge itself), or a derivative
-  that may vanish or is unbounded (a double root, joints that the plan divides by at one
-  point).
+  range holds 0: a root on a flat triangle, or only the edge itself), or a derivative that
+  may vanish or is unbounded (a double root, joints that the plan divides by at one point).
 
 Every branch's boxes run in one compiled loop (numba). What the loop proves: each
 certified box holds exactly one real root of its branch, and no real root of any branch
-lies in [0, S] outside the certified and unresolved boxes.
+lies in the domain outside the certified and unresolved boxes.
 """
 
 from __future__ import annotations
@@ -54,6 +58,8 @@ from baranov.closure.interval_program import (
     rounded_up,
 )
 
+#: A box's status where f's model (or a triangle) excludes it.
+EXCLUDED = 3
 #: Why a box was left undecided (:attr:`PrunedRoots.unresolved`'s last column).
 AT_EDGE, FLAT_DERIVATIVE, OVER_BUDGET = 1, 2, 3
 REASONS = {AT_EDGE: "a domain edge of the branch (a triangle flat) lies in it",
@@ -62,8 +68,9 @@ REASONS = {AT_EDGE: "a domain edge of the branch (a triangle flat) lies in it",
            OVER_BUDGET: "not examined within the evaluation budget"}
 #: Boxes narrower than this fraction of the domain are not bisected further.
 MINIMUM_WIDTH = 1e-12
-#: Interval evaluations allowed per solve, over all branches.
-EVALUATION_BUDGET = 200_000
+#: Box evaluations allowed per solve, over all branches (a complete 9-link solve takes a few
+#: thousand; a linkage that moves, its condition 0 along a range, would take them all).
+EVALUATION_BUDGET = 50_000
 #: Newton contractions of a certified box at most (each at least halves it, quadratically near the root).
 CONTRACTIONS = 30
 
@@ -103,17 +110,26 @@ def _divide(al, ah, bl, bh):  # pragma: no cover - compiled
 def _decide(instructions, base_c, base_e, work, parameter, sign_registers, signs, residual, derivative, a, b
             ):  # pragma: no cover - compiled
     """The models of f and f′ over [a, b] (one evaluation): (status, f's center, slope,
-    remainder with the other symbols' terms, f′'s range low and high, the box's radius,
-    the range of u where the triangles at an edge can exist)."""
-    c, g, e, radius, feasible, low, high, parameters = work
+    remainder, f′'s range low and high, the box's radius, the range of u where the
+    triangles at an edge can exist, the part of [a, b] where f's model can vanish);
+    status EXCLUDED (no derivatives computed) where that part is empty."""
+    c, g, e, radius, feasible, low, high, parameters, values = work
     low[0], high[0] = a, b
     load_box(base_c, base_e, parameters, sign_registers, low, high, signs, c, g, e, radius)
     feasible[0], feasible[1] = -np.inf, np.inf
-    status = evaluate_models(instructions, c, g, e, radius, feasible)
-    rest = e[residual] + abs(g[residual, 1]) * radius[1] + abs(g[residual, 2]) * radius[2]
-    g0, g1 = model_range(c, g, e, radius, derivative)
-    return (status, c[residual], g[residual, 0], rest * (1.0 + 2.0**-49) + 1e-300, g0, g1, radius[0], feasible[0],
-            feasible[1])
+    status = evaluate_models(instructions[:values[0]], c, g, e, radius, feasible)
+    center, slope, rest = c[residual], g[residual, 0], e[residual]
+    middle = 0.5 * (a + b)
+    z0, z1 = max(a, rounded_down(middle + feasible[0])), min(b, rounded_up(middle + feasible[1]))
+    if status != INFEASIBLE:
+        z0, z1 = _linear_zeros(center, slope, rest, middle, radius[0], z0, z1)
+    if status == INFEASIBLE or z0 > z1:
+        return EXCLUDED, center, slope, rest, -np.inf, np.inf, radius[0], z0, z1
+    g0, g1 = -np.inf, np.inf
+    if status == FEASIBLE:
+        evaluate_models(instructions[values[0]:], c, g, e, radius, feasible)
+        g0, g1 = model_range(c, g, e, radius, derivative)
+    return status, center, slope, rest, g0, g1, radius[0], z0, z1
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -135,11 +151,10 @@ def _contracted(instructions, base_c, base_e, work, parameter, sign_registers, s
     evaluations = 0
     for _ in range(CONTRACTIONS):
         evaluations += 1
-        status, center, slope, rest, g0, g1, radius, _, _ = _decide(instructions, base_c, base_e, work, parameter,
-                                                                    sign_registers, signs, residual, derivative, n0, n1)
+        status, center, slope, rest, g0, g1, _, c0, c1 = _decide(instructions, base_c, base_e, work, parameter,
+                                                                 sign_registers, signs, residual, derivative, n0, n1)
         if status != FEASIBLE or not (g0 > 0.0 or g1 < 0.0):
             break
-        c0, c1 = _linear_zeros(center, slope, rest, 0.5 * (n0 + n1), radius, n0, n1)
         m0, m1 = _newton_image(n0, n1, g0, g1, center, rest)
         c0, c1 = max(c0, m0), min(c1, m1)
         if c0 > c1 or c1 - c0 >= 0.9 * (n1 - n0):
@@ -155,7 +170,7 @@ def _certified_in(instructions, base_c, base_e, work, parameter, sign_registers,
     (0) or is undecided (-1), by one evaluation."""
     status, center, slope, rest, g0, g1, _, _, _ = _decide(instructions, base_c, base_e, work, parameter,
                                                            sign_registers, signs, residual, derivative, a, b)
-    if status == INFEASIBLE:
+    if status == EXCLUDED:
         return 0, a, b
     if status != FEASIBLE or not (g0 > 0.0 or g1 < 0.0):
         return -1, a, b
@@ -176,12 +191,13 @@ def _newton_image(a, b, g0, g1, center, rest):  # pragma: no cover - compiled
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _prune(instructions, base_c, base_e, parameter, sign_registers, branches, residual, derivative, low, high,
+def _prune(instructions, values, base_c, base_e, parameter, sign_registers, branches, residual, derivative, low, high,
            minimum_width, budget):  # pragma: no cover - compiled
-    """The branch-and-prune loop of :func:`prune_one_parameter` over every branch."""
+    """The branch-and-prune loop of :func:`prune_one_parameter` over every branch (the
+    first ``values`` instructions compute the values, the rest the derivatives)."""
     registers = base_c.shape[0]
-    work = (np.empty(registers), np.zeros((registers, SYMBOLS)), np.empty(registers), np.zeros(SYMBOLS), np.empty(2),
-            np.empty(1), np.empty(1), np.array([parameter]))
+    work = (np.empty(registers), np.zeros((registers, SYMBOLS)), np.empty(registers), np.zeros(SYMBOLS),
+            np.empty(2), np.empty(1), np.empty(1), np.array([parameter]), np.array([values]))
     stack = [(low, high, 0)]
     stack.pop()
     for k in range(branches.shape[0]):
@@ -198,16 +214,12 @@ def _prune(instructions, base_c, base_e, parameter, sign_registers, branches, re
             continue
         signs = branches[k]
         evaluations += 1
-        status, center, slope, rest, g0, g1, radius, u0, u1 = _decide(instructions, base_c, base_e, work, parameter,
+        # [z0, z1]: where the triangles at an edge can exist and f's linear model vanish
+        status, center, slope, rest, g0, g1, radius, z0, z1 = _decide(instructions, base_c, base_e, work, parameter,
                                                                      sign_registers, signs, residual, derivative, a, b)
-        if status == INFEASIBLE:
+        if status == EXCLUDED:
             continue
         middle = 0.5 * (a + b)
-        # where the triangles at an edge can exist, and where f's linear model can vanish
-        c0, c1 = max(a, rounded_down(middle + u0)), min(b, rounded_up(middle + u1))
-        z0, z1 = _linear_zeros(center, slope, rest, middle, radius, c0, c1)
-        if z0 > z1:
-            continue
         if status == FEASIBLE and (g0 > 0.0 or g1 < 0.0):  # f monotone on [a, b]: one root at most
             n0, n1 = _newton_image(a, b, g0, g1, center, rest)
             if n1 < a or n0 > b:
@@ -276,7 +288,8 @@ def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: 
     base_c, base_e = instance_registers(reduced, *enclosing(known),
                                         np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float))
     low, high = (float(end) for end in domain)
-    found, left, evaluations = _prune(reduced.instructions, base_c, base_e, int(program.parameter_registers[0]),
+    found, left, evaluations = _prune(reduced.instructions, reduced.values, base_c, base_e,
+                                      int(program.parameter_registers[0]),
                                       program.sign_registers, np.ascontiguousarray(branches, dtype=float),
                                       int(program.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
                                       low, high, minimum_width * high, budget)
@@ -326,7 +339,7 @@ def parameter_domain(scene, plan, upper: float) -> tuple[float, float]:
     >>> from baranov.solvers.coincidence import solvable_plan
     >>> scene = load_scene("examples/7-B1.json")
     >>> [round(end, 6) for end in parameter_domain(scene, solvable_plan(scene), 1e4)]
-    [25.504902, 104.148049]
+    [25.501244, 104.159745]
     """
     parameter = frozenset(plan.parameters[0])
     low, high = 0.0, upper
@@ -350,6 +363,21 @@ def _root_enclosure(value) -> tuple[float, float]:
             math.nextafter(math.sqrt(high), math.inf))
 
 
+def searched_domain(scene, plan) -> tuple[float, float]:
+    """The range of a coupling-1 plan's parameter that holds every mode of ``scene``:
+    :func:`parameter_domain` within [0, S], S from the link diameters
+    (:func:`domain_upper_bound`), every bound rounded outward from the exact dimensions.
+
+    >>> from baranov.scene import load_scene
+    >>> from baranov.solvers.coincidence import solvable_plan
+    >>> scene = load_scene("examples/7-B1.json")
+    >>> [round(end, 6) for end in searched_domain(scene, solvable_plan(scene))]
+    [25.501244, 104.159745]
+    """
+    diameters = [_root_enclosure(max(link.squared_distances.values()))[1] for link in scene.links]
+    return parameter_domain(scene, plan, domain_upper_bound(diameters))
+
+
 def domain_upper_bound(diameters: list[float]) -> float:
     """S = (Σ link diameters)², rounded up: no two joints of an assembled linkage are
     farther apart than the sum of the link diameters (a path of links joins them), so
@@ -358,3 +386,20 @@ def domain_upper_bound(diameters: list[float]) -> float:
     for diameter in diameters:
         total = math.nextafter(total + math.nextafter(diameter, math.inf), math.inf)
     return math.nextafter(total * total, math.inf)
+
+
+def compile_kernels() -> None:
+    """Compile this module's kernels and the Taylor-model arithmetic (numba caches them
+    on disk, about 13 s the first time) by one solve of a random pentad: ``make setup``
+    runs it, so that a first ``baranov solve`` does not pay it."""
+    from baranov.closure import sign_branches
+    from baranov.enumerate import baranov_trusses
+    from baranov.scene.instances import generic_integer_configuration, scene_of
+    from baranov.solvers.coincidence import solvable_plan
+    from baranov.solvers.placement import compile_scene
+
+    chain = baranov_trusses(5)[0]
+    scene = scene_of(chain, generic_integer_configuration(chain, np.random.default_rng(0)))
+    plan = solvable_plan(scene)
+    prune_one_parameter(compile_scene(scene, plan), sign_branches(len(plan.free_sign_triangles)),
+                        searched_domain(scene, plan), scene.known)
