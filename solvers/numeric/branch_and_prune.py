@@ -70,7 +70,7 @@ REASONS = {AT_EDGE: "a domain edge of the branch (a triangle flat) lies in it",
 MINIMUM_WIDTH = 1e-12
 #: Box evaluations allowed per solve, over all branches (a complete 9-link solve takes a few
 #: thousand; a linkage that moves, its condition 0 along a range, would take them all).
-EVALUATION_BUDGET = 50_000
+EVALUATION_BUDGET = 20_000
 #: Newton contractions of a certified box at most (each at least halves it, quadratically near the root).
 CONTRACTIONS = 30
 
