@@ -44,10 +44,10 @@ catalog-13-modes: $(STAMP)  ## the 13-link assembly modes (about 18 core-hours),
 
 test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default test suite (about 7 min on 2 cores)
 	$(BIN)/ruff check .
-	$(BIN)/pytest -q
+	$(BIN)/pytest -q -n 2
 
 test-slow: $(STAMP)  ## long checks (not timed as a whole; README gives the parts measured separately): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 800 coupling-2 random instances), whole catalog
-	$(BIN)/pytest -q -m slow
+	$(BIN)/pytest -q -n 2 -m slow
 
 fuzz: $(STAMP)  ## the long fuzz run of the scene loader and the solvers (tests/test_fuzz.py, FUZZ cases per test, default 10⁴)
 	BARANOV_FUZZ_EXAMPLES=$(FUZZ) $(BIN)/pytest -q tests/test_fuzz.py --hypothesis-show-statistics

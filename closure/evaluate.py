@@ -73,7 +73,7 @@ class CompiledSystem:
             if not step.free_sign and step.triangle not in self.fixed_signs:
                 raise ValueError(f"triangle {step.triangle}: orientation sign of a link step missing")
 
-    @property
+    @functools.cached_property
     def parameter_names(self) -> tuple[str, ...]:
         """The parameters' names: s_{u,v}, or t_{u,v} for a slider's pair."""
         return tuple(parameter_name(pair, self.sliders) for pair in self.parameters)

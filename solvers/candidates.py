@@ -33,8 +33,8 @@ def distinct_candidates(values: np.ndarray, branches: np.ndarray) -> list[tuple[
 
 
 def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates,
-                   configurations: tuple[list[str], np.ndarray, np.ndarray, np.ndarray] | None = None
-                   ) -> tuple[AssemblyMode, ...]:
+                   configurations: tuple[list[str], np.ndarray, np.ndarray, np.ndarray] | None = None,
+                   distinct: bool = False) -> tuple[AssemblyMode, ...]:
     """The verified, distinct assembly modes among ``candidates`` (parameter values,
     branch), sorted by parameters then signs. All candidates are placed, verified and
     polished together (a coupling-2 solve can bring 10⁴ candidates: one at a time, they
@@ -48,7 +48,13 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates,
     domain a parameter read back from a configuration is right to ~√ε only, and the
     closure condition is as steep as √ of the distance to the edge there: placed again,
     a mode 1e-6 from the edge came out with residual 3e-3 and was lost
-    (tests/regressions/9-N2-mode-next-to-edge.json)."""
+    (tests/regressions/9-N2-mode-next-to-edge.json).
+
+    ``distinct``: the candidates are known to be distinct modes with every triangle of
+    their branch proper (certified roots: :mod:`~baranov.solvers.numeric.branch_and_prune`,
+    each alone in a box where every radicand is positive), so the duplicate checks and the
+    snap of nearly flat triangles (:func:`flattened_mode`) are skipped: two certified roots
+    are two modes however close, and a proper triangle is not flat."""
     candidates = list(candidates)
     if not candidates and configurations is None:
         return ()
@@ -75,6 +81,8 @@ def assembly_modes(scene: Scene, compiled: CompiledSystem, candidates,
     kept = np.flatnonzero(residual < RESIDUAL_TOLERANCE)
     if len(kept) == 0:
         return ()
+    if distinct:
+        return sorted_modes(mode_of(compiled, joints, values[k], branches[k], points[k], residual[k]) for k in kept)
     # the best placed candidate of each mode first: a shallow root's minimum of |f| lay
     # 7e-6 beside Brent's root and, listed first, had stood for the mode (issue 18)
     kept = kept[np.argsort(residual[kept], kind="stable")]

@@ -249,6 +249,7 @@ def test_parser_round_trip_and_errors():
             parse_matrix_expression(bad)
 
 
+@pytest.mark.slow  # 41 s (2026-11-28)
 def test_every_eleven_link_truss_once():
     """The property of test_conditions_vanish_at_the_generating_configuration for each of
     the 562 trusses with 11 links (one random generic configuration each)."""

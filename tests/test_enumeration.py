@@ -110,6 +110,7 @@ def test_thirteen_links_by_the_generator():
     assert orbits == VERIFIED_ASSUR_GROUPS[13] == PUBLISHED_ASSUR_GROUPS[13]
 
 
+@pytest.mark.slow  # 27 s (2026-11-28)
 @needs_geng
 def test_thirteen_links_by_brute_force():
     candidates, graphs = baranov_link_graphs_by_filter(13, workers=2)

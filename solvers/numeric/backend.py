@@ -125,7 +125,7 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
         return (), Certificate(False, None, (*gaps, "these boxes are not decided by the branch-and-prune: the modes "
                                              "listed come from the sampling searches"))
     candidates = [(np.array([0.5 * (low + high)]), branches[int(k)]) for low, high, k in pruned.roots]
-    modes = assembly_modes(scene, compiled, candidates)
+    modes = assembly_modes(scene, compiled, candidates, distinct=True)
     if len(modes) != len(pruned.roots):
         return modes, Certificate(False, None, (f"{len(pruned.roots)} roots certified, {len(modes)} verified as "
                                                 "distinct modes",))

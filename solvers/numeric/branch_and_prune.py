@@ -47,12 +47,12 @@ from baranov.closure.interval_program import (
     EDGE,
     FEASIBLE,
     INFEASIBLE,
-    SYMBOLS,
     enclosing,
     evaluate_models,
     instance_registers,
     interval_program,
     load_box,
+    load_instance,
     model_range,
     rounded_down,
     rounded_up,
@@ -107,7 +107,7 @@ def _divide(al, ah, bl, bh):  # pragma: no cover - compiled
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _decide(instructions, base_c, base_e, work, parameter, sign_registers, signs, residual, derivative, a, b
+def _decide(instructions, work, parameter, sign_registers, signs, residual, derivative, a, b
             ):  # pragma: no cover - compiled
     """The models of f and f′ over [a, b] (one evaluation): (status, f's center, slope,
     remainder, f′'s range low and high, the box's radius, the range of u where the
@@ -115,7 +115,7 @@ def _decide(instructions, base_c, base_e, work, parameter, sign_registers, signs
     status EXCLUDED (no derivatives computed) where that part is empty."""
     c, g, e, radius, feasible, low, high, parameters, values = work
     low[0], high[0] = a, b
-    load_box(base_c, base_e, parameters, sign_registers, low, high, signs, c, g, e, radius)
+    load_box(parameters, sign_registers, low, high, signs, c, g, e, radius)
     feasible[0], feasible[1] = -np.inf, np.inf
     status = evaluate_models(instructions[:values[0]], c, g, e, radius, feasible)
     center, slope, rest = c[residual], g[residual, 0], e[residual]
@@ -143,7 +143,7 @@ def _linear_zeros(center, slope, rest, middle, radius, a, b):  # pragma: no cove
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _contracted(instructions, base_c, base_e, work, parameter, sign_registers, signs, residual, derivative, n0, n1
+def _contracted(instructions, work, parameter, sign_registers, signs, residual, derivative, n0, n1
                 ):  # pragma: no cover - compiled
     """A box [n0, n1] known to hold exactly one root, on which f is monotone, shrunk to
     where f's linear model can vanish and to its Newton image while that takes off a
@@ -151,7 +151,7 @@ def _contracted(instructions, base_c, base_e, work, parameter, sign_registers, s
     evaluations = 0
     for _ in range(CONTRACTIONS):
         evaluations += 1
-        status, center, slope, rest, g0, g1, _, c0, c1 = _decide(instructions, base_c, base_e, work, parameter,
+        status, center, slope, rest, g0, g1, _, c0, c1 = _decide(instructions, work, parameter,
                                                                  sign_registers, signs, residual, derivative, n0, n1)
         if status != FEASIBLE or not (g0 > 0.0 or g1 < 0.0):
             break
@@ -164,11 +164,11 @@ def _contracted(instructions, base_c, base_e, work, parameter, sign_registers, s
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _certified_in(instructions, base_c, base_e, work, parameter, sign_registers, signs, residual, derivative, a, b
+def _certified_in(instructions, work, parameter, sign_registers, signs, residual, derivative, a, b
                   ):  # pragma: no cover - compiled
     """Whether [a, b] holds exactly one root (1, and the Newton image holding it), none
     (0) or is undecided (-1), by one evaluation."""
-    status, center, slope, rest, g0, g1, _, _, _ = _decide(instructions, base_c, base_e, work, parameter,
+    status, center, slope, rest, g0, g1, _, _, _ = _decide(instructions, work, parameter,
                                                            sign_registers, signs, residual, derivative, a, b)
     if status == EXCLUDED:
         return 0, a, b
@@ -195,9 +195,10 @@ def _prune(instructions, values, base_c, base_e, parameter, sign_registers, bran
            minimum_width, budget):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_one_parameter` over every branch (the
     first ``values`` instructions compute the values, the rest the derivatives)."""
-    registers = base_c.shape[0]
-    work = (np.empty(registers), np.zeros((registers, SYMBOLS)), np.empty(registers), np.zeros(SYMBOLS),
+    registers = base_c.shape[0] + 1  # and a scratch register
+    work = (np.empty(registers), np.zeros((registers, 1)), np.empty(registers), np.zeros(1),
             np.empty(2), np.empty(1), np.empty(1), np.array([parameter]), np.array([values]))
+    load_instance(base_c, base_e, work[0], work[1], work[2])
     stack = [(low, high, 0)]
     stack.pop()
     for k in range(branches.shape[0]):
@@ -215,7 +216,7 @@ def _prune(instructions, values, base_c, base_e, parameter, sign_registers, bran
         signs = branches[k]
         evaluations += 1
         # [z0, z1]: where the triangles at an edge can exist and f's linear model vanish
-        status, center, slope, rest, g0, g1, radius, z0, z1 = _decide(instructions, base_c, base_e, work, parameter,
+        status, center, slope, rest, g0, g1, radius, z0, z1 = _decide(instructions, work, parameter,
                                                                      sign_registers, signs, residual, derivative, a, b)
         if status == EXCLUDED:
             continue
@@ -225,7 +226,7 @@ def _prune(instructions, values, base_c, base_e, parameter, sign_registers, bran
             if n1 < a or n0 > b:
                 continue
             if a < n0 and n1 < b:  # exactly one root, in [n0, n1]
-                n0, n1, spent = _contracted(instructions, base_c, base_e, work, parameter, sign_registers, signs,
+                n0, n1, spent = _contracted(instructions, work, parameter, sign_registers, signs,
                                             residual, derivative, n0, n1)
                 evaluations += spent
                 roots.append((n0, n1, k, a, b))
@@ -241,12 +242,12 @@ def _prune(instructions, values, base_c, base_e, parameter, sign_registers, bran
             y0, y1 = estimate - spread, estimate + spread
             if slope != 0.0:
                 evaluations += 1
-                found, n0, n1 = _certified_in(instructions, base_c, base_e, work, parameter, sign_registers, signs,
+                found, n0, n1 = _certified_in(instructions, work, parameter, sign_registers, signs,
                                               residual, derivative, y0, y1)
                 if found == 1 and (n1 < a or n0 > b):
                     continue  # the root of [y0, y1] lies outside [a, b], which then holds none
                 if found == 1:
-                    n0, n1, spent = _contracted(instructions, base_c, base_e, work, parameter, sign_registers,
+                    n0, n1, spent = _contracted(instructions, work, parameter, sign_registers,
                                                 signs, residual, derivative, n0, n1)
                     evaluations += spent
                     roots.append((n0, n1, k, y0, y1))
