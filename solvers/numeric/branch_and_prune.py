@@ -329,8 +329,8 @@ def _merged(boxes: np.ndarray) -> np.ndarray:
     return np.array(merged)
 
 
-def parameter_domain(scene, plan, upper: float) -> tuple[float, float]:
-    """The range of a coupling-1 plan's parameter s that can hold a mode: [0, ``upper``]
+def parameter_domain(scene, plan, upper: float, index: int = 0) -> tuple[float, float]:
+    """The range of a plan's parameter s (number ``index``) that can hold a mode: [0, ``upper``]
     (S, :func:`domain_upper_bound`) cut by every step whose triangle has s as one side and
     two known squared sides a, b, which exists only for (√a − √b)² ≤ s ≤ (√a + √b)²
     (the critical values of :func:`~.one_parameter.critical_values`), with the roots
@@ -342,7 +342,7 @@ def parameter_domain(scene, plan, upper: float) -> tuple[float, float]:
     >>> [round(end, 6) for end in parameter_domain(scene, solvable_plan(scene), 1e4)]
     [25.501244, 104.159745]
     """
-    parameter = frozenset(plan.parameters[0])
+    parameter = frozenset(plan.parameters[index])
     low, high = 0.0, upper
     for step in plan.steps:
         sides = [frozenset(pair) for pair in combinations(step.triangle, 2)]
@@ -375,8 +375,25 @@ def searched_domain(scene, plan) -> tuple[float, float]:
     >>> [round(end, 6) for end in searched_domain(scene, solvable_plan(scene))]
     [25.501244, 104.159745]
     """
-    diameters = [_root_enclosure(max(link.squared_distances.values()))[1] for link in scene.links]
-    return parameter_domain(scene, plan, domain_upper_bound(diameters))
+    return parameter_domain(scene, plan, _diameters_bound(scene))
+
+
+def searched_box(scene, plan) -> tuple[tuple[float, float], ...]:
+    """:func:`searched_domain` for each parameter of a plan (coupling 2: a box).
+
+    >>> from baranov.scene import load_scene
+    >>> from baranov.solvers.coincidence import solvable_plan
+    >>> scene = load_scene("examples/9-B28.json")
+    >>> [[round(end, 4) for end in interval] for interval in searched_box(scene, solvable_plan(scene))]
+    [[8.1217, 6864.1005], [210.3078, 9676.5811]]
+    """
+    upper = _diameters_bound(scene)
+    return tuple(parameter_domain(scene, plan, upper, index) for index in range(plan.number_of_parameters))
+
+
+def _diameters_bound(scene) -> float:
+    """:func:`domain_upper_bound` of the scene's links."""
+    return domain_upper_bound([_root_enclosure(max(link.squared_distances.values()))[1] for link in scene.links])
 
 
 def domain_upper_bound(diameters: list[float]) -> float:
