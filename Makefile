@@ -49,8 +49,8 @@ test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default tes
 test-slow: $(STAMP)  ## long checks (not timed as a whole; README gives the parts measured separately): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 800 coupling-2 random instances), whole catalog
 	$(BIN)/pytest -q -n 2 -m slow
 
-fuzz: $(STAMP)  ## the long fuzz run of the scene loader and the solvers (tests/test_fuzz.py, FUZZ cases per test, default 10⁴)
-	BARANOV_FUZZ_EXAMPLES=$(FUZZ) $(BIN)/pytest -q tests/test_fuzz.py --hypothesis-show-statistics
+fuzz: $(STAMP)  ## the long fuzz run of the scene loader, the solvers and the scene re-encodings (tests/test_fuzz.py, tests/test_reencoding.py; FUZZ cases per test, default 10⁴)
+	BARANOV_FUZZ_EXAMPLES=$(FUZZ) $(BIN)/pytest -q -n 2 tests/test_fuzz.py tests/test_reencoding.py --hypothesis-show-statistics
 
 bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (21 min 32 s measured on 2026-11-27 beside a niced catalog job, 2 cores, msolve and the homotopy included)
 	$(BIN)/python bench/speed_vs_accuracy.py

@@ -613,7 +613,9 @@ once. Then each eight-bar Grübler chain, one random integer configuration (seed
   cancels. At a leg of 1e-4 the numeric backend's candidates miss the 1e-8 verification
   by ~1e-6 and are polished on the link constraints (Gauss–Newton, as next to the domain
   boundary); from a leg of 1e-6 on it finds no candidate at all (rows "nearly coincident
-  joints" above; pinned as an expected failure at 1e-5). The exact backend maps its
+  joints" above; pinned as an expected failure at 1e-6). At 1e-5 the interval
+  branch-and-prune certifies both modes, 1.7e-6 apart in the parameter, each alone in its
+  box. The exact backend maps its
   certified roots to branches and places the joints in ball arithmetic from the exact
   dimensions, raising the precision while a branch is undecided or a configuration misses
   the verification, and finds both modes down to a leg of 1e-8. Kahan's stable form of

@@ -257,8 +257,10 @@ def run_solve(args: argparse.Namespace) -> int:
                             break_on_hyphens=False))
     for sentence in solution.undecided:  # long sentences: wrapped, continuation indented
         print(textwrap.fill(f"undecided: {sentence}", width=width, subsequent_indent="  ", break_on_hyphens=False))
-    if not modes:
-        print("the linkage cannot be assembled with these dimensions")
+    if not modes:  # "cannot be assembled" only on a proof (issue 55)
+        proven = solution.certificate is not None and solution.certificate.complete
+        print("the linkage cannot be assembled with these dimensions (certified)" if proven else
+              "no assembly mode found; that none exists is not proven (see the certificate and the undecided lines)")
         return 0
     print("\n".join(mode_table(solution, joints=args.joints, width=width)))
     if not args.joints:

@@ -70,7 +70,8 @@ def _complete_files_only(out: Path, rewritten: tuple[str, ...] = ()) -> None:
         assert path.name in rewritten or path.read_bytes() == (REPO / "catalog" / path.name).read_bytes(), path.name
 
 
-@pytest.mark.parametrize("number", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize("number", [pytest.param(signal.SIGINT, marks=pytest.mark.slow), signal.SIGTERM],
+                         ids=["SIGINT", "SIGTERM"])  # each 13 s (2026-11-28); SIGINT in make test-slow
 def test_a_signal_stops_the_whole_job(tmp_path, number):
     process = _started_nine_links(tmp_path)
     workers = _descendants(process.pid)

@@ -51,6 +51,7 @@ def test_catalog_files_and_fields(tmp_path):
     assert sum(e["assur_groups"] for e in sevens) == 10
 
 
+@pytest.mark.slow  # 14 s (2026-11-28)
 def test_rerun_is_byte_identical_and_reuses_complete_files(tmp_path, capsys):
     # 3-7 links: with 9, the coupling-2 polynomials take about 13 minutes
     args = ["catalog", "--links", "3-7", "--out", str(tmp_path), "--workers", "2", "--slider-modes", "5"]
@@ -435,3 +436,22 @@ def test_a_compact_gzip_file_beside_the_full_one_from_13_links(tmp_path, monkeyp
     first = (tmp_path / "trusses-7.jsonl.gz").read_bytes()
     assert main(args) == 0
     assert (tmp_path / "trusses-7.jsonl.gz").read_bytes() == first
+
+
+@pytest.mark.parametrize("method, sentence", [
+    ("exact", "the linkage cannot be assembled with these dimensions (certified)"),
+    ("numeric", "the linkage cannot be assembled with these dimensions (certified)"),
+    pytest.param("msolve", "no assembly mode found; that none exists is not proven",
+                 marks=pytest.mark.skipif(find_msolve() is None, reason="msolve not installed")),
+])
+def test_no_mode_is_called_unassemblable_only_with_a_proof(tmp_path, method, sentence, capsys):
+    """A triad whose two arms (√20 + √2 < √50) cannot reach across the ground: the exact
+    and numeric backends prove it (a complete certificate); msolve, whose answer carries
+    no certificate, says only that it found no mode (issue 55)."""
+    scene = tmp_path / "short-arms.json"
+    scene.write_text(json.dumps({"ground": "ground", "links": [
+        {"name": "ground", "joints": {"P1": [1, 3], "P2": [6, 8]}},
+        {"name": "b13", "joints": ["P1", "P3"], "squared_length": 20},
+        {"name": "b23", "joints": ["P2", "P3"], "squared_length": 2}]}))
+    assert main(["solve", str(scene), "--method", method]) == 0
+    assert sentence in capsys.readouterr().out

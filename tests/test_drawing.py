@@ -43,7 +43,8 @@ def _overlap(a, b) -> bool:
     return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
 
 
-@pytest.mark.parametrize("example", EXAMPLES)
+@pytest.mark.parametrize("example", [pytest.param(name, marks=pytest.mark.slow) if name.startswith("13-") else name
+                                     for name in EXAMPLES])  # the 13-link ones: 27 s and 17 s (2026-11-28)
 def test_titles_and_labels_do_not_collide(example):
     figure = _figure(example)
     renderer = FigureCanvasAgg(figure).get_renderer()

@@ -138,7 +138,9 @@ def _grubler_cases():
 
     chains = [(links, n, chain) for links in (4, 6, 8) for n, chain in enumerate(grubler_chains(links))]
     # all sixteen eight-bars together took 31.7 s beside the CI (the four two-distance ones 5-25 s each)
-    return [pytest.param(chain, seed, id=f"{links}-{n}-seed{seed}")
+    slow = {(8, 2), (8, 7)}  # 28 s and 20 s (2026-11-28): the two-distance eight-bars, in make test-slow
+    return [pytest.param(chain, seed, id=f"{links}-{n}-seed{seed}",
+                         marks=[pytest.mark.slow] if (links, n) in slow else [])
             for links, n, chain in chains for seed in range(2 if links < 8 else 1)]
 
 
@@ -203,6 +205,7 @@ def _one_parameter_chains() -> list:
             if one_dof_plans(chain)[0].number_of_parameters == 1]
 
 
+@pytest.mark.slow  # 24 s (2026-11-28)
 @settings(max_examples=15, deadline=None)
 @given(seed=st.integers(0, 2**32 - 1), pick=st.integers(0, 2**16))
 def test_exact_ranges_are_the_traced_pieces(seed, pick):
@@ -303,6 +306,7 @@ def test_six_bar_coupler_curve_degrees(index):
     assert sorted(found) == SIX_BAR_DEGREES[index]
 
 
+@pytest.mark.slow  # 21 s (2026-11-28)
 @needs_msolve
 def test_double_butterfly_coupler_curves():
     """Thesis §6.1 cites degree up to 48 for the double butterfly's coupler curves: a
@@ -468,6 +472,7 @@ def _with_a_crank(chain, rng) -> dict:
     raise AssertionError("no link with a crank pinned to it")
 
 
+@pytest.mark.slow  # 23 s (2026-11-28)
 def test_driven_double_butterfly_equals_the_rigidified_chains():
     """d = 2 (Newton on the closure condition and the input): the double butterfly
     driven by the angle of P1P5 at P1 from P2, at six random angles within its range:

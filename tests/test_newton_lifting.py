@@ -43,6 +43,7 @@ def _both_ways(truss, seed):
         scene, plan, saturated=False)
 
 
+@pytest.mark.slow  # 27 s (2026-11-28)
 @settings(max_examples=3, deadline=None)
 @given(seed=st.integers(0, 2**32 - 1))
 def test_newton_and_primes_give_the_same_candidate_polynomial(seed):

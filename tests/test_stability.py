@@ -84,7 +84,16 @@ def test_exact_backend_on_joints_very_nearly_coincident(exponent):
     assert len(modes) == 2 and all(m.max_residual < RESIDUAL_TOLERANCE for m in modes)
 
 
-@pytest.mark.xfail(strict=True, reason="known failure, docs/stability.md: the numeric backend finds no "
-                   "candidate when a leg is 1e-5 long among sides ~10")
 def test_numeric_backend_on_joints_1e_5_apart():
-    assert len(solve(coincident_joints_scene(Fraction(1, 10**5))).assembly_modes) == 2
+    """The two modes, 1.7e-6 apart in the parameter, each certified alone in its box by the
+    interval branch-and-prune: the exact backend's two."""
+    scene = coincident_joints_scene(Fraction(1, 10**5))
+    solution = solve(scene)
+    assert solution.certificate.complete and len(solution.assembly_modes) == 2
+    assert same_modes(scene, solution.assembly_modes, solve(scene, method="exact").assembly_modes)
+
+
+@pytest.mark.xfail(strict=True, reason="known failure, docs/stability.md: the numeric backend finds no "
+                   "candidate when a leg is 1e-6 long among sides ~10")
+def test_numeric_backend_on_joints_1e_6_apart():
+    assert len(solve(coincident_joints_scene(Fraction(1, 10**6))).assembly_modes) == 2

@@ -42,6 +42,7 @@ from baranov.scene import Scene
 from ..candidates import assembly_modes
 from ..coincidence import (
     MSOLVE_NOTE,
+    UNCHECKED_MSOLVE,
     NoPlanError,
     coincidence_possible,
     division_pairs,
@@ -89,7 +90,8 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
         plan = plan or exact_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
         described, modes, note = modes_without_plan(scene, error)
-        return ExactSolution.of_plan("exact", scene, described, modes, certificate=Certificate(True, note, ()))
+        return ExactSolution.of_plan("exact", scene, described, modes,
+                                     certificate=Certificate(False, None, (f"{note}; {UNCHECKED_MSOLVE}",)))
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None
     gaps: tuple[str, ...] = ()

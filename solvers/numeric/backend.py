@@ -21,6 +21,7 @@ import time
 import numpy as np
 
 from baranov.closure import CompiledSystem, sign_branches
+from baranov.closure.interval_program import EDGE, FEASIBLE, enclosing, evaluate_boxes, interval_program
 from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
@@ -63,6 +64,9 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     undecided: list[str] = []
     polished = None  # configurations polished on the link constraints
     if degree == 0:
+        certified, certificate = _certified_construction(scene, compiled, branches)
+        if certificate.complete:
+            return Solution.of_plan("numeric", scene, plan, certified, certificate=certificate)
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
         certified, certificate = _certified_modes(scene, plan, compiled, branches, deadline)
@@ -85,7 +89,7 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2; "
                           "--method homotopy solves any (docs/homotopy.md)")
     modes = assembly_modes(scene, compiled, candidates, polished)
-    certificate = None if degree != 1 else certificate
+    certificate = None if degree == 2 else certificate
     if degree > 0 and coincidences:
         modes, unsettled = _modes_of_coincident_joints(scene, plan, samples, modes)
         undecided += unsettled
@@ -131,6 +135,33 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
                                                 "distinct modes",))
     proof = (f"interval branch-and-prune of {name} in [{domain[0]:.6g}, {domain[1]:.6g}], {len(branches)} branches: "
              f"each root alone in its box, the rest excluded; {pruned.evaluations} boxes")
+    return modes, Certificate(True, None, (), proof)
+
+
+def _certified_construction(scene: Scene, compiled: CompiledSystem, branches: np.ndarray
+                            ) -> tuple[tuple[AssemblyMode, ...], Certificate]:
+    """A plan without parameters (a construction: coupling degree 0) on every branch,
+    evaluated once in interval arithmetic from the exact dimensions
+    (:func:`~baranov.closure.interval_program.evaluate_boxes` on an empty box): a branch
+    with a radicand certainly negative has no mode, one with every radicand certainly
+    positive has exactly one, read back and verified. Complete where no radicand's
+    interval holds 0 (a flat triangle) and every such mode verifies."""
+    if scene.sliders:
+        return (), Certificate(False, None, ("slider chains are not yet run through the interval program",))
+    program = compiled.straight_line_program()
+    known = [scene.known.get(pair, compiled.known[pair]) for pair in program.known_pairs]
+    fixed = np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float)
+    empty = np.zeros((len(branches), 0))
+    _, _, status = evaluate_boxes(interval_program(program), *enclosing(known), fixed, empty, empty, branches)
+    if (status == EDGE).any() or len(program.residual_registers):
+        return (), Certificate(False, None, ("a triangle of the construction may be flat: the interval evaluation "
+                                             "decides no mode on that branch",))
+    proper = branches[status == FEASIBLE]
+    modes = assembly_modes(scene, compiled, [(np.zeros(0), branch) for branch in proper], distinct=True)
+    if len(modes) != len(proper):
+        return modes, Certificate(False, None, (f"{len(proper)} branches proper, {len(modes)} verified as modes",))
+    proof = (f"the construction evaluated in interval arithmetic on each of its {len(branches)} branches: every "
+             f"triangle proper on {len(proper)}, one that cannot exist on the others")
     return modes, Certificate(True, None, (), proof)
 
 
