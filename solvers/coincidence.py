@@ -157,13 +157,6 @@ NO_SLIDER_PLAN_NOTE = ("no bilateration plan suits the slider joints ({reason}):
                        "Cartesian system, each verified on the link dimensions and the sliders")
 
 
-#: Why msolve's list where no plan is defined is not certified complete (issue 55): its
-#: modes are verified, but nothing yet checks that its Cartesian model lost no solution
-#: (a model inconsistent with the scene answers "no mode" without an error).
-UNCHECKED_MSOLVE = ("not certified complete: msolve's list is not yet checked against the chain's generic count of "
-                    "complex solutions, and a faulty model would answer less without an error")
-
-
 def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[Plan, tuple[AssemblyMode, ...], str]:
     """Where no plan is defined (``error`` from :func:`solvable_plan`), every mode by
     msolve on the Cartesian system (no plan needed), each verified on the link

@@ -57,6 +57,38 @@ def verified_modes(scene: Scene, plan: Plan, timeout: float = 600.0) -> tuple[As
     return modes_of_configurations(scene, plan, result.configurations, "msolve")
 
 
+def checked_against_generic_count(scene: Scene, timeout: float = 600.0) -> tuple[bool, str]:
+    """Whether msolve's list of ``scene``'s modes can be trusted complete: its count of
+    complex solutions of the Cartesian system over Q (:func:`~.msolve.msolve_solution_count`)
+    equals the chain's generic count — the truss's (:func:`~.mode_counts.cartesian_degree`)
+    or the slider chain's (:func:`~.mode_counts.slider_chain_degree`), doubled per
+    auxiliary root. Then no solution was lost to the model: a model that does not match
+    the scene (issue 55: an irrational ground placed at rounded coordinates, inconsistent
+    with a slider on it) has fewer, and so does a degenerate instance, whose list this
+    cannot certify. Returns the verdict and a sentence saying what was compared. Costs
+    msolve's count on this instance and on a few random ones of the chain."""
+    from .mode_counts import cartesian_degree, slider_chain_degree
+    from .msolve import msolve_solution_count
+
+    try:
+        count, auxiliary = msolve_solution_count(scene, timeout)
+    except (MsolveUnavailable, RuntimeError) as error:
+        return False, f"msolve's count of complex solutions failed ({error})"
+    if scene.sliders:
+        generic = slider_chain_degree(scene.chain, [slider.joint for slider in scene.sliders])[0]
+    else:
+        generic = cartesian_degree(scene.chain)[0]
+    if count is None or generic is None:
+        return False, "the Cartesian system or the chain has a positive-dimensional solution set"
+    expected = generic * 2**auxiliary
+    if count != expected:
+        return False, (f"msolve's Cartesian system has {count} complex solutions where a generic instance of the chain "
+                       f"has {expected}: its list is not certified complete (a degenerate instance, or a model that "
+                       "lost solutions)")
+    doubled = f" ({generic}, doubled per auxiliary root)" if auxiliary else ""
+    return True, f"msolve's Cartesian system has {count} complex solutions, the chain's generic count{doubled}"
+
+
 def modes_of_configurations(scene: Scene, plan: Plan, configurations, method: str) -> tuple[AssemblyMode, ...]:
     """Real configurations of ``scene`` found by a Cartesian ``method`` (msolve, the
     homotopy), each verified on every link dimension and slider and described in

@@ -491,6 +491,63 @@ def test_a_slider_on_a_ground_given_by_squared_length_keeps_its_modes(method):
         assert solution.certificate.complete and solution.certificate.probabilistic is None
 
 
+def _no_plan_slider_chain(by_length: bool = False):
+    """9/N1 with sliders P1, P2, P11, P12, which no slider plan suits (the catalog: 4
+    modes, by msolve), drawn around a configuration; ``by_length``: its ground written by
+    its squared length (irrational length)."""
+    from baranov.enumerate import baranov_trusses
+    from baranov.scene.slider_instances import slider_instance_dict
+
+    data = slider_instance_dict(baranov_trusses(9)[0], ["P1", "P2", "P11", "P12"], np.random.default_rng(6),
+                                rational=True)
+    data.pop("generating_configuration")
+    if by_length:
+        ground = next(link for link in data["links"] if link["name"] == data["ground"])
+        (u, p), (v, q) = ground["joints"].items()
+        ground.pop("joints")
+        ground.update(joints=[u, v], squared_length=(p[0] - q[0]) ** 2 + (p[1] - q[1]) ** 2)
+    return scene_from_dict(data)
+
+
+@needs_msolve
+def test_msolves_list_without_a_plan_is_certified_by_its_count():
+    """Issue 55: where no plan is defined the modes are msolve's; the exact backend
+    certifies them only when msolve's count of complex solutions is the chain's generic
+    count (the model lost none), as on this generic instance."""
+    solution = solve(_no_plan_slider_chain(), method="exact")
+    assert len(solution.assembly_modes) == 4 and solution.certificate.complete
+    assert "has 4 complex solutions, the chain's generic count" in solution.certificate.probabilistic
+
+
+@needs_msolve
+def test_a_model_that_loses_solutions_gives_no_certificate(monkeypatch):
+    """Issue 55's fault brought back on purpose — the ground, given by an irrational
+    length, placed at rounded coordinates in msolve's model — loses solutions, and the
+    count says so: no certificate (it had printed "certified complete" over no mode)."""
+    import baranov.solvers.msolve as msolve
+
+    scene = _no_plan_slider_chain(by_length=True)
+    assert not msolve.exact_ground(scene)
+    faithful = msolve.cartesian_system
+    monkeypatch.setattr(msolve, "cartesian_system",
+                        lambda scene, *args, **kwargs: faithful(scene, *args, rounded_ground=True))
+    solution = solve(scene, method="exact")
+    assert not solution.certificate.complete
+    assert "where a generic instance of the chain has" in solution.certificate.gaps[0]
+
+
+def test_a_degenerate_instance_without_a_plan_is_not_certified():
+    """9/N12 drawn with P1 and P9 at one point: no plan is defined; msolve's 4 modes are
+    verified, but its system has 12 complex solutions where the chain generically has 44:
+    not certified complete."""
+    if find_msolve() is None:
+        pytest.skip("msolve binary not installed (make installs it)")
+    solution = solve(load_scene(Path(__file__).parent / "regressions" / "9-N12-no-plan-coincident-input.json"),
+                     method="exact")
+    assert len(solution.assembly_modes) == 4 and not solution.certificate.complete
+    assert "12 complex solutions where a generic instance of the chain has 44" in solution.certificate.gaps[0]
+
+
 @needs_msolve
 def test_msolve_places_an_irrational_ground_exactly():
     """The 5/B1 example's ground P1P2P3 is given by distances whose frame is irrational:
