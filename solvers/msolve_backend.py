@@ -13,6 +13,7 @@ to measure here).
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
@@ -67,17 +68,13 @@ def checked_against_generic_count(scene: Scene, timeout: float = 600.0) -> tuple
     with a slider on it) has fewer, and so does a degenerate instance, whose list this
     cannot certify. Returns the verdict and a sentence saying what was compared. Costs
     msolve's count on this instance and on a few random ones of the chain."""
-    from .mode_counts import cartesian_degree, slider_chain_degree
     from .msolve import msolve_solution_count
 
     try:
         count, auxiliary = msolve_solution_count(scene, timeout)
     except (MsolveUnavailable, RuntimeError) as error:
         return False, f"msolve's count of complex solutions failed ({error})"
-    if scene.sliders:
-        generic = slider_chain_degree(scene.chain, [slider.joint for slider in scene.sliders])[0]
-    else:
-        generic = cartesian_degree(scene.chain)[0]
+    generic = _generic_count(scene.chain, tuple(sorted(slider.joint for slider in scene.sliders)))
     if count is None or generic is None:
         return False, "the Cartesian system or the chain has a positive-dimensional solution set"
     expected = generic * 2**auxiliary
@@ -87,6 +84,15 @@ def checked_against_generic_count(scene: Scene, timeout: float = 600.0) -> tuple
                        "lost solutions)")
     doubled = f" ({generic}, doubled per auxiliary root)" if auxiliary else ""
     return True, f"msolve's Cartesian system has {count} complex solutions, the chain's generic count{doubled}"
+
+
+@lru_cache(maxsize=256)
+def _generic_count(chain, sliders: tuple[str, ...]) -> int | None:
+    """The chain's generic number of assembly modes over C with ``sliders`` (its own
+    seeded random instances: the same every call, so cached per process)."""
+    from .mode_counts import cartesian_degree, slider_chain_degree
+
+    return slider_chain_degree(chain, list(sliders))[0] if sliders else cartesian_degree(chain)[0]
 
 
 def modes_of_configurations(scene: Scene, plan: Plan, configurations, method: str) -> tuple[AssemblyMode, ...]:
