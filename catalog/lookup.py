@@ -13,6 +13,9 @@ from .files import iter_objects
 
 #: ``<links>/B<k>`` (a thesis name) or ``<links>/N<k>`` (a catalog id).
 TRUSS_NAME = re.compile(r"^(\d+)/([BN])(\d+)$")
+#: What a user may type for one: any case, ``-`` for ``/`` (the examples' file names), or a
+#: thesis name without its link count where it is unique (``B28``).
+_LOOSE_NAME = re.compile(r"^(?:(\d+)[/-])?([BbNn])(\d+)$")
 
 
 class TrussNameError(ValueError):
@@ -30,12 +33,42 @@ def truss(name: str, catalog: Path | None = None) -> KinematicChain:
     >>> chain = truss("9/B28")
     >>> chain.number_of_links, chain.number_of_joints
     (9, 12)
-    >>> truss("7/b1")
-    Traceback (most recent call last):
-    ...
-    baranov.catalog.lookup.TrussNameError: 7/b1: no such truss; did you mean 7/B1? (...)
+    >>> truss("7-b1") == truss("7/B1") and truss("B28") == chain
+    True
     """
     return named_truss(name, catalog)[1]
+
+
+def normalised_truss_name(name: str) -> str | None:
+    """``name`` as a thesis name or catalog id (``9/B28``, ``11/N123``) where it is one in
+    any case or with ``-`` for ``/`` (``7-b1``), or a thesis name without its link count
+    that only one link count has (``B28``, not ``B1``); None otherwise.
+
+    >>> [normalised_truss_name(n) for n in ("7-b1", "11/n64", "B28", "B1", "foo")]
+    ['7/B1', '11/N64', '9/B28', None, None]
+    """
+    match = _LOOSE_NAME.match(name.strip())
+    if not match:
+        return None
+    links, kind, number = match.group(1), match.group(2).upper(), match.group(3)
+    if links is not None:
+        return f"{links}/{kind}{number}"
+    candidates = thesis_names_without_links(name) if kind == "B" else []
+    return candidates[0] if len(candidates) == 1 else None
+
+
+def thesis_names_without_links(name: str) -> list[str]:
+    """The thesis names that ``name`` (``B1``, ``b28``) is, with their link counts.
+
+    >>> thesis_names_without_links("B1"), thesis_names_without_links("b28")
+    (['3/B1', '5/B1', '7/B1', '9/B1'], ['9/B28'])
+    """
+    from . import CATALOG_FOLDER
+
+    wanted = name.strip().upper()
+    names = {t.name for t in THESIS_TRUSSES} | {entry["name"] for links in (3, 5, 7, 9)
+                                                for entry in catalog_entries(links, CATALOG_FOLDER)}
+    return sorted((n for n in names if n.split("/")[1] == wanted), key=natural_sort_key)
 
 
 def named_truss(name: str, catalog: Path | None = None) -> tuple[str, KinematicChain]:
@@ -43,11 +76,9 @@ def named_truss(name: str, catalog: Path | None = None) -> tuple[str, KinematicC
     from . import CATALOG_FOLDER
 
     catalog = CATALOG_FOLDER if catalog is None else catalog
+    name = normalised_truss_name(name) or name
     match = TRUSS_NAME.match(name)
     if not match:
-        if TRUSS_NAME.match(name.upper()):
-            raise TrussNameError(f"{name}: no such truss; did you mean {name.upper()}? (names and ids are "
-                                 "written with a capital B or N)")
         raise TrussNameError(f"{name}: not a truss name (expected e.g. 9/B28 or 11/N123)")
     if name in {t.name for t in THESIS_TRUSSES}:
         published = thesis_truss(name)
@@ -56,7 +87,8 @@ def named_truss(name: str, catalog: Path | None = None) -> tuple[str, KinematicC
     entries = catalog_entries(links, catalog)
     for entry in entries:
         if name in (entry["id"], entry["name"]):
-            return f"{entry['id']} ({entry['name']})", chain_from_link_graph(entry["link_graph6"])
+            title = entry["id"] if entry["name"] == entry["id"] else f"{entry['id']} ({entry['name']})"
+            return title, chain_from_link_graph(entry["link_graph6"])
     if match.group(2) == "N" and not entries and 3 <= links <= 13 and links % 2:
         trusses = baranov_trusses(links)
         index = int(match.group(3))

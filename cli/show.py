@@ -8,7 +8,7 @@ from pathlib import Path
 import networkx as nx
 
 from baranov.catalog.entries import assembly_mode_count
-from baranov.catalog.lookup import TRUSS_NAME, named_truss
+from baranov.catalog.lookup import named_truss, normalised_truss_name, thesis_names_without_links
 from baranov.closure import closure_system
 from baranov.closure.slider_notation import slider_closure_text
 from baranov.planner import best_plan, bilateration_plans
@@ -37,8 +37,10 @@ def resolve_chain(argument: str, catalog: Path | None = None) -> tuple[str, Kine
     or JSON: a list of link pairs, {"links": [[joint names], ...]}, or a scene file), or a
     graph6 string."""
     path = Path(argument)
-    if TRUSS_NAME.match(argument.upper()) and not path.is_file():
+    if normalised_truss_name(argument) and not path.is_file():
         return named_truss(argument, catalog)
+    if len(several := thesis_names_without_links(argument)) > 1 and not path.is_file():
+        raise ShowError(f"{argument}: several thesis trusses have this name: {', '.join(several)}")
     if path.is_file():
         return str(path), _chain_from_text(path.read_text(encoding="utf-8"), str(path))
     return argument, _chain_from_text(argument, "argument")
