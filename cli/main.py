@@ -35,6 +35,9 @@ class UsageError(Exception):
 
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line, no usage block
+        if message.endswith("required: command"):  # a bare `baranov`
+            message = ("a command is required: catalog, show, solve, trace, robot or robots "
+                       "(baranov --help lists them, baranov COMMAND --help shows one)")
         raise UsageError(message)
 
 
@@ -201,7 +204,8 @@ def run_robots(args: argparse.Namespace) -> int:
     for family in families:
         _, robots_published, modes_published = THESIS_ROBOT_FAMILIES.get(family.name, ((), None, None))
         print(f"| {family.name} | {', '.join(family.sliders) or 'none'} | {', '.join(family.architectures)} | "
-              f"{family.robots} | {family.assembly_modes} | {robots_published} robots, {modes_published} modes |")
+              f"{family.robots} | {family.assembly_modes} | {robots_published} robots, {modes_published} "
+              f"mode{'' if modes_published == 1 else 's'} |")
     return 0
 
 

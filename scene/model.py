@@ -448,9 +448,13 @@ def scene_from_dict(data) -> Scene:
     for link in links:
         for joint in link.joints:
             counts.setdefault(joint, []).append(link.name)
+    alone = [joint for joint, on in counts.items() if len(on) == 1]
     for joint, on in counts.items():
         if len(on) == 1:
-            raise SceneError(f"joint {joint}: dangling, only on link {on[0]}")
+            # two joints on one link each are most often one joint misspelt on one of them
+            other = next((o for o in alone if o != joint and counts[o][0] != on[0]), None)
+            hint = f" (and {other} only on link {counts[other][0]}: one name misspelt?)" if other else ""
+            raise SceneError(f"joint {joint}: dangling, only on link {on[0]}{hint}")
         if len(on) > 2:
             raise SceneError(f"joint {joint}: on {len(on)} links ({', '.join(on)}); a joint joins exactly two")
     ground_index = names.index(ground)
