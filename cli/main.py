@@ -33,6 +33,19 @@ class UsageError(Exception):
     """Bad command-line input: reported in one line, exit code 2."""
 
 
+class _MethodsHelp(argparse.HelpFormatter):
+    """Expands ``{methods}`` in a help text to the registered backends, each with its one
+    line: imported only when help is printed (the backends' package takes seconds)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = super()._get_help_string(action) or ""
+        if "{methods}" in text:
+            from baranov.solvers.backends import BACKENDS
+
+            text = text.replace("{methods}", "; ".join(f"{name}: {entry.summary}" for name, entry in BACKENDS.items()))
+        return text
+
+
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line, no usage block
         if message.endswith("required: command"):  # a bare `baranov`
@@ -104,10 +117,11 @@ def _parser() -> argparse.ArgumentParser:
                            "sliders at infinity (thesis ch. 4)")
     show.add_argument("--catalog", type=Path,
                       help="catalog folder for names and ids (default: the installed catalog)")
-    solve = commands.add_parser("solve", help="every assembly mode of a linkage given as a scene file")
+    solve = commands.add_parser("solve", help="every assembly mode of a linkage given as a scene file",
+                                formatter_class=_MethodsHelp)
     solve.add_argument("scene", type=Path, help="scene JSON file (see examples/)")
     solve.add_argument("--method", default="numeric",
-                       help="solving backend: numeric (default), exact, or a baseline for comparison (msolve, …)")
+                       help="solving backend (default numeric) — {methods}")
     solve.add_argument("--format", choices=("table", "json", "csv"), default="table",
                        help="table (default: mode, parameters, signs, residual), json, or csv (with every joint)")
     solve.add_argument("--json", action="store_true", help="the same as --format json")

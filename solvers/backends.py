@@ -55,7 +55,8 @@ def backend(name: str) -> Backend:
 
 
 register_backend("numeric", "baranov.solvers.numeric:solve_numeric",
-                 "every sign branch sampled and bracketed in floating point (docs/numeric.md); slider joints too",
+                 "floating point: interval branch-and-prune, certified, for coupling degrees 0-1, sampling searches "
+                 "otherwise (docs/numeric.md); slider joints too",
                  sliders=True)
 register_backend("exact", "baranov.solvers.exact:solve_exact",
                  "characteristic polynomial over Q, certified real roots and modes (docs/exact.md); slider joints "

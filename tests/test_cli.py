@@ -474,3 +474,13 @@ def test_no_mode_is_called_unassemblable_only_with_a_proof(tmp_path, method, sen
         {"name": "b23", "joints": ["P2", "P3"], "squared_length": 2}]}))
     assert main(["solve", str(scene), "--method", method]) == 0
     assert sentence in capsys.readouterr().out
+
+
+def test_solve_help_lists_every_method():
+    """Issue 57: `solve --help` named numeric, exact and msolve only; homotopy appeared in
+    the error for `--method foo` alone."""
+    from baranov.solvers.backends import available_backends
+
+    result = run("solve", "--help")
+    text = " ".join(result.stdout.split())
+    assert result.returncode == 0 and all(f"{name}:" in text for name in available_backends())
