@@ -124,6 +124,9 @@ def _parser() -> argparse.ArgumentParser:
                        help="solving backend (default numeric) — {methods}")
     solve.add_argument("--format", choices=("table", "json", "csv"), default="table",
                        help="table (default: mode, parameters, signs, residual), json, or csv (with every joint)")
+    solve.add_argument("--parameter", action="append", metavar="PAIR",
+                       help="solve in the best plan whose parameters are among these pairs (repeatable), e.g. P2,P3 "
+                            "as thesis §3.3 publishes 7/B1 (numeric and exact; default: the best plan)")
     solve.add_argument("--json", action="store_true", help="the same as --format json")
     solve.add_argument("--joints", action="store_true", help="table: each mode's joint coordinates below its row")
     solve.add_argument("--plot", type=Path, help="draw every assembly mode into this PNG file")
@@ -249,6 +252,8 @@ def run_solve(args: argparse.Namespace) -> int:
         raise UsageError(f"--time-limit {args.time_limit:g}: a positive number of seconds, for the numeric method")
     scene = load_scene(args.scene)
     options = {"time_limit": args.time_limit} if args.time_limit is not None else {}
+    if args.parameter:
+        options["plan"] = _plan_with_parameters(scene, args.parameter, args.method)
     if args.batch is not None or args.out is not None or args.workers != 1:
         return run_batch(args, scene, options)
     with watching():  # a status line on a terminal while the solve runs
@@ -284,6 +289,26 @@ def run_solve(args: argparse.Namespace) -> int:
     if not args.joints:
         print("(joint coordinates: --joints, or --format csv / json)")
     return 0
+
+
+def _plan_with_parameters(scene, texts: list[str], method: str):
+    """``--parameter P2,P3`` (repeatable): the best plan of the scene's chain (with its
+    sliders, the best slider plan) whose parameters are among these pairs."""
+    if method not in ("numeric", "exact"):
+        raise UsageError(f"--parameter: the {method} method does not solve by a plan; use --method numeric or exact")
+    pairs = []
+    for text in texts:
+        pair = tuple(name.strip() for name in text.split(","))
+        if len(pair) != 2 or not all(pair):
+            raise UsageError(f"--parameter {text}: two joints, e.g. P2,P3")
+        pairs.append(pair)
+    if scene.sliders:
+        from baranov.planner import slider_plan
+
+        return slider_plan(scene.chain, [slider.joint for slider in scene.sliders], parameters=pairs)
+    from baranov.planner import bilateration_plans
+
+    return bilateration_plans(scene.chain, 1, parameters=pairs)[0]
 
 
 def run_batch(args: argparse.Namespace, scene, options: dict) -> int:

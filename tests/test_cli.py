@@ -484,3 +484,12 @@ def test_solve_help_lists_every_method():
     result = run("solve", "--help")
     text = " ".join(result.stdout.split())
     assert result.returncode == 0 and all(f"{name}:" in text for name in available_backends())
+
+
+@pytest.mark.parametrize("method", ["numeric", "exact"])
+def test_solve_in_the_thesis_parameter(method, capsys):
+    """Issue 57: 7/B1's modes in s2,3, as thesis §3.3 publishes them (the best plan's
+    parameter is s1,4)."""
+    assert main(["solve", str(REPO / "examples" / "7-B1.json"), "--parameter", "P2,P3", "--method", method]) == 0
+    out = capsys.readouterr().out
+    assert "coupling degree 1, 8 assembly modes" in out and "s2,3" in out and "39.83534598" in out
