@@ -138,7 +138,7 @@ CASES = [
          (("scene.json", json.dumps(TRIAD)),)),
     # truss names and show
     Case("a thesis name that does not exist", ("show", "9/B29")),
-    Case("a name in lowercase", ("show", "7/b1")),
+    Case("a thesis name without its link count that several trusses have", ("show", "B1")),
     Case("an even link count", ("show", "8/N1")),
     Case("an id beyond the catalog", ("show", "7/N4")),
     Case("zero plans", ("show", "7/B1", "--plans", "0")),
