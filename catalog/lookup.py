@@ -79,6 +79,8 @@ def named_truss(name: str, catalog: Path | None = None) -> tuple[str, KinematicC
     name = normalised_truss_name(name) or name
     match = TRUSS_NAME.match(name)
     if not match:
+        if len(several := thesis_names_without_links(name)) > 1:
+            raise TrussNameError(f"{name}: several thesis trusses have this name: {', '.join(several)}")
         raise TrussNameError(f"{name}: not a truss name (expected e.g. 9/B28 or 11/N123)")
     if name in {t.name for t in THESIS_TRUSSES}:
         published = thesis_truss(name)

@@ -37,10 +37,8 @@ def resolve_chain(argument: str, catalog: Path | None = None) -> tuple[str, Kine
     or JSON: a list of link pairs, {"links": [[joint names], ...]}, or a scene file), or a
     graph6 string."""
     path = Path(argument)
-    if normalised_truss_name(argument) and not path.is_file():
+    if (normalised_truss_name(argument) or thesis_names_without_links(argument)) and not path.is_file():
         return named_truss(argument, catalog)
-    if len(several := thesis_names_without_links(argument)) > 1 and not path.is_file():
-        raise ShowError(f"{argument}: several thesis trusses have this name: {', '.join(several)}")
     if path.is_file():
         return str(path), _chain_from_text(path.read_text(encoding="utf-8"), str(path))
     return argument, _chain_from_text(argument, "argument")

@@ -24,7 +24,7 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
     if scene.mobility > 0:
         raise SolverError(f"mobility {scene.mobility} (3(L-1) - 2J with L = {len(scene.links)} links): the linkage "
                           "moves by its topology, and the backends find the assembly modes of rigid linkages "
-                          "(mobility 0); trace its motion with `baranov trace SCENE` (docs/motion.md)")
+                          "(mobility 0); trace its motion instead: baranov trace SCENE (docs/motion.md)")
     chosen = backend(method)
     if scene.sliders and not chosen.sliders:
         joints = ", ".join(slider.joint for slider in scene.sliders)
