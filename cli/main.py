@@ -33,6 +33,25 @@ class UsageError(Exception):
     """Bad command-line input: reported in one line, exit code 2."""
 
 
+def check_picture(path: Path | None, option: str = "--plot") -> None:
+    """A picture a command is asked to write: its folder must exist and its name end in
+    .png (the drawings are PNG; a .jpg name had been given PNG bytes)."""
+    if path is None:
+        return
+    if not path.parent.is_dir():
+        raise UsageError(f"{option} {path}: folder {path.parent} does not exist")
+    if path.suffix.lower() != ".png":
+        raise UsageError(f"{option} {path}: the picture is a PNG image; give the file a .png name")
+
+
+def write_picture(path: Path, data: bytes) -> None:
+    """``data`` written atomically to ``path``, and a line on stderr saying so."""
+    from baranov.catalog.files import write_atomically
+
+    write_atomically(path, data)
+    print(f"wrote {path}", file=sys.stderr)
+
+
 class _MethodsHelp(argparse.HelpFormatter):
     """Expands ``{methods}`` in a help text to the registered backends, each with its one
     line: imported only when help is printed (the backends' package takes seconds)."""
@@ -166,8 +185,7 @@ def run_robot(args: argparse.Namespace) -> int:
         actuators = [value.strip() for value in args.actuators.split(",")]
     if actuators is None:
         raise UsageError(f"{args.robot}: no actuator values: give --actuators a,b,c or \"actuators\" in the file")
-    if args.plot is not None and not args.plot.parent.is_dir():
-        raise UsageError(f"--plot {args.plot}: folder {args.plot.parent} does not exist")
+    check_picture(args.plot)
     parameter = None
     if args.parameter is not None:
         parameter = tuple(name.strip() for name in args.parameter.split(","))
@@ -178,11 +196,10 @@ def run_robot(args: argparse.Namespace) -> int:
     solution, poses = robot_solution(robot, actuators, args.method, parameter)
     family = robot_family(robot.legs).name
     if args.plot is not None:
-        from baranov.catalog.files import write_atomically
         from baranov.robots import locked_scene
         from baranov.robots.drawing import render_robot  # matplotlib only when drawing
 
-        write_atomically(args.plot, render_robot(robot, locked_scene(robot, actuators), solution))
+        write_picture(args.plot, render_robot(robot, locked_scene(robot, actuators), solution))
     shown = [{"position": list(p.position), "angle": p.angle} for p in poses]
     if args.json:
         print(json.dumps({**solution.to_dict(), "family": family, "poses": shown}, indent=1))
@@ -236,7 +253,6 @@ def _version() -> str:
 
 
 def run_solve(args: argparse.Namespace) -> int:
-    from baranov.catalog.files import write_atomically
     from baranov.scene import load_scene
     from baranov.solvers import ExactSolution, available_backends
     from baranov.solvers import solve as solve_scene
@@ -246,8 +262,7 @@ def run_solve(args: argparse.Namespace) -> int:
 
     if args.method not in available_backends():
         raise UsageError(f"--method {args.method}: choose from {', '.join(available_backends())}")
-    if args.plot is not None and not args.plot.parent.is_dir():
-        raise UsageError(f"--plot {args.plot}: folder {args.plot.parent} does not exist")
+    check_picture(args.plot)
     if args.time_limit is not None and (args.method != "numeric" or not args.time_limit > 0):
         raise UsageError(f"--time-limit {args.time_limit:g}: a positive number of seconds, for the numeric method")
     scene = load_scene(args.scene)
@@ -261,7 +276,7 @@ def run_solve(args: argparse.Namespace) -> int:
     if args.plot is not None:
         from baranov.solvers.drawing import render_modes  # matplotlib only when drawing
 
-        write_atomically(args.plot, render_modes(scene, solution))
+        write_picture(args.plot, render_modes(scene, solution))
     form = "json" if args.json else args.format
     if form == "json":
         print(json.dumps(solution.to_dict(), indent=1))

@@ -54,16 +54,14 @@ def _triangles(text: str | None, default) -> list[tuple[str, str, str]]:
 
 def run_trace(args: argparse.Namespace) -> int:
     """Trace the scene's configuration space; print a summary, or JSON; draw it."""
-    from baranov.catalog.files import write_atomically
     from baranov.motion import one_dof_system, trace
     from baranov.scene import load_scene
 
-    from .main import UsageError
+    from .main import UsageError, check_picture, write_picture
 
     if args.steps < 8:
         raise UsageError(f"--steps {args.steps}: at least 8")
-    if args.plot is not None and not args.plot.parent.is_dir():
-        raise UsageError(f"--plot {args.plot}: folder {args.plot.parent} does not exist")
+    check_picture(args.plot)
     scene = load_scene(args.scene)
     parameters = None
     if args.parameter:
@@ -90,7 +88,7 @@ def run_trace(args: argparse.Namespace) -> int:
     if args.plot is not None:
         from baranov.motion.drawing import render_trace
 
-        write_atomically(args.plot, render_trace(system, traced, tracers, triangles, fixed))
+        write_picture(args.plot, render_trace(system, traced, tracers, triangles, fixed))
     if args.animate is not None:
         _animate(args.animate, scene, traced, driven, tracers, driver)
     if args.json:
@@ -262,17 +260,16 @@ def _driven(system, traced, driver, count: int):
 def _animate(path: Path, scene, traced, driven, tracers: list[str], driver) -> None:
     """The GIF of the motion from the longest driven piece on through its branch points
     (:func:`baranov.motion.driving.followed`), written atomically."""
-    from baranov.catalog.files import write_atomically
     from baranov.motion.animation import render_animation
     from baranov.motion.driving import followed
 
-    from .main import UsageError
+    from .main import UsageError, write_picture
 
     if not driven:
         raise UsageError(f"--animate {path}: the input reaches none of its --grid values on the traced pieces")
     longest = max(driven, key=lambda branch: len(branch.points))
     motion = followed(traced, driven, longest.piece)
-    write_atomically(path, render_animation(scene, motion, tracers, driver.name, "°" if driver.kind == "angle" else ""))
+    write_picture(path, render_animation(scene, motion, tracers, driver.name, "°" if driver.kind == "angle" else ""))
 
 
 def _degrees(scene, tracers: list[str]) -> dict[str, int | str]:

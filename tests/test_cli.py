@@ -326,9 +326,13 @@ def test_solve_plot_writes_a_png(tmp_path):
     result = run("solve", str(REPO / "examples" / "5-B1.json"), "--plot", str(target))
     assert result.returncode == 0
     assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert result.stderr == f"wrote {target}\n"  # issue 57: it said nothing
     assert not list(tmp_path.glob(".*.tmp"))
     missing = run("solve", str(REPO / "examples" / "5-B1.json"), "--plot", str(tmp_path / "no" / "x.png"))
     assert missing.returncode == 2 and "does not exist" in missing.stderr
+    # issue 57: a .jpg name had been given PNG bytes
+    jpeg = run("solve", str(REPO / "examples" / "5-B1.json"), "--plot", str(tmp_path / "modes.jpg"))
+    assert jpeg.returncode == 2 and "give the file a .png name" in jpeg.stderr and not (tmp_path / "modes.jpg").exists()
 
 
 def test_exact_solve_says_what_it_certifies():

@@ -136,6 +136,8 @@ CASES = [
          (("scene.json", json.dumps(TRIAD)),)),
     Case("a plot into a missing folder", ("solve", "scene.json", "--plot", "no/such/modes.png"),
          (("scene.json", json.dumps(TRIAD)),)),
+    Case("a plot named as another format", ("solve", "scene.json", "--plot", "modes.jpg"),
+         (("scene.json", json.dumps(TRIAD)),)),
     # truss names and show
     Case("a thesis name that does not exist", ("show", "9/B29")),
     Case("a thesis name without its link count that several trusses have", ("show", "B1")),
