@@ -37,7 +37,7 @@ from ..modes import AssemblyMode, Certificate, MovableLinkageError, Solution, So
 from ..placement import NEARLY_FLAT, compile_scene, placed_from_ground, polished_mode, read_back
 from ..polish import polish_configurations, polish_on_constraints
 from ..verification import RESIDUAL_TOLERANCE, distance_bound, placement_residuals
-from .branch_and_prune import EVALUATION_BUDGET, REASONS, prune_one_parameter, searched_domain
+from .branch_and_prune import REASONS, evaluation_budget, prune_one_parameter, searched_domain
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
 from .two_parameter import ridge_roots, shared_curve, two_parameter_roots
 
@@ -121,7 +121,7 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
         return (), Certificate(False, None, ("the time limit passed before the branch-and-prune ran",))
     domain = searched_domain(scene, plan)
     pruned = prune_one_parameter(compiled, branches, domain, scene.known,
-                                 budget=int(min(EVALUATION_BUDGET, remaining / SECONDS_PER_BOX)))
+                                 budget=int(min(evaluation_budget(len(branches)), remaining / SECONDS_PER_BOX)))
     name = compiled.parameter_names[0]
     gaps = tuple(f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branches[int(k)])}: {REASONS[int(why)]}"
                  for low, high, k, why in pruned.unresolved)

@@ -71,6 +71,15 @@ MINIMUM_WIDTH = 1e-12
 #: Box evaluations allowed per solve, over all branches (a complete 9-link solve takes a few
 #: thousand; a linkage that moves, its condition 0 along a range, would take them all).
 EVALUATION_BUDGET = 20_000
+#: ... and at least this many per branch: 13/B1 (Watt–Baranov, 64 branches) needs 22 834
+#: boxes to certify its 76 modes (0.25 s), and stopped at 20 000 it left them to the
+#: searches, at twice c64bf01's time (docs/bench/numeric-speed.md).
+BOXES_PER_BRANCH = 400
+
+
+def evaluation_budget(branches: int) -> int:
+    """Box evaluations allowed to a solve with ``branches`` free-sign branches."""
+    return max(EVALUATION_BUDGET, BOXES_PER_BRANCH * branches)
 #: Newton contractions of a certified box at most (each at least halves it, quadratically near the root).
 CONTRACTIONS = 30
 
