@@ -21,7 +21,7 @@ import time
 import numpy as np
 
 from baranov.closure import CompiledSystem, sign_branches
-from baranov.closure.interval_program import EDGE, FEASIBLE, enclosing, evaluate_boxes, interval_program
+from baranov.closure.interval_program import EDGE, FEASIBLE, evaluate_boxes, interval_program
 from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
@@ -37,7 +37,7 @@ from ..modes import AssemblyMode, Certificate, MovableLinkageError, Solution, So
 from ..placement import NEARLY_FLAT, compile_scene, placed_from_ground, polished_mode, read_back
 from ..polish import polish_configurations, polish_on_constraints
 from ..verification import RESIDUAL_TOLERANCE, distance_bound, placement_residuals
-from .branch_and_prune import REASONS, evaluation_budget, prune_one_parameter, searched_domain
+from .branch_and_prune import REASONS, evaluation_budget, instance_inputs, prune_one_parameter, searched_domain
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
 from .two_parameter import ridge_roots, shared_curve, two_parameter_roots
 
@@ -149,10 +149,9 @@ def _certified_construction(scene: Scene, compiled: CompiledSystem, branches: np
     if scene.sliders:
         return (), Certificate(False, None, ("slider chains are not yet run through the interval program",))
     program = compiled.straight_line_program()
-    known = [scene.known.get(pair, compiled.known[pair]) for pair in program.known_pairs]
-    fixed = np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float)
     empty = np.zeros((len(branches), 0))
-    _, _, status = evaluate_boxes(interval_program(program), *enclosing(known), fixed, empty, empty, branches)
+    _, _, status = evaluate_boxes(interval_program(program), *instance_inputs(compiled, scene.known), empty, empty,
+                                  branches)
     if (status == EDGE).any() or len(program.residual_registers):
         return (), Certificate(False, None, ("a triangle of the construction may be flat: the interval evaluation "
                                              "decides no mode on that branch",))

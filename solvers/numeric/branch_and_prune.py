@@ -294,9 +294,7 @@ def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: 
     """
     program = compiled.straight_line_program()
     reduced = interval_program(program)
-    known = [(exact_known or {}).get(pair, compiled.known[pair]) for pair in program.known_pairs]
-    base_c, base_e = instance_registers(reduced, *enclosing(known),
-                                        np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float))
+    base_c, base_e = instance_registers(reduced, *instance_inputs(compiled, exact_known))
     low, high = (float(end) for end in domain)
     found, left, evaluations = _prune(reduced.instructions, reduced.values, base_c, base_e,
                                       int(program.parameter_registers[0]),
@@ -304,6 +302,15 @@ def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: 
                                       int(program.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
                                       low, high, minimum_width * high, budget)
     return PrunedRoots(_distinct(found), _merged(left), evaluations, (low, high))
+
+
+def instance_inputs(compiled: CompiledSystem, exact_known=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The inputs of the plan's program for one instance: the float intervals around the
+    known squared distances (exact where ``exact_known`` gives them: pair → int, Fraction,
+    …; else the floats) and the link steps' orientation signs."""
+    program = compiled.straight_line_program()
+    known = [(exact_known or {}).get(pair, compiled.known[pair]) for pair in program.known_pairs]
+    return (*enclosing(known), np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float))
 
 
 def _distinct(roots: np.ndarray) -> np.ndarray:

@@ -52,6 +52,7 @@ from .branch_and_prune import (
     MINIMUM_WIDTH,
     OVER_BUDGET,
     PrunedRoots,
+    instance_inputs,
 )
 
 _COMPILE = dict(cache=True, nogil=True, error_model="numpy")
@@ -277,9 +278,7 @@ def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
     """
     program = compiled.straight_line_program()
     reduced = models.interval_program(program)
-    known = [(exact_known or {}).get(pair, compiled.known[pair]) for pair in program.known_pairs]
-    base_c, base_e = models.instance_registers(reduced, *models.enclosing(known),
-                                        np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float))
+    base_c, base_e = models.instance_registers(reduced, *instance_inputs(compiled, exact_known))
     box = np.array([float(end) for interval in domain for end in interval])
     derivatives = np.ascontiguousarray(reduced.residual_derivatives, dtype=np.int64)
     found, left, evaluations = _prune_plane(
