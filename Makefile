@@ -46,7 +46,7 @@ test: $(STAMP)  ## lint (ruff, configured in pyproject.toml) and the default tes
 	$(BIN)/ruff check .
 	$(BIN)/pytest -q -n 2
 
-test-slow: $(STAMP)  ## long checks (not timed as a whole; README gives the parts measured separately): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 800 coupling-2 random instances), whole catalog, and the checks of 13 s or more each that left the default suite
+test-slow: $(STAMP)  ## long checks (not timed as a whole; docs/development.md gives the parts measured separately): 13-link enumeration by both methods, numeric vs exact completeness (5400 coupling-1 and 800 coupling-2 random instances), whole catalog, and the checks of 13 s or more each that left the default suite
 	$(BIN)/pytest -q -n 2 -m slow
 
 fuzz: $(STAMP)  ## the long fuzz run of the scene loader, the solvers and the scene re-encodings (tests/test_fuzz.py, tests/test_reencoding.py; FUZZ cases per test, default 10⁴)

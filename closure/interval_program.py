@@ -366,10 +366,15 @@ def _root(c, g, e, d, a, radius, feasible):  # pragma: no cover - compiled
                 feasible[0] = max(feasible[0], rounded_down(-reach / g[a, 0]))
             else:
                 feasible[1] = min(feasible[1], rounded_up(-reach / g[a, 0]))
-        top = rounded_up(np.sqrt(high))
-        c[d], e[d] = 0.5 * top, _up(0.5 * top)
+        # where the radicand x is in [0, r²] (the rest of the box is infeasible),
+        # x/r ≤ √x ≤ x/r + r/4 (chord and parallel tangent): a model that keeps x's slopes
+        r = rounded_up(np.sqrt(high))
+        quarter = 0.125 * r
+        magnitude = abs(c[a]) / r + quarter
         for k in range(parameters):
-            g[d, k] = 0.0
+            g[d, k] = g[a, k] / r
+            magnitude += abs(g[d, k]) * radius[k]
+        c[d], e[d] = c[a] / r + quarter, _up(e[a] / r + quarter + _SLACK * magnitude)
     return status
 
 

@@ -1,5 +1,5 @@
 """Published counts of trusses, Assur groups, slider chains and coupling degrees, and
-where this project's verified counts differ from them (README "Honesty about the
+where this project's verified counts differ from them (the project's rule of "honesty about the
 literature": both are kept, the verified value tested, the published one cited)."""
 
 #: Literature values (thesis Table 3.1 after Yang & Yao 1994; slider chains: thesis ch. 4).

@@ -70,7 +70,7 @@ def solve_many(scene: Scene, instances: Iterable, columns: Sequence[str] | None 
     each inherits it where processes fork).
 
     Cost: the plan search once, then a single solve's per instance (7/B1, numeric: 19.8 ms
-    per instance in one process, 10.6 ms with two workers; README, "Many instances of one
+    per instance in one process, 10.6 ms with two workers; docs/solving.md, "Many instances of one
     linkage"); the work of one process is not yet shared across instances.
 
     >>> from baranov.scene import load_scene

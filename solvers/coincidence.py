@@ -31,9 +31,9 @@ from baranov.closure import sign_branches
 from baranov.planner import ALTERNATIVE_PLANS, Plan, SliderPlanError, best_plan, plan_avoiding, slider_plan
 from baranov.scene import Scene
 
-from .modes import AssemblyMode, MovableLinkageError, Solution, SolverError
+from .modes import AssemblyMode, Certificate, MovableLinkageError, Solution, SolverError
 from .msolve import find_msolve, msolve_modes
-from .msolve_backend import described_mode, verified_modes
+from .msolve_backend import MSOLVE_MONTE_CARLO, checked_against_generic_count, described_mode, verified_modes
 from .placement import compile_scene
 from .verification import RESIDUAL_TOLERANCE, distance_bound, joint_residual, same_mode, sorted_modes
 
@@ -157,11 +157,14 @@ NO_SLIDER_PLAN_NOTE = ("no bilateration plan suits the slider joints ({reason}):
                        "Cartesian system, each verified on the link dimensions and the sliders")
 
 
-def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[Plan, tuple[AssemblyMode, ...], str]:
+def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[Plan, tuple[AssemblyMode, ...], Certificate]:
     """Where no plan is defined (``error`` from :func:`solvable_plan`), every mode by
     msolve on the Cartesian system (no plan needed), each verified on the link
     dimensions and described in the terms of the best plan (returned too, though it is
-    undefined at the coincidence); and the note saying so. Raises
+    undefined at the coincidence); and the certificate: complete (one Monte Carlo step,
+    msolve's) where msolve's count of complex solutions is the generic count
+    (:func:`~.msolve_backend.checked_against_generic_count`), else not, with the note
+    saying why no plan served. Raises
     ``error`` again without msolve, for a scene with float dimensions, or where msolve
     fails or a mode does not verify (issue 25: 9/N12 drawn with P1 and P9 of one link at
     one point, which both backends refused where msolve lists 4 modes)."""
@@ -175,9 +178,12 @@ def modes_without_plan(scene: Scene, error: NoPlanError) -> tuple[Plan, tuple[As
     except SolverError as failure:
         raise NoPlanError(f"{error}; {failure}") from None
     pairs = ", ".join(sorted("=".join(sorted(pair)) for pair, value in scene.known.items() if value == 0))
-    if not pairs:  # a slider chain that none of the plans tried suits (planner/sliders.py)
-        return plan, sorted_modes(modes), NO_SLIDER_PLAN_NOTE.format(reason=error)
-    return plan, sorted_modes(modes), NO_PLAN_NOTE.format(pairs=pairs)
+    # no pair coincides: a slider chain that none of the plans tried suits (planner/sliders.py)
+    note = NO_PLAN_NOTE.format(pairs=pairs) if pairs else NO_SLIDER_PLAN_NOTE.format(reason=error)
+    checked, comparison = checked_against_generic_count(scene)
+    certificate = (Certificate(True, f"{note}; {comparison}; {MSOLVE_MONTE_CARLO}") if checked else
+                   Certificate(False, None, (f"{note}; {comparison}",)))
+    return plan, sorted_modes(modes), certificate
 
 
 def with_coincident_modes(scene: Scene, plan: Plan, pairs: Iterable[frozenset[str]], values: list[float],

@@ -58,6 +58,10 @@ def verified_modes(scene: Scene, plan: Plan, timeout: float = 600.0) -> tuple[As
     return modes_of_configurations(scene, plan, result.configurations, "msolve")
 
 
+#: The probabilistic step of a list certified through msolve's count.
+MSOLVE_MONTE_CARLO = "msolve's multi-modular Gröbner basis over Q is correct with high probability"
+
+
 def checked_against_generic_count(scene: Scene, timeout: float = 600.0) -> tuple[bool, str]:
     """Whether msolve's list of ``scene``'s modes can be trusted complete: its count of
     complex solutions of the Cartesian system over Q (:func:`~.msolve.msolve_solution_count`)

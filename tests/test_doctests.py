@@ -3,6 +3,7 @@
 import doctest
 import importlib
 import pkgutil
+from pathlib import Path
 
 import pytest
 
@@ -36,9 +37,13 @@ def test_docstring_examples(name):
     assert result.failed == 0
 
 
-def test_readme_examples():
-    from pathlib import Path
+ROOT = Path(__file__).resolve().parents[1]
+PAGES = ["README.md"] + sorted(str(page.relative_to(ROOT)) for page in (ROOT / "docs").glob("*.md")
+                               if ">>> " in page.read_text())
 
-    readme = Path(__file__).resolve().parents[1] / "README.md"
-    result = doctest.testfile(str(readme), module_relative=False, optionflags=doctest.ELLIPSIS)
+
+@pytest.mark.parametrize("page", PAGES)
+def test_documentation_examples(page):
+    """The Python examples of README.md and of every docs/ page run as written."""
+    result = doctest.testfile(str(ROOT / page), module_relative=False, optionflags=doctest.ELLIPSIS)
     assert result.failed == 0

@@ -622,6 +622,7 @@ def _check_plan_against_msolve(chain, sliders: list[str], seed: int):
     for method in ("numeric", "exact"):
         solution = solve(scene, method=method)
         assert not any("msolve" in sentence for sentence in solution.undecided), method
+        assert "msolve" not in str(solution.certificate), method  # no fallback to msolve's list
         found = [mode.joints for mode in solution.assembly_modes]
         assert compare_modes(found, oracle)[:2] == (0, 0), method
         assert compare_modes(found, [generating])[0] == 0, method

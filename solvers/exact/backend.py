@@ -50,7 +50,6 @@ from ..coincidence import (
     with_modes_where_plan_divides_by_zero,
 )
 from ..modes import AssemblyMode, Certificate, ExactSolution, SolverError
-from ..msolve_backend import checked_against_generic_count
 from ..placement import compile_scene, placed_from_ground
 from ..progress import report_stage
 from ..verification import RESIDUAL_TOLERANCE, joint_residual, same_mode, sorted_modes
@@ -65,9 +64,6 @@ from .characteristic import (
 )
 from .coupling_two import characteristic_polynomial_two, common_points
 from .fibers import Fiber
-
-#: The probabilistic step of a list certified through msolve's count.
-MSOLVE_MONTE_CARLO = "msolve's multi-modular Gröbner basis over Q is correct with high probability"
 
 #: A branch is a candidate at a real root when its closure residual's ball there contains
 #: 0 and is narrower than this (relative; the configuration is then verified to 1e-8 on
@@ -92,10 +88,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     try:
         plan = plan or exact_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
-        described, modes, note = modes_without_plan(scene, error)
-        checked, comparison = checked_against_generic_count(scene)
-        certificate = (Certificate(True, f"{note}; {comparison}; {MSOLVE_MONTE_CARLO}") if checked else
-                       Certificate(False, None, (f"{note}; {comparison}",)))
+        described, modes, certificate = modes_without_plan(scene, error)
         return ExactSolution.of_plan("exact", scene, described, modes, certificate=certificate)
     branches = sign_branches(len(plan.free_sign_triangles))
     polynomial: CharacteristicPolynomial | None = None

@@ -53,8 +53,8 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     try:
         plan = plan or solvable_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
-        described, modes, note = modes_without_plan(scene, error)
-        return Solution.of_plan("numeric", scene, described, modes, undecided=(note,))
+        described, modes, certificate = modes_without_plan(scene, error)
+        return Solution.of_plan("numeric", scene, described, modes, certificate=certificate)
     compiled = compile_scene(scene, plan)
     branches = sign_branches(len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
@@ -89,7 +89,8 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2; "
                           "--method homotopy solves any (docs/homotopy.md)")
     modes = assembly_modes(scene, compiled, candidates, polished)
-    certificate = None if degree == 2 else certificate
+    if degree == 2:
+        certificate = Certificate(False, None, (PLANE_NOT_PROVEN.format(parameters=", ".join(compiled.parameter_names)),))
     if degree > 0 and coincidences:
         modes, unsettled = _modes_of_coincident_joints(scene, plan, samples, modes)
         undecided += unsettled
@@ -99,6 +100,11 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     modes, near_misses = _without_near_misses(scene, compiled, modes)
     return Solution.of_plan("numeric", scene, plan, modes, undecided=tuple(undecided) + valleys + near_misses,
                             certificate=certificate)
+
+
+#: Why a coupling-2 solve carries no proof (docs/numeric.md, "What the numeric backend proves").
+PLANE_NOT_PROVEN = ("coupling 2: the plane of ({parameters}) is searched by sampling, Newton's method and "
+                    "the ridge and edge searches, not yet by an interval branch-and-prune")
 
 
 #: Seconds one box evaluation of the branch-and-prune takes at most, about (7/B1: 6 µs;
