@@ -28,7 +28,11 @@ derivative's models computed only where the values leave the box undecided:
   range holds 0: a root on a flat triangle, or only the edge itself), or a derivative that
   may vanish or is unbounded (a double root, joints that the plan divides by at one point).
 
-Every branch's boxes run in one compiled loop (numba). What the loop proves: each
+Every branch's boxes run in one compiled loop (numba), in rounds: each round takes up to
+``columns`` boxes of any branches and kind (searched, certified about a root's estimate,
+contracted) off the work stack, evaluates them side by side
+(:func:`~baranov.closure.interval_program.evaluate_models` over the columns), and decides
+each as above; the order of the decisions changes, not the decisions. What the loop proves: each
 certified box holds exactly one real root of its branch, and no real root of any branch
 lies in the domain outside the certified and unresolved boxes.
 """
@@ -44,6 +48,7 @@ import numpy as np
 
 from baranov.closure import CompiledSystem
 from baranov.closure.interval_program import (
+    COLUMNS,
     EDGE,
     FEASIBLE,
     INFEASIBLE,
@@ -52,8 +57,8 @@ from baranov.closure.interval_program import (
     instance_registers,
     interval_program,
     load_box,
-    load_instance,
     model_range,
+    new_registers,
     rounded_down,
     rounded_up,
 )
@@ -116,32 +121,6 @@ def _divide(al, ah, bl, bh):  # pragma: no cover - compiled
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _decide(instructions, work, parameter, sign_registers, signs, residual, derivative, a, b
-            ):  # pragma: no cover - compiled
-    """The models of f and f′ over [a, b] (one evaluation): (status, f's center, slope,
-    remainder, f′'s range low and high, the box's radius, the range of u where the
-    triangles at an edge can exist, the part of [a, b] where f's model can vanish);
-    status EXCLUDED (no derivatives computed) where that part is empty."""
-    c, g, e, radius, feasible, low, high, parameters, values = work
-    low[0], high[0] = a, b
-    load_box(parameters, sign_registers, low, high, signs, c, g, e, radius)
-    feasible[0], feasible[1] = -np.inf, np.inf
-    status = evaluate_models(instructions[:values[0]], c, g, e, radius, feasible)
-    center, slope, rest = c[residual], g[residual, 0], e[residual]
-    middle = 0.5 * (a + b)
-    z0, z1 = max(a, rounded_down(middle + feasible[0])), min(b, rounded_up(middle + feasible[1]))
-    if status != INFEASIBLE:
-        z0, z1 = _linear_zeros(center, slope, rest, middle, radius[0], z0, z1)
-    if status == INFEASIBLE or z0 > z1:
-        return EXCLUDED, center, slope, rest, -np.inf, np.inf, radius[0], z0, z1
-    g0, g1 = -np.inf, np.inf
-    if status == FEASIBLE:
-        evaluate_models(instructions[values[0]:], c, g, e, radius, feasible)
-        g0, g1 = model_range(c, g, e, radius, derivative)
-    return status, center, slope, rest, g0, g1, radius[0], z0, z1
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
 def _linear_zeros(center, slope, rest, middle, radius, a, b):  # pragma: no cover - compiled
     """The part of [a, b] where center + slope (x − middle) ± rest can vanish, |x − middle| ≤ radius."""
     if slope == 0.0:
@@ -152,46 +131,6 @@ def _linear_zeros(center, slope, rest, middle, radius, a, b):  # pragma: no cove
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _contracted(instructions, work, parameter, sign_registers, signs, residual, derivative, n0, n1
-                ):  # pragma: no cover - compiled
-    """A box [n0, n1] known to hold exactly one root, on which f is monotone, shrunk to
-    where f's linear model can vanish and to its Newton image while that takes off a
-    tenth; (lower, upper, evaluations)."""
-    evaluations = 0
-    for _ in range(CONTRACTIONS):
-        evaluations += 1
-        status, center, slope, rest, g0, g1, _, c0, c1 = _decide(instructions, work, parameter,
-                                                                 sign_registers, signs, residual, derivative, n0, n1)
-        if status != FEASIBLE or not (g0 > 0.0 or g1 < 0.0):
-            break
-        m0, m1 = _newton_image(n0, n1, g0, g1, center, rest)
-        c0, c1 = max(c0, m0), min(c1, m1)
-        if c0 > c1 or c1 - c0 >= 0.9 * (n1 - n0):
-            break
-        n0, n1 = c0, c1
-    return n0, n1, evaluations
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def _certified_in(instructions, work, parameter, sign_registers, signs, residual, derivative, a, b
-                  ):  # pragma: no cover - compiled
-    """Whether [a, b] holds exactly one root (1, and the Newton image holding it), none
-    (0) or is undecided (-1), by one evaluation."""
-    status, center, slope, rest, g0, g1, _, _, _ = _decide(instructions, work, parameter,
-                                                           sign_registers, signs, residual, derivative, a, b)
-    if status == EXCLUDED:
-        return 0, a, b
-    if status != FEASIBLE or not (g0 > 0.0 or g1 < 0.0):
-        return -1, a, b
-    n0, n1 = _newton_image(a, b, g0, g1, center, rest)
-    if n1 < a or n0 > b:
-        return 0, a, b
-    if a < n0 and n1 < b:
-        return 1, n0, n1
-    return -1, a, b
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
 def _newton_image(a, b, g0, g1, center, rest):  # pragma: no cover - compiled
     """N([a, b]) = m − f(m)/f′(X): f(m) in center ± rest, f′(X) in [g0, g1] (0 excluded)."""
     m = 0.5 * (a + b)
@@ -199,79 +138,110 @@ def _newton_image(a, b, g0, g1, center, rest):  # pragma: no cover - compiled
     return rounded_down(m - q1), rounded_up(m - q0)
 
 
+#: The work on a box (:func:`_prune`): search it; test the box about f's linear model's
+#: root for exactly one root; contract a box known to hold exactly one root.
+SEARCH, CERTIFY, CONTRACT = 0, 1, 2
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _evaluated(instructions, values, registers, feasible, status, residual, derivative, low, high, count, out
+               ):  # pragma: no cover - compiled
+    """Evaluate the boxes [low[j], high[j]] loaded in the first ``count`` columns: row j of
+    ``out`` gets (status, f's center, slope and remainder, f′'s range low and high, and the
+    part [z0, z1] of the box where the triangles at an edge can exist and f's linear model
+    vanish); status EXCLUDED where that part is empty. f′'s models are computed only if
+    some box is FEASIBLE and not excluded."""
+    c, g, e, radius, scratch = registers
+    for j in range(c.shape[1]):
+        status[j] = FEASIBLE
+        feasible[0, j], feasible[1, j] = -np.inf, np.inf
+    evaluate_models(instructions[:values], c, g, e, radius, feasible, status, scratch)
+    needed = False
+    for j in range(count):
+        a, b = low[j], high[j]
+        center, slope, rest = c[residual, j], g[0, residual, j], e[residual, j]
+        middle = 0.5 * (a + b)
+        z0, z1 = max(a, rounded_down(middle + feasible[0, j])), min(b, rounded_up(middle + feasible[1, j]))
+        if status[j] != INFEASIBLE:
+            z0, z1 = _linear_zeros(center, slope, rest, middle, radius[0, j], z0, z1)
+        kind = EXCLUDED if status[j] == INFEASIBLE or z0 > z1 else status[j]
+        out[j, 0], out[j, 1], out[j, 2], out[j, 3] = kind, center, slope, rest
+        out[j, 4], out[j, 5], out[j, 6], out[j, 7] = -np.inf, np.inf, z0, z1
+        needed = needed or kind == FEASIBLE
+    if needed:
+        evaluate_models(instructions[values:], c, g, e, radius, feasible, status, scratch)
+        for j in range(count):
+            if out[j, 0] == FEASIBLE:
+                out[j, 4], out[j, 5] = model_range(c, g, e, radius, derivative, j)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _split(stack, unresolved, a, b, k, status, z0, z1, minimum_width):  # pragma: no cover - compiled
+    """An undecided box [a, b] of branch k: searched again as [z0, z1] where that is less
+    than half of it, else bisected, or left unresolved below ``minimum_width``."""
+    if z1 - z0 < 0.5 * (b - a):
+        stack.append((z0, z1, k, SEARCH, 0.0, 0.0, 0.0, 0.0, 0))
+    elif b - a <= minimum_width:
+        unresolved.append((a, b, k, AT_EDGE if status == EDGE else FLAT_DERIVATIVE))
+    else:
+        middle = 0.5 * (z0 + z1)
+        stack.append((middle, z1, k, SEARCH, 0.0, 0.0, 0.0, 0.0, 0))
+        stack.append((z0, middle, k, SEARCH, 0.0, 0.0, 0.0, 0.0, 0))
+
+
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def _prune(instructions, values, base_c, base_e, parameter, sign_registers, branches, residual, derivative, low, high,
-           minimum_width, budget):  # pragma: no cover - compiled
+           minimum_width, budget, columns):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_one_parameter` over every branch (the
-    first ``values`` instructions compute the values, the rest the derivatives)."""
-    registers = base_c.shape[0] + 1  # and a scratch register
-    work = (np.empty(registers), np.zeros((registers, 1)), np.empty(registers), np.zeros(1),
-            np.empty(2), np.empty(1), np.empty(1), np.array([parameter]), np.array([values]))
-    load_instance(base_c, base_e, work[0], work[1], work[2])
-    stack = [(low, high, 0)]
-    stack.pop()
-    for k in range(branches.shape[0]):
-        stack.append((low, high, k))
+    first ``values`` instructions compute the values, the rest the derivatives): rounds
+    of up to ``columns`` boxes, each round one evaluation of the program side by side."""
+    registers = new_registers(base_c, base_e, 1, columns)
+    c, g, e, radius, _ = registers
+    feasible, status, out = np.empty((2, columns)), np.empty(columns, dtype=np.int64), np.empty((columns, 8))
+    parameters, box_low, box_high = np.array([parameter]), np.empty(1), np.empty(1)
+    lows, highs = np.empty(columns), np.empty(columns)
+    stack = [(low, high, 0, SEARCH, 0.0, 0.0, 0.0, 0.0, 0)]
+    for k in range(1, branches.shape[0]):
+        stack.append((low, high, k, SEARCH, 0.0, 0.0, 0.0, 0.0, 0))
+    batch = [stack[0]]
     roots = [(0.0, 0.0, 0, 0.0, 0.0)]
     roots.pop()
     unresolved = [(0.0, 0.0, 0, 0)]
     unresolved.pop()
     evaluations = 0
     while len(stack) > 0:
-        a, b, k = stack.pop()
-        if evaluations >= budget:
-            unresolved.append((a, b, k, OVER_BUDGET))
-            continue
-        signs = branches[k]
-        evaluations += 1
-        # [z0, z1]: where the triangles at an edge can exist and f's linear model vanish
-        status, center, slope, rest, g0, g1, radius, z0, z1 = _decide(instructions, work, parameter,
-                                                                     sign_registers, signs, residual, derivative, a, b)
-        if status == EXCLUDED:
-            continue
-        middle = 0.5 * (a + b)
-        if status == FEASIBLE and (g0 > 0.0 or g1 < 0.0):  # f monotone on [a, b]: one root at most
-            n0, n1 = _newton_image(a, b, g0, g1, center, rest)
-            if n1 < a or n0 > b:
+        batch.clear()
+        while len(stack) > 0 and len(batch) < columns:
+            item = stack.pop()
+            a, b, k, kind, u0, u1 = item[0], item[1], item[2], item[3], item[4], item[5]
+            if evaluations >= budget:  # a box being contracted holds its root already
+                if kind == CONTRACT:
+                    roots.append((a, b, k, u0, u1))
+                else:
+                    unresolved.append((a, b, k, OVER_BUDGET) if kind == SEARCH else (u0, u1, k, OVER_BUDGET))
                 continue
-            if a < n0 and n1 < b:  # exactly one root, in [n0, n1]
-                n0, n1, spent = _contracted(instructions, work, parameter, sign_registers, signs,
-                                            residual, derivative, n0, n1)
-                evaluations += spent
-                roots.append((n0, n1, k, a, b))
-                continue
-            z0, z1 = max(z0, n0), min(z1, n1)
-            if z0 > z1:
-                continue
-            # f is monotone on [a, b], so its one root, if any, is in [z0, z1], where f's
-            # linear model vanishes: certify it on a box three times as wide as that set,
-            # centred on the model's root (it may reach past [a, b]: a root found twice is
-            # merged by its uniqueness boxes)
-            estimate, spread = middle - center / slope, 3.0 * rest / abs(slope)
-            y0, y1 = estimate - spread, estimate + spread
-            if slope != 0.0:
-                evaluations += 1
-                found, n0, n1 = _certified_in(instructions, work, parameter, sign_registers, signs,
-                                              residual, derivative, y0, y1)
-                if found == 1 and (n1 < a or n0 > b):
-                    continue  # the root of [y0, y1] lies outside [a, b], which then holds none
-                if found == 1:
-                    n0, n1, spent = _contracted(instructions, work, parameter, sign_registers,
-                                                signs, residual, derivative, n0, n1)
-                    evaluations += spent
-                    roots.append((n0, n1, k, y0, y1))
-                    continue
-                if found == 0:  # no root in [y0, y1] ⊇ [z0, z1], hence none in [a, b]
-                    continue
-        if z1 - z0 < 0.5 * (b - a):
-            stack.append((z0, z1, k))
+            evaluations += 1
+            box_low[0], box_high[0] = a, b
+            j = len(batch)
+            lows[j], highs[j] = a, b
+            load_box(parameters, sign_registers, box_low, box_high, branches[k], c, g, e, radius, j)
+            batch.append(item)
+        if len(batch) == 0:
             continue
-        if b - a <= minimum_width:
-            unresolved.append((a, b, k, AT_EDGE if status == EDGE else FLAT_DERIVATIVE))
-            continue
-        middle = 0.5 * (z0 + z1)
-        stack.append((middle, z1, k))
-        stack.append((z0, middle, k))
+        _evaluated(instructions, values, registers, feasible, status, residual, derivative, lows, highs, len(batch),
+                   out)
+        for j in range(len(batch)):
+            a, b, k, kind, u0, u1, z0, z1, steps = batch[j]
+            decision, center, slope, rest, g0, g1 = out[j, 0], out[j, 1], out[j, 2], out[j, 3], out[j, 4], out[j, 5]
+            monotone = decision == FEASIBLE and (g0 > 0.0 or g1 < 0.0)  # one root at most
+            if kind == CONTRACT:
+                _contract(stack, roots, a, b, k, u0, u1, steps, monotone, center, rest, g0, g1, out[j, 6], out[j, 7])
+            elif kind == CERTIFY:
+                _certify(stack, unresolved, roots, a, b, k, u0, u1, z0, z1, decision, monotone, center, rest,
+                         g0, g1, minimum_width)
+            elif decision != EXCLUDED:
+                _search(stack, unresolved, a, b, k, decision, monotone, center, slope, rest, g0, g1,
+                        out[j, 6], out[j, 7], minimum_width)
     found = np.empty((len(roots), 5))
     for n in range(len(roots)):
         found[n, 0], found[n, 1], found[n, 2], found[n, 3], found[n, 4] = roots[n]
@@ -279,6 +249,71 @@ def _prune(instructions, values, base_c, base_e, parameter, sign_registers, bran
     for n in range(len(unresolved)):
         left[n, 0], left[n, 1], left[n, 2], left[n, 3] = unresolved[n]
     return found, left, evaluations
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _search(stack, unresolved, a, b, k, decision, monotone, center, slope, rest, g0, g1, z0, z1, minimum_width
+            ):  # pragma: no cover - compiled
+    """A searched box [a, b] of branch k, not excluded: where f is monotone, certified
+    (then contracted) or narrowed and handed to a certification on a box about the
+    linear model's root; else split."""
+    if monotone:
+        n0, n1 = _newton_image(a, b, g0, g1, center, rest)
+        if n1 < a or n0 > b:
+            return
+        if a < n0 and n1 < b:  # exactly one root, in [n0, n1]
+            stack.append((n0, n1, k, CONTRACT, a, b, 0.0, 0.0, 0))
+            return
+        z0, z1 = max(z0, n0), min(z1, n1)
+        if z0 > z1:
+            return
+        if slope != 0.0:
+            # f is monotone on [a, b], so its one root, if any, is in [z0, z1], where f's
+            # linear model vanishes: certify it on a box three times as wide as that set,
+            # centred on the model's root (it may reach past [a, b]: a root found twice is
+            # merged by its uniqueness boxes)
+            estimate, spread = 0.5 * (a + b) - center / slope, 3.0 * rest / abs(slope)
+            stack.append((estimate - spread, estimate + spread, k, CERTIFY, a, b, z0, z1, 0))
+            return
+    _split(stack, unresolved, a, b, k, decision, z0, z1, minimum_width)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _certify(stack, unresolved, roots, y0, y1, k, a, b, z0, z1, decision, monotone, center, rest, g0, g1,
+             minimum_width):  # pragma: no cover - compiled
+    """The box [y0, y1] about the linear model's root of a box [a, b] on which f is
+    monotone, its root in [z0, z1] ⊆ [y0, y1]: no root in it (then none in [a, b]),
+    exactly one (contracted, unless it lies outside [a, b]), or undecided ([a, b] split)."""
+    if decision == EXCLUDED:
+        return
+    if monotone:
+        n0, n1 = _newton_image(y0, y1, g0, g1, center, rest)
+        if n1 < y0 or n0 > y1:
+            return
+        if y0 < n0 and n1 < y1:
+            if not (n1 < a or n0 > b):
+                stack.append((n0, n1, k, CONTRACT, y0, y1, 0.0, 0.0, 0))
+            return
+    _split(stack, unresolved, a, b, k, FEASIBLE, z0, z1, minimum_width)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _contract(stack, roots, n0, n1, k, u0, u1, steps, monotone, center, rest, g0, g1, z0, z1
+              ):  # pragma: no cover - compiled
+    """A box [n0, n1] known to hold exactly one root (alone in [u0, u1]), shrunk to where
+    f's linear model can vanish and to its Newton image while that takes off a tenth, at
+    most CONTRACTIONS times; then a root."""
+    if monotone:
+        m0, m1 = _newton_image(n0, n1, g0, g1, center, rest)
+        c0, c1 = max(z0, m0), min(z1, m1)
+        if not (c0 > c1 or c1 - c0 >= 0.9 * (n1 - n0)):
+            if steps + 1 < CONTRACTIONS:
+                stack.append((c0, c1, k, CONTRACT, u0, u1, 0.0, 0.0, steps + 1))
+            else:
+                roots.append((c0, c1, k, u0, u1))
+            return
+    roots.append((n0, n1, k, u0, u1))
+
 
 
 def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: tuple[float, float],
@@ -300,7 +335,8 @@ def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: 
                                       int(program.parameter_registers[0]),
                                       program.sign_registers, np.ascontiguousarray(branches, dtype=float),
                                       int(program.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
-                                      low, high, minimum_width * high, budget)
+                                      low, high, minimum_width * high, budget,
+                                      min(COLUMNS, max(8, 2 * len(branches))))
     return PrunedRoots(_distinct(found), _merged(left), evaluations, (low, high))
 
 

@@ -125,30 +125,32 @@ def _examine(instructions, values, work, parameters, sign_registers, signs, resi
     """Decide ``box`` (lo0, hi0, lo1, hi1) on the branch ``signs`` by one evaluation:
     (_EXCLUDED | _CERTIFIED | _UNDECIDED, status); ``narrowed`` (4,) receives the box cut to
     where roots can be (the Krawczyk image for a certified box)."""
-    c, g, e, radius, feasible, low, high = work
+    c, g, e, radii, scratch, feasible, statuses, low, high = work  # one column: one box
     low[0], high[0], low[1], high[1] = box[0], box[1], box[2], box[3]
-    models.load_box(parameters, sign_registers, low, high, signs, c, g, e, radius)
-    status = models.evaluate_models(instructions[:values], c, g, e, radius, feasible)
+    models.load_box(parameters, sign_registers, low, high, signs, c, g, e, radii, 0)
+    statuses[0] = models.FEASIBLE
+    models.evaluate_models(instructions[:values], c, g, e, radii, feasible, statuses, scratch)
+    status, radius = statuses[0], radii[:, 0].copy()
     if status == models.INFEASIBLE:
         return _EXCLUDED, status
     center, rest, slopes = np.empty(2), np.empty(2), np.empty((2, 2))
     for i in range(2):
-        center[i], rest[i] = c[residuals[i]], e[residuals[i]]
-        slopes[i, 0], slopes[i, 1] = g[residuals[i], 0], g[residuals[i], 1]
+        center[i], rest[i] = c[residuals[i], 0], e[residuals[i], 0]
+        slopes[i, 0], slopes[i, 1] = g[0, residuals[i], 0], g[1, residuals[i], 0]
     u_low, u_high = -radius.copy(), radius.copy()
     if not _hull_consistent(center, slopes, rest, u_low, u_high):
         return _EXCLUDED, status
-    middle = np.array([c[parameters[0]], c[parameters[1]]])
+    middle = np.array([c[parameters[0], 0], c[parameters[1], 0]])
     for k in range(2):
         narrowed[2 * k] = max(low[k], models.rounded_down(middle[k] + u_low[k]))
         narrowed[2 * k + 1] = min(high[k], models.rounded_up(middle[k] + u_high[k]))
     if status != models.FEASIBLE:
         return _UNDECIDED, status
-    models.evaluate_models(instructions[values:], c, g, e, radius, feasible)
+    models.evaluate_models(instructions[values:], c, g, e, radii, feasible, statuses, scratch)
     jacobian, image = np.empty((2, 2, 2)), np.empty((2, 2))
     for i in range(2):
         for k in range(2):
-            jacobian[i, k, 0], jacobian[i, k, 1] = models.model_range(c, g, e, radius, derivatives[i, k])
+            jacobian[i, k, 0], jacobian[i, k, 1] = models.model_range(c, g, e, radii, derivatives[i, k], 0)
     if not _krawczyk(middle, radius, center, rest, jacobian, image):
         return _UNDECIDED, status
     inside = True
@@ -188,10 +190,8 @@ def _contracted(instructions, values, work, parameters, sign_registers, signs, r
 def _prune_plane(instructions, values, base_c, base_e, parameters, sign_registers, branches, residuals, derivatives,
                  domain, minimum_width, budget):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_two_parameters` over every branch."""
-    registers = base_c.shape[0] + 1  # and a scratch register
-    work = (np.empty(registers), np.zeros((registers, 2)), np.empty(registers), np.zeros(2), np.empty(0),
+    work = (*models.new_registers(base_c, base_e, 2, 1), np.empty((0, 1)), np.empty(1, dtype=np.int64),
             np.empty(2), np.empty(2))
-    models.load_instance(base_c, base_e, work[0], work[1], work[2])
     stack = [(domain.copy(), 0)]
     stack.pop()
     for k in range(branches.shape[0]):
