@@ -110,20 +110,23 @@ class CompiledSystem:
         """:meth:`profile` (with ``paired``, before its first axis is dropped) by the
         plan's straight-line program (:mod:`.straight_line`), compiled: the same values
         bit for bit. Not for plans with slider joints."""
-        program = self.straight_line_program()
         values = np.asarray(parameter_values, dtype=float)
-        if values.ndim == 1:
-            values = values[:, None]
-        mapped = np.column_stack([self.searched[frozenset(pair)].value(values[:, n])
-                                  if frozenset(pair) in self.searched else values[:, n]
-                                  for n, pair in enumerate(self.parameters)]) if self.searched else values
+        values = values[:, None] if values.ndim == 1 else values
         signs = np.asarray(signs, dtype=float)
-        residuals, failures, radicands, margins = run_program(
-            program, [self.known[pair] for pair in program.known_pairs],
-            [self.fixed_signs[t] for t in program.fixed_triangles], mapped, signs, paired)
+        residuals, failures, radicands, margins = self._run_program(values, signs, paired)
         shape = (1, len(values)) if paired else (len(signs), len(values))
         return Profile(residuals.reshape(*shape, residuals.shape[1]), failures.reshape(shape),
                        radicands.reshape(shape), margins.reshape(*shape, margins.shape[1]))
+
+    def _run_program(self, values: np.ndarray, signs: np.ndarray, paired: bool, points: bool = False):
+        """:func:`~.straight_line.run_program` of the plan's program on this instance at
+        parameter ``values`` (N, p)."""
+        program = self.straight_line_program()
+        mapped = np.column_stack([self.searched[frozenset(pair)].value(values[:, n])
+                                  if frozenset(pair) in self.searched else values[:, n]
+                                  for n, pair in enumerate(self.parameters)]) if self.searched else values
+        return run_program(program, [self.known[pair] for pair in program.known_pairs],
+                           [self.fixed_signs[t] for t in program.fixed_triangles], mapped, signs, paired, points)
 
     def matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
         """M_k for every joint, and s_ref, broadcast over branches and parameter values.
@@ -163,7 +166,13 @@ class CompiledSystem:
         return Profile(*(part[0] for part in profile)) if paired else profile
 
     def paired_matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> dict[str, np.ndarray]:
-        """M_k for every joint, point n on branch ``signs[n]``; shape (N,)."""
+        """M_k for every joint, point n on branch ``signs[n]``; shape (N,). By the plan's
+        compiled program where it is in use (the same values bit for bit), else numpy."""
+        if not self.sliders and compiled_kernel_in_use():
+            values = np.asarray(parameter_values, dtype=float)
+            values = values[:, None] if values.ndim == 1 else values
+            *_, points = self._run_program(values, np.asarray(signs, dtype=float), paired=True, points=True)
+            return dict(zip(self.straight_line_program().joints, points.T, strict=True))
         matrices = self._evaluate(parameter_values, signs, paired=True, points=True).matrices()
         return {joint: value[0] for joint, value in matrices.items()}
 

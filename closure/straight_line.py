@@ -131,7 +131,8 @@ class StraightLineProgram:
     step); ``fixed_sign_registers`` hold the link steps' orientation signs (in
     ``fixed_triangles`` order). Outputs: ``residual_registers`` (one per closure pair),
     ``margin_registers`` (the free-sign steps' relative radicands), the first failing step
-    and its relative radicand (``FIRST_FAILURE``)."""
+    and its relative radicand (``FIRST_FAILURE``), and ``point_registers`` (J, 2): the
+    coordinates of each of ``joints`` in the plan's frame (M_k = x + i y, thesis §2.2)."""
 
     instructions: np.ndarray
     registers: int
@@ -146,6 +147,8 @@ class StraightLineProgram:
     residual_registers: np.ndarray
     margin_registers: np.ndarray
     steps: int
+    joints: tuple[str, ...] = ()
+    point_registers: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
     #: The layouts of :func:`program_layout` made so far, by branch set (None: paired).
     layouts: dict = field(default_factory=dict, compare=False, repr=False)
     #: Forms derived from the program once (the interval program of
@@ -198,6 +201,8 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple)
     for u, v in plan.closure_pairs:
         target = inputs[frozenset((u, v))]
         residuals.append(recorder.operand((distance(u, v, computed=True)[0] - target) / target))
+    joints = tuple(sorted(points))  # before the constants are listed: a reference joint's are constants
+    point_registers = [[recorder.operand(points[joint][0]), recorder.operand(points[joint][1])] for joint in joints]
     constants = sorted(recorder.constants.items(), key=lambda item: item[1])
     return StraightLineProgram(
         instructions=np.array(recorder.instructions, dtype=np.int64).reshape(-1, 5),
@@ -211,7 +216,7 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple)
         sign_registers=np.array([signs[i].register for i in free_steps], dtype=np.int64),
         residual_registers=np.array(residuals, dtype=np.int64),
         margin_registers=np.array([m.register for m in margins], dtype=np.int64),
-        steps=len(plan.steps))
+        steps=len(plan.steps), joints=joints, point_registers=np.array(point_registers, dtype=np.int64).reshape(-1, 2))
 
 
 #: Values per block of the compiled loop, at most: the slots of a block stay in cache.
@@ -263,7 +268,7 @@ def _instance_registers(program: StraightLineProgram) -> np.ndarray:
 
 
 def _outputs(program: StraightLineProgram) -> np.ndarray:
-    return np.concatenate([program.residual_registers, program.margin_registers])
+    return np.concatenate([program.residual_registers, program.margin_registers, program.point_registers.reshape(-1)])
 
 
 def _paired_layout(program: StraightLineProgram) -> Layout:
@@ -407,14 +412,16 @@ class KernelChoiceError(ValueError):
 
 
 def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np.ndarray, parameters: np.ndarray,
-                signs: np.ndarray, paired: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                signs: np.ndarray, paired: bool = False, points: bool = False) -> tuple[np.ndarray, ...]:
     """Run ``program`` on one instance (``known``: the squared distances of
     ``program.known_pairs``; ``fixed_signs``: the signs of ``program.fixed_triangles``)
     at ``parameters`` (N, p) on the branches ``signs`` (B, m): every branch at every
     value (B·N points, branch-major; the branches' common steps evaluated once,
     :class:`Layout`), or with ``paired`` point n on branch n. Returns the closure
     residuals (points, c), the first failing steps (points,), their relative radicands
-    (points,) and the free-sign steps' relative radicands (points, free).
+    (points,) and the free-sign steps' relative radicands (points, free); with ``points``
+    also each joint's position M_k = x + i y in the plan's frame (points, J: complex, in
+    ``program.joints`` order).
     O(points × instructions), compiled (numba, on first use; cached on disk)."""
     global _compiled_loop
     if _compiled_loop is None:
@@ -432,5 +439,9 @@ def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np
         np.concatenate([instance, layout.constant_values]), layout.row_slots, rows, layout.output_slots,
         program.steps, max(1, min(BLOCK, BLOCK_BYTES // (8 * layout.slots))))
     values, failures, radicands = values.reshape(-1, values.shape[-1]), failures.reshape(-1), radicands.reshape(-1)
-    closures = len(program.residual_registers)
-    return values[:, :closures], failures, radicands, values[:, closures:]
+    closures, margins = len(program.residual_registers), len(program.residual_registers) + len(program.margin_registers)
+    profile = values[:, :closures], failures, radicands, values[:, closures:margins]
+    if not points:
+        return profile
+    with np.errstate(invalid="ignore"):  # x + i y as numpy's kernel forms it (an unplaced joint: NaN or ∞)
+        return (*profile, values[:, margins::2] + 1j * values[:, margins + 1::2])

@@ -1,7 +1,8 @@
 """The bilateration kernel traced into a straight-line program and run compiled
 (closure/straight_line.py, issue 21) gives the numpy evaluation's values bit for bit:
 closure residuals, first failing steps, their relative radicands and the free-sign
-margins (NaNs alike, whatever their sign bit), on every branch or point by point, at random parameter values (inside and
+margins, and the joints' positions (NaNs alike, whatever their sign bit), on every branch or
+point by point, at random parameter values (inside and
 outside the feasible domain, 0, negative) and with signs 0 (triangles taken flat)."""
 
 from __future__ import annotations
@@ -55,6 +56,14 @@ def _assert_same(compiled, values, signs):
         expected = _numpy_profile(compiled, values, chosen, paired)
         for part, mine, numpy_value in zip(traced._fields, traced, expected, strict=True):
             assert _bits(mine) == _bits(numpy_value), f"{part} differs (paired={paired})"
+    # the joints' positions (read-back of the modes: CompiledSystem.paired_matrices)
+    chosen = signs[np.arange(len(values)) % len(signs)]
+    *_, points = compiled._run_program(values, chosen, paired=True, points=True)
+    expected = compiled._placed(values, chosen, profile=False, paired=True).matrices()
+    program = compiled.straight_line_program()
+    assert sorted(program.joints) == sorted(expected)
+    for n, joint in enumerate(program.joints):
+        assert _bits(points[:, n]) == _bits(expected[joint][0]), f"{joint}'s position differs"
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
