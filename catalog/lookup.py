@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 from pathlib import Path
 
 from baranov.enumerate import baranov_trusses
 from baranov.literature.trusses import THESIS_TRUSSES, thesis_truss
-from baranov.topology import KinematicChain, chain_from_link_graph, natural_sort_key
+from baranov.topology import KinematicChain, canonical_link_graph6, chain_from_link_graph, is_baranov_truss, natural_sort_key
 
 from .files import iter_objects
 
@@ -90,6 +91,8 @@ def named_truss(name: str, catalog: Path | None = None) -> tuple[str, KinematicC
     for entry in entries:
         if name in (entry["id"], entry["name"]):
             title = entry["id"] if entry["name"] == entry["id"] else f"{entry['id']} ({entry['name']})"
+            if entry["id"] in LITERATURE_NAMES:
+                title += f" — {LITERATURE_NAMES[entry['id']]}"
             return title, chain_from_link_graph(entry["link_graph6"])
     if match.group(2) == "N" and not entries and 3 <= links <= 13 and links % 2:
         trusses = baranov_trusses(links)
@@ -97,6 +100,39 @@ def named_truss(name: str, catalog: Path | None = None) -> tuple[str, KinematicC
         if 1 <= index <= len(trusses):
             return name, trusses[index - 1]
     raise TrussNameError(f"{name}: no such truss in the catalog ({_known_names(entries, links, catalog)})")
+
+
+#: Trusses the literature names outside the thesis's numbering, by catalog id; each is
+#: checked against the chain of its example (tests/test_cli.py).
+LITERATURE_NAMES = {"11/N64": "the Watt–Baranov truss of thesis §3.6.2.1",
+                    "13/N206": "the Watt–Baranov truss of thesis §3.6.2.2"}
+
+
+def catalog_truss_of(chain: KinematicChain, catalog: Path | None = None) -> tuple[str, str] | None:
+    """The id and name (a thesis name, or the id again) of the catalog truss isomorphic
+    to ``chain``, or None: not a Baranov truss, or a link count the catalog lacks (it
+    holds 3–13 links). By the canonical link graph (nauty), O(catalog entries) the first
+    time for a link count, then one dictionary lookup.
+
+    >>> from baranov.scene import load_scene
+    >>> catalog_truss_of(load_scene("examples/9-B28.json").chain)
+    ('9/N28', '9/B28')
+    """
+    from . import CATALOG_FOLDER
+
+    if not is_baranov_truss(chain):
+        return None
+    return _ids_by_link_graph(chain.number_of_links, CATALOG_FOLDER if catalog is None else catalog).get(
+        canonical_link_graph6(chain))
+
+
+@lru_cache(maxsize=8)
+def _ids_by_link_graph(links: int, catalog: Path) -> dict[str, tuple[str, str]]:
+    """Canonical link graph6 → (id, name) of every catalog truss with ``links`` links."""
+    entries = catalog_entries(links, catalog)
+    if not entries and (catalog / f"trusses-{links}.jsonl.gz").is_file():
+        entries = list(iter_objects(catalog / f"trusses-{links}.jsonl.gz"))
+    return {entry["link_graph6"]: (entry["id"], entry["name"]) for entry in entries}
 
 
 def catalog_entries(links: int, catalog: Path) -> list[dict]:

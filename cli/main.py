@@ -176,9 +176,11 @@ def _parser() -> argparse.ArgumentParser:
 def run_robot(args: argparse.Namespace) -> int:
     """``baranov robot FILE``: every platform pose of the robot at its actuator values."""
     import json
-    import math
 
     from baranov.robots import load_robot, robot_family, robot_solution
+    from baranov.solvers import ExactSolution
+
+    from .output import characteristic_lines, pose_table
 
     robot, actuators = load_robot(args.robot)
     if args.actuators is not None:
@@ -207,14 +209,13 @@ def run_robot(args: argparse.Namespace) -> int:
     legs = "-".join(str(leg) for leg in robot.legs)
     print(f"{args.robot}: robot {legs}, family {family}, {len(poses)} pose{'s' if len(poses) != 1 else ''} "
           f"({args.method})")
+    if isinstance(solution, ExactSolution) and solution.characteristic_polynomial is not None:
+        print("\n".join(characteristic_lines(solution)))  # Γ of thesis §5.2, as `solve --method exact` prints it
     if not poses:
         print("no pose: the legs cannot all reach the platform with these actuator values (the locked robot has "
               "no real assembly mode)")
         return 0
-    print("  ".join(["pose  x  y  angle (degrees)", *solution.parameters]))
-    for number, pose in enumerate(poses, 1):
-        print("  ".join([f"{number:4d}  {pose.position[0]:.10g}  {pose.position[1]:.10g}  {math.degrees(pose.angle):.10g}",
-                         *(f"{pose.parameters[name]:.10g}" for name in solution.parameters)]))
+    print("\n".join(pose_table(poses, solution.parameters)))
     return 0
 
 
@@ -301,6 +302,10 @@ def run_solve(args: argparse.Namespace) -> int:
               "no assembly mode found; that none exists is not proven (see the certificate and the undecided lines)")
         return 0
     print("\n".join(mode_table(solution, joints=args.joints, width=width)))
+    if solution.free_sign_triangles:
+        triangles = ", ".join("△" + "".join(triangle) for triangle in solution.free_sign_triangles)
+        print(textwrap.fill(f"signs: the orientation of the plan's free-sign triangles {triangles} in each mode "
+                            "(+ counter-clockwise, - clockwise, 0 flat)", width=width, subsequent_indent="  "))
     if not args.joints:
         print("(joint coordinates: --joints, or --format csv / json)")
     return 0

@@ -8,7 +8,13 @@ from pathlib import Path
 import networkx as nx
 
 from baranov.catalog.entries import assembly_mode_count
-from baranov.catalog.lookup import named_truss, normalised_truss_name, thesis_names_without_links
+from baranov.catalog.lookup import (
+    LITERATURE_NAMES,
+    catalog_truss_of,
+    named_truss,
+    normalised_truss_name,
+    thesis_names_without_links,
+)
 from baranov.closure import closure_system
 from baranov.closure.slider_notation import slider_closure_text
 from baranov.planner import best_plan, bilateration_plans
@@ -39,9 +45,20 @@ def resolve_chain(argument: str, catalog: Path | None = None) -> tuple[str, Kine
     path = Path(argument)
     if (normalised_truss_name(argument) or thesis_names_without_links(argument)) and not path.is_file():
         return named_truss(argument, catalog)
-    if path.is_file():
-        return str(path), _chain_from_text(path.read_text(encoding="utf-8"), str(path))
-    return argument, _chain_from_text(argument, "argument")
+    source = str(path) if path.is_file() else argument
+    chain = _chain_from_text(path.read_text(encoding="utf-8"), source) if path.is_file() else \
+        _chain_from_text(argument, "argument")
+    return _with_catalog_name(source, chain, catalog), chain
+
+
+def _with_catalog_name(title: str, chain: KinematicChain, catalog: Path | None) -> str:
+    """``title`` followed by the catalog truss the chain is isomorphic to, if any."""
+    found = catalog_truss_of(chain, catalog)
+    if found is None:
+        return title
+    identifier, name = found
+    title += f" — the catalog's {identifier}" + (f" ({name})" if name != identifier else "")
+    return title + (f", {LITERATURE_NAMES[identifier]}" if identifier in LITERATURE_NAMES else "")
 
 
 def _chain_from_text(text: str, source: str) -> KinematicChain:

@@ -370,7 +370,8 @@ class _Placement(NamedTuple):
         """M_k = x + i y for every joint, and for every slider its points P_i', P_i''
         on its two links, shape (B, N) (a step from link sides alone gives scalars:
         broadcast)."""
-        at = {joint: x + 1j * y for joint, (x, y, _) in self.points.items()}
+        with np.errstate(invalid="ignore"):  # an unplaced joint (x or y NaN or ∞) stays NaN
+            at = {joint: x + 1j * y for joint, (x, y, _) in self.points.items()}
         if self.sliders is not None:
             with np.errstate(invalid="ignore"):
                 at.update(self.sliders.slider_points(at, self.s_ref))

@@ -184,7 +184,7 @@ def test_show_latex_catalog_id_graph6_and_file(tmp_path):
     assert r"s_{2,5} = \det\left(I - Z_{1,3,2} Z_{1,6,3} - Z_{6,4,5} Z_{6,1,4}\right) s_{1,6}" in latex.stdout
     by_id = run("show", "7/N2", "--catalog", str(REPO / "catalog"))
     assert by_id.returncode == 0 and by_id.stdout.startswith("7/N2 (7/B1)")
-    assert run("show", "DFw").stdout.startswith("DFw\nlinks 5, joints 6")
+    assert run("show", "DFw").stdout.startswith("DFw — the catalog's 5/N1 (5/B1)\nlinks 5, joints 6")
     edges = tmp_path / "pentad.txt"
     edges.write_text("# the pentad\n0 2\n0 3\n0 4\n1 2\n1 3\n1 4\n")
     assert "coupling degree 1" in run("show", str(edges)).stdout
@@ -254,6 +254,25 @@ def test_show_titles_a_catalog_id_once(capsys):
     """Issue 57: `show 11/N123` printed "11/N123 (11/N123)"."""
     assert main(["show", "11/N123"]) == 0
     assert capsys.readouterr().out.splitlines()[0] == "11/N123"
+
+
+@pytest.mark.parametrize(("example", "title"), [
+    ("9-B28.json", "the catalog's 9/N28 (9/B28)"),
+    ("7-B1.json", "the catalog's 7/N2 (7/B1)"),
+    ("11-watt-baranov.json", "the catalog's 11/N64, the Watt–Baranov truss of thesis §3.6.2.1"),
+    ("13-watt-baranov.json", "the catalog's 13/N206, the Watt–Baranov truss of thesis §3.6.2.2"),
+])
+def test_show_of_a_file_names_the_catalog_truss(example, title, capsys):
+    """Issue 57: a truss read from a file is named by the catalog truss isomorphic to it
+    (canonical link graphs), and the Watt–Baranov trusses by the literature's name: this
+    checks LITERATURE_NAMES against the thesis's examples."""
+    assert main(["show", str(REPO / "examples" / example)]) == 0
+    assert capsys.readouterr().out.splitlines()[0] == f"{REPO / 'examples' / example} — {title}"
+
+
+def test_show_names_the_watt_baranov_truss_by_its_id(capsys):
+    assert main(["show", "11/N64"]) == 0
+    assert capsys.readouterr().out.splitlines()[0] == "11/N64 — the Watt–Baranov truss of thesis §3.6.2.1"
 
 
 def test_show_takes_a_thesis_name_without_its_link_count_where_unique(capsys):
@@ -368,7 +387,8 @@ def test_characteristic_lines_name_roots_without_modes():
     lines = characteristic_lines(replace(solution, assembly_modes=solution.assembly_modes[1:]))
     assert lines[0].endswith("degree 6, 6 real roots, isolated in certified enclosures")
     first = solution.assembly_modes[0].parameters["s1,5"]
-    assert lines[1].startswith(f"1 real root ({first:.10g}) gives no assembly mode")
+    assert lines[1].startswith("  monic: s1,5⁶ − 283.8018265 s1,5⁵")  # thesis §3.2.3 prints −283.8018
+    assert lines[2].startswith(f"1 real root ({first:.10g}) gives no assembly mode")
 
 
 @pytest.mark.parametrize("args", [["--time-limit", "5", "--method", "exact"], ["--time-limit", "0"],
