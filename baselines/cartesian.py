@@ -18,6 +18,8 @@ from baranov.solvers import Solution
 from baranov.solvers.modes import AssemblyMode
 from baranov.solvers.verification import distance_bound, joint_residual, same_mode, sorted_modes
 
+from .coupling import chain_coupling_degree
+
 #: A least-squares run has converged when every equation holds to this (relative).
 CONVERGED = 1e-10
 
@@ -78,7 +80,7 @@ def solve_cartesian(scene: Scene, starts: int = 100, seed: int = 0) -> Solution:
                             joint_residual(scene, points))
         if not any(same_mode(mode, other, scene) for other in modes):
             modes.append(mode)
-    return Solution(f"cartesian-{starts}", 0, (), (), sorted_modes(modes))
+    return Solution(f"cartesian-{starts}", chain_coupling_degree(scene), (), (), sorted_modes(modes))
 
 
 def _unknowns_and_equations(scene: Scene) -> tuple[list[str], list[tuple[str, str]]]:

@@ -32,6 +32,8 @@ from baranov.solvers import Solution, SolverError
 from baranov.solvers.modes import AssemblyMode
 from baranov.solvers.verification import joint_residual, same_mode, sorted_modes
 
+from .coupling import chain_coupling_degree
+
 #: Back-substitution keeps a value where every polynomial of the level vanishes to this,
 #: relative to the sum of the absolute values of its terms there.
 VANISHING = 1e-6
@@ -151,7 +153,7 @@ def solve_loop_equations(scene: Scene) -> Solution:
                             joint_residual(scene, points))
         if not any(same_mode(mode, other, scene) for other in modes):
             modes.append(mode)
-    return Solution("loop-equations", 0, (), (), sorted_modes(modes))
+    return Solution("loop-equations", chain_coupling_degree(scene), (), (), sorted_modes(modes))
 
 
 def loop_size(scene: Scene) -> tuple[int, int]:

@@ -258,6 +258,7 @@ def run_solve(args: argparse.Namespace) -> int:
     from baranov.solvers import ExactSolution, available_backends
     from baranov.solvers import solve as solve_scene
     from baranov.solvers.progress import watching
+    from baranov.solvers.verification import RESIDUAL_TOLERANCE
 
     from .output import characteristic_lines, mode_table, modes_csv
 
@@ -302,6 +303,12 @@ def run_solve(args: argparse.Namespace) -> int:
               "no assembly mode found; that none exists is not proven (see the certificate and the undecided lines)")
         return 0
     print("\n".join(mode_table(solution, joints=args.joints, width=width)))
+    unverified = sum(mode.max_residual >= RESIDUAL_TOLERANCE for mode in modes)
+    if unverified:  # a baseline lists what it converged to, unverified (issue 57)
+        print(textwrap.fill(f"{unverified} of {len(modes)} rows are not assembly modes: their largest relative "
+                            f"error over the link dimensions is {RESIDUAL_TOLERANCE:.0e} or more (e.g. a link "
+                            "placed mirrored); this method does not verify what it reports", width=width,
+                            subsequent_indent="  "))
     if solution.free_sign_triangles:
         triangles = ", ".join("△" + "".join(triangle) for triangle in solution.free_sign_triangles)
         print(textwrap.fill(f"signs: the orientation of the plan's free-sign triangles {triangles} in each mode "

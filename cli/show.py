@@ -45,10 +45,15 @@ def resolve_chain(argument: str, catalog: Path | None = None) -> tuple[str, Kine
     path = Path(argument)
     if (normalised_truss_name(argument) or thesis_names_without_links(argument)) and not path.is_file():
         return named_truss(argument, catalog)
-    source = str(path) if path.is_file() else argument
-    chain = _chain_from_text(path.read_text(encoding="utf-8"), source) if path.is_file() else \
-        _chain_from_text(argument, "argument")
-    return _with_catalog_name(source, chain, catalog), chain
+    if path.is_file():
+        chain = _chain_from_text(path.read_text(encoding="utf-8"), str(path))
+        return _with_catalog_name(str(path), chain, catalog), chain
+    try:
+        chain = _chain_from_text(argument, "argument")
+    except ValueError as error:  # e.g. a misspelt name read as graph6 (issue 57)
+        raise ShowError(f"{argument}: not a truss name (e.g. 9/B28, 7-b1, 11/N123), an existing file, or a valid "
+                        f"graph6 string ({error})") from None
+    return _with_catalog_name(argument, chain, catalog), chain
 
 
 def _with_catalog_name(title: str, chain: KinematicChain, catalog: Path | None) -> str:

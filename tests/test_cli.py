@@ -1,6 +1,7 @@
 """The `baranov catalog` command: output, determinism, resume, atomicity, bad input."""
 
 import json
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -517,3 +518,24 @@ def test_solve_in_the_thesis_parameter(method, capsys):
     assert main(["solve", str(REPO / "examples" / "7-B1.json"), "--parameter", "P2,P3", "--method", method]) == 0
     out = capsys.readouterr().out
     assert "coupling degree 1, 8 assembly modes" in out and "s2,3" in out and "39.83534598" in out
+
+
+def test_show_of_an_unknown_name_says_what_it_takes(capsys):
+    """Issue 57: `show foo` said only "graph6 'foo': not a valid graph6 string"."""
+    assert main(["show", "foo"]) == 2
+    assert "foo: not a truss name (e.g. 9/B28, 7-b1, 11/N123), an existing file, or a valid graph6 string" in \
+        capsys.readouterr().err
+
+
+def test_a_baseline_reports_the_coupling_degree_and_flags_what_does_not_verify(capsys):
+    """Issue 57: `--method cartesian` printed "coupling degree 0" and rows at residual
+    1.0 without a word; `loop-equations` said coupling degree 0 for a chain of degree 1."""
+    assert main(["solve", str(REPO / "examples" / "7-B1.json"), "--method", "cartesian"]) == 0
+    out = capsys.readouterr().out
+    assert out.splitlines()[0].startswith(f"{REPO / 'examples' / '7-B1.json'}: coupling degree 1,")
+    rows = [line for line in out.splitlines() if re.fullmatch(r" *\d+ +\d\.\de[-+]\d\d", line)]
+    unverified = sum(float(row.split()[-1]) >= 1e-8 for row in rows)
+    assert unverified > 0 and f"{unverified} of {len(rows)} rows are not assembly modes" in out
+    assert main(["solve", str(REPO / "examples" / "7-B1.json"), "--method", "loop-equations"]) == 0
+    out = capsys.readouterr().out
+    assert "coupling degree 1, 8 assembly modes (loop-equations)" in out and "are not assembly modes" not in out
