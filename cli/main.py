@@ -290,6 +290,9 @@ def run_solve(args: argparse.Namespace) -> int:
     print(f"{args.scene}: coupling degree {solution.coupling_degree}, "
           f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} ({solution.method})")
     width = shutil.get_terminal_size((100, 24)).columns if sys.stdout.isatty() else 100
+    for driver in (scene.inputs if scene.mobility > 0 else ()):
+        if driver.value is not None:  # solved held there (baranov.motion.driving.solve_held)
+            print(f"input {driver.name} held at {driver.value}°: the configurations of the rigid linkage it makes")
     if isinstance(solution, ExactSolution) and solution.characteristic_polynomial is not None:
         print("\n".join(characteristic_lines(solution)))
     if solution.certificate is not None:

@@ -397,6 +397,44 @@ def rigidified(scene: Scene, driver: SceneInput, degrees: float) -> Scene:
     return scene_from_dict({"ground": scene.ground, "links": links})
 
 
+def solve_held(scene: Scene, method: str = "numeric", **options):
+    """Every configuration of a one-DOF ``scene`` whose crank input is held at the value
+    the scene gives it (``"degrees"``): the rigid linkage of :func:`rigidified`, solved by
+    ``method`` (:func:`baranov.solvers.solve`, with ``options``), each mode with the
+    crank's pin added back at its place on the fixed link. The same configurations as the
+    driven motion at that value (``baranov trace --input``). Raises
+    :class:`~baranov.solvers.SolverError` for another kind of scene: mobility other than
+    1, an input without a value, or one that is not a crank.
+
+    >>> from baranov.scene import load_scene
+    >>> import json
+    >>> data = json.loads(open("examples/four-bar-coupler-point.json").read())
+    >>> data["inputs"][0]["degrees"] = 30
+    >>> from baranov.scene import scene_from_dict
+    >>> len(solve_held(scene_from_dict(data)).assembly_modes)
+    2
+    """
+    from dataclasses import replace
+
+    from baranov.solvers import SolverError, solve
+
+    valued = [driver for driver in scene.inputs if driver.value is not None]
+    if scene.mobility != 1 or len(valued) != 1 or valued[0].kind != "angle":
+        raise SolverError(f"mobility {scene.mobility} with {len(valued)} input(s) held: solve holds one crank angle "
+                          "of a one-DOF linkage (\"degrees\" in its input); baranov trace SCENE --input NAME drives "
+                          "any input (docs/motion.md)")
+    driver = valued[0]
+    try:
+        rigid = rigidified(scene, driver, float(driver.value))
+    except SceneError as error:
+        raise SolverError(f"{error}; baranov trace SCENE --input {driver.name} drives it (docs/motion.md)") from None
+    solution = solve(rigid, method=method, **options)
+    pin = driver.joints[0]
+    at = tuple(float(x) for x in scene.world[pin])
+    modes = tuple(replace(mode, joints={**mode.joints, pin: at}) for mode in solution.assembly_modes)
+    return replace(solution, assembly_modes=modes)
+
+
 def crank_of(scene: Scene) -> SceneInput | None:
     """The crank input of ``scene``'s first binary link pinned to the fixed link: the
     angle at its pin P_a from the fixed link's next joint P_f to its tip P_t; None if no

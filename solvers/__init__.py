@@ -19,12 +19,19 @@ from .numeric import solve_numeric
 def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
     """All assembly modes of ``scene`` by a registered backend
     (:func:`~baranov.solvers.backends.available_backends`: ``"numeric"``, ``"exact"`` and
-    the baselines), passing it ``options``. Raises :class:`SolverError` for a scene with
-    mobility F > 0: its configurations are not isolated assembly modes."""
+    the baselines), passing it ``options``. A one-DOF scene whose crank input has a value
+    is solved held there (:func:`baranov.motion.driving.solve_held`). Raises
+    :class:`SolverError` for any other scene with mobility F > 0: its configurations are
+    not isolated assembly modes."""
+    if scene.mobility > 0 and any(driver.value is not None for driver in scene.inputs):
+        from baranov.motion.driving import solve_held  # its crank held where the scene says
+
+        return solve_held(scene, method, **options)
     if scene.mobility > 0:
         raise SolverError(f"mobility {scene.mobility} (3(L-1) - 2J with L = {len(scene.links)} links): the linkage "
                           "moves by its topology, and the backends find the assembly modes of rigid linkages "
-                          "(mobility 0); trace its motion instead: baranov trace SCENE (docs/motion.md)")
+                          "(mobility 0); trace its motion instead: baranov trace SCENE (docs/motion.md), or hold "
+                          "its crank by giving its input \"degrees\"")
     chosen = backend(method)
     if scene.sliders and not chosen.sliders:
         joints = ", ".join(slider.joint for slider in scene.sliders)

@@ -539,3 +539,24 @@ def test_a_baseline_reports_the_coupling_degree_and_flags_what_does_not_verify(c
     assert main(["solve", str(REPO / "examples" / "7-B1.json"), "--method", "loop-equations"]) == 0
     out = capsys.readouterr().out
     assert "coupling degree 1, 8 assembly modes (loop-equations)" in out and "are not assembly modes" not in out
+
+
+def test_solve_holds_a_crank_given_its_angle(tmp_path, capsys):
+    """Issue 57 friction 2: a one-DOF scene whose crank input has "degrees" is solved with
+    the crank held there (its two configurations, the crank's tip at 30°), where solve
+    had refused it for its mobility; without a value it is still refused, pointing to
+    trace and to "degrees"."""
+    data = json.loads((REPO / "examples" / "four-bar-coupler-point.json").read_text())
+    data["inputs"][0]["degrees"] = 30
+    path = tmp_path / "held.json"
+    path.write_text(json.dumps(data))
+    assert main(["solve", str(path), "--json"]) == 0
+    modes = json.loads(capsys.readouterr().out)["assembly_modes"]
+    assert len(modes) == 2
+    for mode in modes:
+        assert mode["joints"]["P1"] == [0.0, 0.0]
+        assert mode["joints"]["P2"] == pytest.approx([3 ** 0.5, 1.0], abs=1e-12)
+    assert main(["solve", str(path)]) == 0
+    assert "input crank held at 30°" in capsys.readouterr().out
+    assert main(["solve", str(REPO / "examples" / "four-bar-coupler-point.json")]) == 2
+    assert 'or hold its crank by giving its input "degrees"' in capsys.readouterr().err
