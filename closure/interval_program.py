@@ -298,58 +298,58 @@ def _unbounded(c, g, e, d, j):  # pragma: no cover - compiled
 
 
 @numba.njit(inline="always", **_COMPILE)
-def _copy(c, g, e, d, a, sign):  # pragma: no cover - compiled
+def _copy(c, g, e, d, a, sign, n):  # pragma: no cover - compiled
     """Register ``d`` = ``sign`` × register ``a`` (sign ±1: exact)."""
-    for j in range(c.shape[1]):
+    for j in range(n):
         c[d, j], e[d, j] = sign * c[a, j], e[a, j]
     for k in range(g.shape[0]):
-        for j in range(c.shape[1]):
+        for j in range(n):
             g[k, d, j] = sign * g[k, a, j]
 
 
 @numba.njit(inline="always", **_COMPILE)
-def _sum(c, g, e, d, a, b, sign, radius, magnitude):  # pragma: no cover - compiled
+def _sum(c, g, e, d, a, b, sign, radius, magnitude, n):  # pragma: no cover - compiled
     """Model d = a + sign × b."""
-    for j in range(c.shape[1]):
+    for j in range(n):
         magnitude[j] = abs(c[a, j]) + abs(c[b, j])
     for k in range(g.shape[0]):
-        for j in range(c.shape[1]):
+        for j in range(n):
             magnitude[j] += (abs(g[k, a, j]) + abs(g[k, b, j])) * radius[k, j]
             g[k, d, j] = g[k, a, j] + sign * g[k, b, j]
-    for j in range(c.shape[1]):
+    for j in range(n):
         c[d, j], e[d, j] = c[a, j] + sign * c[b, j], _up(e[a, j] + e[b, j] + _SLACK * magnitude[j])
 
 
 @numba.njit(inline="always", **_COMPILE)
-def _product(c, g, e, d, a, b, radius, scratch):  # pragma: no cover - compiled
+def _product(c, g, e, d, a, b, radius, scratch, n):  # pragma: no cover - compiled
     """Model d = a × b."""
     deviation_a, deviation_b, magnitude = scratch[0], scratch[1], scratch[2]
-    for j in range(c.shape[1]):
+    for j in range(n):
         deviation_a[j], deviation_b[j], magnitude[j] = e[a, j], e[b, j], abs(c[a, j] * c[b, j])
     for k in range(g.shape[0]):
-        for j in range(c.shape[1]):
+        for j in range(n):
             slope_a, slope_b = g[k, a, j], g[k, b, j]
             deviation_a[j] += abs(slope_a) * radius[k, j]
             deviation_b[j] += abs(slope_b) * radius[k, j]
             x, y = c[a, j] * slope_b, c[b, j] * slope_a
             magnitude[j] += (abs(x) + abs(y)) * radius[k, j]
             g[k, d, j] = x + y
-    for j in range(c.shape[1]):
+    for j in range(n):
         ca, cb = c[a, j], c[b, j]
         c[d, j] = ca * cb
         e[d, j] = _up(abs(ca) * e[b, j] + abs(cb) * e[a, j] + _up(deviation_a[j]) * _up(deviation_b[j])
                       + _SLACK * magnitude[j])
     # an unbounded factor (e = ∞) gives ∞ or 0 × ∞ = NaN: checked after the arithmetic,
     # in a loop of its own, so that the arithmetic's loops stay free of branches
-    for j in range(c.shape[1]):
+    for j in range(n):
         if not e[d, j] < np.inf:
             _unbounded(c, g, e, d, j)
 
 
 @numba.njit(**_COMPILE)
-def _reciprocal(c, g, e, d, b, radius):  # pragma: no cover - compiled
+def _reciprocal(c, g, e, d, b, radius, n):  # pragma: no cover - compiled
     """Model d = 1/b; the whole line where b's range holds 0."""
-    for j in range(c.shape[1]):
+    for j in range(n):
         deviation = _deviation(g, e, b, radius, j)
         low, high = rounded_down(c[b, j] - deviation), rounded_up(c[b, j] + deviation)
         if e[b, j] == np.inf or (low <= 0.0 <= high):
@@ -367,11 +367,11 @@ def _reciprocal(c, g, e, d, b, radius):  # pragma: no cover - compiled
 
 
 @numba.njit(**_COMPILE)
-def _root(c, g, e, d, a, radius, feasible, status):  # pragma: no cover - compiled
+def _root(c, g, e, d, a, radius, feasible, status, n):  # pragma: no cover - compiled
     """Model d = √a, and each column's status worsened by its step (module docstring);
     at an edge, the chord model, and ``feasible`` narrowed."""
     parameters = g.shape[0]
-    for j in range(c.shape[1]):
+    for j in range(n):
         deviation = _deviation(g, e, a, radius, j)
         low, high = rounded_down(c[a, j] - deviation), rounded_up(c[a, j] + deviation)
         if high < 0.0:
@@ -410,10 +410,10 @@ def _root(c, g, e, d, a, radius, feasible, status):  # pragma: no cover - compil
 
 
 @numba.njit(**_COMPILE)
-def _maximum(c, g, e, d, a, b, radius):  # pragma: no cover - compiled
+def _maximum(c, g, e, d, a, b, radius, n):  # pragma: no cover - compiled
     """Model d = max(a, b): the larger where the ranges are apart, else a constant model
     of the hull (no residual depends on it)."""
-    for j in range(c.shape[1]):
+    for j in range(n):
         deviation_a, deviation_b = _deviation(g, e, a, radius, j), _deviation(g, e, b, radius, j)
         larger = -1
         if c[a, j] - deviation_a >= c[b, j] + deviation_b:
@@ -433,10 +433,10 @@ def _maximum(c, g, e, d, a, b, radius):  # pragma: no cover - compiled
 
 
 @numba.njit(**_COMPILE)
-def _flat_zero(c, g, e, d, a, b):  # pragma: no cover - compiled
+def _flat_zero(c, g, e, d, a, b, n):  # pragma: no cover - compiled
     """Register ``d``: 0 where the sign in ``a`` is exactly 0 (the flat triangle asked
     for), else register ``b``."""
-    for j in range(c.shape[1]):
+    for j in range(n):
         flat = c[a, j] == 0.0 and e[a, j] == 0.0
         c[d, j], e[d, j] = (0.0, 0.0) if flat else (c[b, j], e[b, j])
         for k in range(g.shape[0]):
@@ -444,11 +444,12 @@ def _flat_zero(c, g, e, d, a, b):  # pragma: no cover - compiled
 
 
 @numba.njit(**_COMPILE)
-def evaluate_models(instructions, c, g, e, radius, feasible, status, scratch):  # pragma: no cover - compiled
+def evaluate_models(instructions, c, g, e, radius, feasible, status, scratch, n):  # pragma: no cover - compiled
     """Run the differentiated program's ``instructions`` on the registers' models of K
     boxes side by side (``c`` (R + 1, K), ``g`` (p, R + 1, K), ``e`` (R + 1, K): the
     program's R registers and a scratch one, the inputs filled in; ``radius`` (p, K) the
-    boxes' half-widths; ``scratch`` (3, K)). Each column's ``status`` (K,), FEASIBLE on
+    boxes' half-widths; ``scratch`` (3, K)), over the first ``n`` columns (the boxes
+    loaded: a round need not fill them all). Each column's ``status`` (K,), FEASIBLE on
     entry, is set to EDGE where a radicand's range holds 0 and INFEASIBLE where one is
     certainly below 0 (the column's later values are then meaningless). With one
     parameter, ``feasible`` (2, K) is narrowed to the range of u_0 where every radicand at
@@ -457,24 +458,24 @@ def evaluate_models(instructions, c, g, e, radius, feasible, status, scratch):  
     for index in range(instructions.shape[0]):
         opcode, d, a, b = instructions[index, 0], instructions[index, 1], instructions[index, 2], instructions[index, 3]
         if opcode == MULTIPLY:
-            _product(c, g, e, d, a, b, radius, scratch)
+            _product(c, g, e, d, a, b, radius, scratch, n)
         elif opcode == ADD:
-            _sum(c, g, e, d, a, b, 1.0, radius, scratch[2])
+            _sum(c, g, e, d, a, b, 1.0, radius, scratch[2], n)
         elif opcode == SUBTRACT:
-            _sum(c, g, e, d, a, b, -1.0, radius, scratch[2])
+            _sum(c, g, e, d, a, b, -1.0, radius, scratch[2], n)
         elif opcode == DIVIDE:
-            _reciprocal(c, g, e, spare, b, radius)
-            _product(c, g, e, d, a, spare, radius, scratch)
+            _reciprocal(c, g, e, spare, b, radius, n)
+            _product(c, g, e, d, a, spare, radius, scratch, n)
         elif opcode == NEGATE:
-            _copy(c, g, e, d, a, -1.0)
+            _copy(c, g, e, d, a, -1.0, n)
         elif opcode == GUARDED_ROOT:
-            _root(c, g, e, d, a, radius, feasible, status)
+            _root(c, g, e, d, a, radius, feasible, status, n)
         elif opcode == FLAT_ZERO:  # a: the sign (exact); 0 asks for the flat triangle
-            _flat_zero(c, g, e, d, a, b)
+            _flat_zero(c, g, e, d, a, b, n)
         elif opcode == MAXIMUM:
-            _maximum(c, g, e, d, a, b, radius)
+            _maximum(c, g, e, d, a, b, radius, n)
         elif opcode == UNBOUNDED:
-            for j in range(c.shape[1]):
+            for j in range(n):
                 _unbounded(c, g, e, d, j)
 
 
@@ -538,11 +539,11 @@ def _evaluate_boxes(instructions, base_c, base_e, parameter_registers, sign_regi
     column_status = np.empty(COLUMNS, dtype=np.int64)
     for start in range(0, count, COLUMNS):
         width = min(COLUMNS, count - start)
-        for j in range(COLUMNS):
-            n = start + min(j, width - 1)  # spare columns repeat the last box
-            load_box(parameter_registers, sign_registers, box_lo[n], box_hi[n], signs[n], c, g, e, radius, j)
+        for j in range(width):
+            load_box(parameter_registers, sign_registers, box_lo[start + j], box_hi[start + j], signs[start + j],
+                     c, g, e, radius, j)
             column_status[j] = FEASIBLE
-        evaluate_models(instructions, c, g, e, radius, feasible, column_status, scratch)
+        evaluate_models(instructions, c, g, e, radius, feasible, column_status, scratch, width)
         for j in range(width):
             n = start + j
             status[n] = column_status[j]

@@ -152,10 +152,10 @@ def _evaluated(instructions, values, registers, feasible, status, residual, deri
     vanish); status EXCLUDED where that part is empty. f′'s models are computed only if
     some box is FEASIBLE and not excluded."""
     c, g, e, radius, scratch = registers
-    for j in range(c.shape[1]):
+    for j in range(count):
         status[j] = FEASIBLE
         feasible[0, j], feasible[1, j] = -np.inf, np.inf
-    evaluate_models(instructions[:values], c, g, e, radius, feasible, status, scratch)
+    evaluate_models(instructions[:values], c, g, e, radius, feasible, status, scratch, count)
     needed = False
     for j in range(count):
         a, b = low[j], high[j]
@@ -169,7 +169,7 @@ def _evaluated(instructions, values, registers, feasible, status, residual, deri
         out[j, 4], out[j, 5], out[j, 6], out[j, 7] = -np.inf, np.inf, z0, z1
         needed = needed or kind == FEASIBLE
     if needed:
-        evaluate_models(instructions[values:], c, g, e, radius, feasible, status, scratch)
+        evaluate_models(instructions[values:], c, g, e, radius, feasible, status, scratch, count)
         for j in range(count):
             if out[j, 0] == FEASIBLE:
                 out[j, 4], out[j, 5] = model_range(c, g, e, radius, derivative, j)

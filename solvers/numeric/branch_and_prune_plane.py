@@ -129,7 +129,7 @@ def _examine(instructions, values, work, parameters, sign_registers, signs, resi
     low[0], high[0], low[1], high[1] = box[0], box[1], box[2], box[3]
     models.load_box(parameters, sign_registers, low, high, signs, c, g, e, radii, 0)
     statuses[0] = models.FEASIBLE
-    models.evaluate_models(instructions[:values], c, g, e, radii, feasible, statuses, scratch)
+    models.evaluate_models(instructions[:values], c, g, e, radii, feasible, statuses, scratch, 1)
     status, radius = statuses[0], radii[:, 0].copy()
     if status == models.INFEASIBLE:
         return _EXCLUDED, status
@@ -146,7 +146,7 @@ def _examine(instructions, values, work, parameters, sign_registers, signs, resi
         narrowed[2 * k + 1] = min(high[k], models.rounded_up(middle[k] + u_high[k]))
     if status != models.FEASIBLE:
         return _UNDECIDED, status
-    models.evaluate_models(instructions[values:], c, g, e, radii, feasible, statuses, scratch)
+    models.evaluate_models(instructions[values:], c, g, e, radii, feasible, statuses, scratch, 1)
     jacobian, image = np.empty((2, 2, 2)), np.empty((2, 2))
     for i in range(2):
         for k in range(2):
