@@ -33,10 +33,10 @@ def mode_table(solution: Solution, joints: bool = False, width: int = 100) -> li
     header = ["mode", *solution.parameters, "signs", "max residual"]
     rows = [[str(number), *(f"{value:.10g}" for value in mode.parameters.values()), signs_text(mode.signs),
              f"{mode.max_residual:.1e}"] for number, mode in enumerate(modes, 1)]
-    widths = [max(len(header[c]), *(len(row[c]) for row in rows)) for c in range(len(header))]
-    lines = ["  ".join(cell.rjust(w) for cell, w in zip(header, widths, strict=True))]
-    for row, mode in zip(rows, modes, strict=True):
-        lines.append("  ".join(cell.rjust(w) for cell, w in zip(row, widths, strict=True)))
+    aligned = _aligned(header, rows)
+    lines = aligned[:1]
+    for line, mode in zip(aligned[1:], modes, strict=True):
+        lines.append(line)
         if joints:
             size = max(max(abs(x), abs(y)) for x, y in mode.joints.values())
             lines += _wrapped([f"{name} = ({coordinate(x, size)}, {coordinate(y, size)})"
@@ -63,6 +63,11 @@ def pose_table(poses, parameters: tuple[str, ...]) -> list[str]:
         size = max(abs(pose.position[0]), abs(pose.position[1]), 1.0)
         rows.append([str(number), coordinate(pose.position[0], size), coordinate(pose.position[1], size),
                      f"{math.degrees(pose.angle):.10g}", *(f"{pose.parameters[name]:.10g}" for name in parameters)])
+    return _aligned(header, rows)
+
+
+def _aligned(header: list[str], rows: list[list[str]]) -> list[str]:
+    """The header and rows as lines, each column right-aligned to its widest cell."""
     widths = [max(len(header[c]), *(len(row[c]) for row in rows)) for c in range(len(header))]
     return ["  ".join(cell.rjust(w) for cell, w in zip(row, widths, strict=True)) for row in [header, *rows]]
 

@@ -237,7 +237,7 @@ def _prune(instructions, values, base_c, base_e, parameter, sign_registers, bran
             if kind == CONTRACT:
                 _contract(stack, roots, a, b, k, u0, u1, steps, monotone, center, rest, g0, g1, out[j, 6], out[j, 7])
             elif kind == CERTIFY:
-                _certify(stack, unresolved, roots, a, b, k, u0, u1, z0, z1, decision, monotone, center, rest,
+                _certify(stack, unresolved, a, b, k, u0, u1, z0, z1, decision, monotone, center, rest,
                          g0, g1, minimum_width)
             elif decision != EXCLUDED:
                 _search(stack, unresolved, a, b, k, decision, monotone, center, slope, rest, g0, g1,
@@ -279,7 +279,7 @@ def _search(stack, unresolved, a, b, k, decision, monotone, center, slope, rest,
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _certify(stack, unresolved, roots, y0, y1, k, a, b, z0, z1, decision, monotone, center, rest, g0, g1,
+def _certify(stack, unresolved, y0, y1, k, a, b, z0, z1, decision, monotone, center, rest, g0, g1,
              minimum_width):  # pragma: no cover - compiled
     """The box [y0, y1] about the linear model's root of a box [a, b] on which f is
     monotone, its root in [z0, z1] ⊆ [y0, y1]: no root in it (then none in [a, b]),
