@@ -107,7 +107,14 @@ class IntervalProgram:
     rows compute the values, so that a box their models decide needs no more), over
     ``registers`` registers: the program's, then the derivatives' and the constants
     1 and 2 (``extra_constants``). ``residual_derivatives`` (c, p): the register of each
-    residual's derivative by each parameter, −1 where it is 0."""
+    residual's derivative by each parameter, −1 where it is 0.
+
+    The rows that depend on neither a parameter nor a free sign (a third of 7/B1's values,
+    nearly half of the 13-link Watt–Baranov truss's: the steps built from known distances
+    alone) are not in ``instructions`` but in ``instance_instructions``, run once per
+    instance by :func:`instance_registers`: their models have no slopes, so they are the
+    same on every box, bit for bit. ``instance_outputs``: the registers holding instance
+    values (known distances, link signs, those rows' results) that ``instructions`` read."""
 
     instructions: np.ndarray
     values: int
@@ -115,6 +122,8 @@ class IntervalProgram:
     program: StraightLineProgram
     extra_constants: np.ndarray
     residual_derivatives: np.ndarray
+    instance_instructions: np.ndarray
+    instance_outputs: np.ndarray
 
 
 def interval_program(program: StraightLineProgram) -> IntervalProgram:
@@ -129,8 +138,9 @@ def interval_program(program: StraightLineProgram) -> IntervalProgram:
     >>> from baranov.solvers.coincidence import solvable_plan
     >>> scene = load_scene("examples/7-B1.json")
     >>> program = compile_scene(scene, solvable_plan(scene)).straight_line_program()
-    >>> len(program.instructions), len(interval_program(program).instructions)
-    (276, 383)
+    >>> reduced = interval_program(program)
+    >>> len(program.instructions), len(reduced.instance_instructions), reduced.values, len(reduced.instructions)
+    (276, 90, 133, 293)
     """
     if "interval" not in program.derived:
         program.derived["interval"] = _differentiated(program)
@@ -175,8 +185,29 @@ def _differentiated(program: StraightLineProgram) -> IntervalProgram:
                                     dtype=np.int64).reshape(len(program.residual_registers), parameters)
     extra = np.array(sorted((register, value) for value, register in constants.items()), dtype=float).reshape(-1, 2)
     _require_single_assignment(out + tail)
-    return IntervalProgram(np.array(out + tail, dtype=np.int64).reshape(-1, 5), len(out), registers[0], program,
-                           extra, residual_derivatives)
+    per_box = _per_box(program, out + tail)
+    instance = [row for row, box in zip(out + tail, per_box, strict=True) if not box]
+    values = [row for row, box in zip(out, per_box[:len(out)], strict=True) if box]
+    derivatives = [row for row, box in zip(tail, per_box[len(out):], strict=True) if box]
+    written = {row[1] for row in values + derivatives}
+    read = {r for _, _, a, b, _ in values + derivatives for r in (a, b) if r >= 0 and r not in written}
+    varying = set(program.parameter_registers.tolist()) | set(program.sign_registers.tolist())
+    constant = set(program.constant_registers.tolist()) | set(constants.values())
+    return IntervalProgram(np.array(values + derivatives, dtype=np.int64).reshape(-1, 5), len(values), registers[0],
+                           program, extra, residual_derivatives, np.array(instance, dtype=np.int64).reshape(-1, 5),
+                           np.array(sorted(read - varying - constant), dtype=np.int64))
+
+
+def _per_box(program: StraightLineProgram, rows: list[tuple[int, int, int, int, int]]) -> list[bool]:
+    """Whether each row depends on a parameter or a free sign (else its result is an
+    instance's, the same on every box)."""
+    varying = np.zeros(max([program.registers] + [row[1] + 1 for row in rows]), dtype=bool)
+    varying[program.parameter_registers] = varying[program.sign_registers] = True
+    flags = []
+    for _, d, a, b, _ in rows:
+        varying[d] = varying[a] or (b >= 0 and varying[b])
+        flags.append(bool(varying[d]))
+    return flags
 
 
 def _require_single_assignment(instructions: list[tuple[int, int, int, int, int]]) -> None:
@@ -525,11 +556,12 @@ COLUMNS = 32
 
 
 @numba.njit(**_COMPILE)
-def _evaluate_boxes(instructions, base_c, base_e, parameter_registers, sign_registers, box_lo, box_hi, signs,
+def _evaluate_boxes(instructions, base_c, base_e, initial, parameter_registers, sign_registers, box_lo, box_hi, signs,
                     outputs, derivatives):  # pragma: no cover - compiled
     """:func:`evaluate_models` on each box (rows of ``box_lo``/``box_hi``, on the branch
     of the same row of ``signs``), COLUMNS at a time: the outputs' ranges, their
-    derivatives' ranges (``derivatives``: (c, p) registers), and the status."""
+    derivatives' ranges (``derivatives``: (c, p) registers), and the status (from the
+    instance's, ``initial``)."""
     count, parameters = box_lo.shape
     values = np.empty((count, outputs.shape[0], 2))
     jacobians = np.zeros((count, outputs.shape[0], parameters, 2))
@@ -542,7 +574,7 @@ def _evaluate_boxes(instructions, base_c, base_e, parameter_registers, sign_regi
         for j in range(width):
             load_box(parameter_registers, sign_registers, box_lo[start + j], box_hi[start + j], signs[start + j],
                      c, g, e, radius, j)
-            column_status[j] = FEASIBLE
+            column_status[j] = initial
         evaluate_models(instructions, c, g, e, radius, feasible, column_status, scratch, width)
         for j in range(width):
             n = start + j
@@ -556,13 +588,15 @@ def _evaluate_boxes(instructions, base_c, base_e, parameter_registers, sign_regi
 
 
 def instance_registers(program: IntervalProgram, known_lo: np.ndarray, known_hi: np.ndarray,
-                       fixed_signs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                       fixed_signs: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     """The registers' centers and remainders with one instance's inputs filled in: the
     program's constants and the differentiation's (exact), the known squared distances
-    (their intervals ``known_lo``..``known_hi``, in ``known_pairs`` order) and the link
-    steps' signs; NaN elsewhere."""
+    (their intervals ``known_lo``..``known_hi``, in ``known_pairs`` order), the link
+    steps' signs and the models of the rows that depend on them alone
+    (``instance_instructions``); NaN elsewhere. And the status those rows leave (FEASIBLE,
+    EDGE or INFEASIBLE: a triangle of known sides alone), every box's status to start from."""
     source = program.program
-    center, remainder = np.full(program.registers, np.nan), np.full(program.registers, np.nan)
+    center, remainder = np.full(program.registers + 1, np.nan), np.full(program.registers + 1, np.nan)
     center[source.constant_registers], remainder[source.constant_registers] = source.constant_values, 0.0
     extra = program.extra_constants[:, 0].astype(np.int64)
     center[extra], remainder[extra] = program.extra_constants[:, 1], 0.0
@@ -571,7 +605,19 @@ def instance_registers(program: IntervalProgram, known_lo: np.ndarray, known_hi:
     center[source.known_registers] = middle
     remainder[source.known_registers] = np.maximum(known_hi - middle, middle - known_lo) * (1 + 2.0**-49)
     center[source.fixed_sign_registers], remainder[source.fixed_sign_registers] = fixed_signs, 0.0
-    return center, remainder
+    status = _instance_models(program.instance_instructions, center, remainder)
+    return center[:-1], remainder[:-1], status
+
+
+@numba.njit(**_COMPILE)
+def _instance_models(instructions, center, remainder):  # pragma: no cover - compiled
+    """Run the instance rows on one column of models without slopes (the same arithmetic
+    as a box's, its slopes all 0), in place; the status they leave."""
+    c, e = center.reshape((-1, 1)), remainder.reshape((-1, 1))
+    status = np.full(1, FEASIBLE, dtype=np.int64)
+    evaluate_models(instructions, c, np.zeros((0, c.shape[0], 1)), e, np.zeros((0, 1)), np.empty((0, 1)), status,
+                    np.empty((3, 1)), 1)
+    return status[0]
 
 
 def enclosing(values) -> tuple[np.ndarray, np.ndarray]:
@@ -596,8 +642,8 @@ def evaluate_boxes(program: IntervalProgram, known_lo: np.ndarray, known_hi: np.
     partial derivatives' models (N, c, p, 2) and the box's status (N,): FEASIBLE, EDGE or
     INFEASIBLE (then the ranges are meaningless). O(N × instructions), compiled."""
     source = program.program
-    center, remainder = instance_registers(program, known_lo, known_hi, fixed_signs)
+    center, remainder, initial = instance_registers(program, known_lo, known_hi, fixed_signs)
     return _evaluate_boxes(
-        program.instructions, center, remainder, source.parameter_registers, source.sign_registers,
+        program.instructions, center, remainder, initial, source.parameter_registers, source.sign_registers,
         np.ascontiguousarray(box_lo, dtype=float), np.ascontiguousarray(box_hi, dtype=float),
         np.ascontiguousarray(signs, dtype=float), source.residual_registers, program.residual_derivatives)

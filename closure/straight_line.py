@@ -421,7 +421,8 @@ def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np
     residuals (points, c), the first failing steps (points,), their relative radicands
     (points,) and the free-sign steps' relative radicands (points, free); with ``points``
     also each joint's position M_k = x + i y in the plan's frame (points, J: complex, in
-    ``program.joints`` order).
+    ``program.joints`` order). With ``paired``, ``known`` (N, k) and ``fixed_signs``
+    (N, f) may give each point its own instance (many instances of one plan at once).
     O(points × instructions), compiled (numba, on first use; cached on disk)."""
     global _compiled_loop
     if _compiled_loop is None:
@@ -432,11 +433,18 @@ def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np
     signs = np.ascontiguousarray(signs, dtype=float)
     layout = program_layout(program, None if paired else signs)
     rows = np.concatenate([parameters, signs if signs.ndim == 2 else signs[:, None]], axis=1) if paired else parameters
-    instance = np.concatenate([program.constant_values, np.asarray(known, dtype=float),
-                               np.asarray(fixed_signs, dtype=float)])
+    known, fixed_signs = np.asarray(known, dtype=float), np.asarray(fixed_signs, dtype=float)
+    instance_slots, row_slots = layout.instance_slots, layout.row_slots
+    if paired and known.ndim == 2:  # each row its own instance: its known distances and link signs are row inputs
+        constants = len(program.constant_values)
+        rows = np.concatenate([rows, known, fixed_signs.reshape(len(rows), -1)], axis=1)
+        instance_slots, row_slots = instance_slots[:constants], np.concatenate([row_slots, instance_slots[constants:]])
+        instance = program.constant_values
+    else:
+        instance = np.concatenate([program.constant_values, known, fixed_signs])
     values, failures, radicands = _compiled_loop(
-        layout.operations, layout.slots, np.concatenate([layout.instance_slots, layout.constant_slots]),
-        np.concatenate([instance, layout.constant_values]), layout.row_slots, rows, layout.output_slots,
+        layout.operations, layout.slots, np.concatenate([instance_slots, layout.constant_slots]),
+        np.concatenate([instance, layout.constant_values]), row_slots, np.ascontiguousarray(rows), layout.output_slots,
         program.steps, max(1, min(BLOCK, BLOCK_BYTES // (8 * layout.slots))))
     values, failures, radicands = values.reshape(-1, values.shape[-1]), failures.reshape(-1), radicands.reshape(-1)
     closures, margins = len(program.residual_registers), len(program.residual_registers) + len(program.margin_registers)

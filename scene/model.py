@@ -87,6 +87,30 @@ class SceneLink:
     squared_distances: Mapping[frozenset[str], Number]
     local: Mapping[str, tuple[float, float]]
 
+    def orientation(self, triangle: tuple[str, str, str]) -> int:
+        """Sign of the oriented area of three of its joints, in its own shape."""
+        (xi, yi), (xj, yj), (xk, yk) = (self.local[n] for n in triangle)
+        return 1 if (xj - xi) * (yk - yi) - (yj - yi) * (xk - xi) > 0 else -1
+
+    @cached_property
+    def widest_triangle(self) -> tuple[str, str, str] | None:
+        """The three joints spanning the largest area (None if all collinear): the
+        triangle whose orientation tells the link from its mirror image. Areas come from
+        the squared distances (16 A², exact for an exact scene), and an area below
+        FLAT_AREA of the link's size counts as none: the rounded frame of a straight bar
+        scaled by 1e6 had a "widest triangle" of area 1e-4, whose orientation then
+        flipped at random (issue 22: a 3-RPR's base, all its modes rejected as mirrored).
+        Computed once per link (residuals ask for it at every verification; instances of
+        a scene share their unchanged links)."""
+        size = max(self.squared_distances.values())
+        best, widest = None, FLAT_AREA**2 * size**2
+        for triangle in combinations(self.joints, 3):
+            i, j, k = triangle
+            area16 = triangle_radicand(*(self.squared_distances[frozenset(p)] for p in ((i, j), (i, k), (j, k))))
+            if area16 > widest:
+                best, widest = triangle, area16
+        return best
+
 
 @dataclass(frozen=True)
 class Scene:
@@ -145,31 +169,9 @@ class Scene:
         raise SceneError(f"link {name}: no such link")
 
     def widest_triangle(self, link: SceneLink) -> tuple[str, str, str] | None:
-        """The three joints of ``link`` spanning the largest area (None if all collinear),
-        computed once per link (:meth:`_widest_triangle`; residuals ask for it at every
-        verification)."""
-        return self._widest_triangles[link.name]
-
-    @cached_property
-    def _widest_triangles(self) -> dict[str, tuple[str, str, str] | None]:
-        return {link.name: self._widest_triangle(link) for link in self.links}
-
-    @staticmethod
-    def _widest_triangle(link: SceneLink) -> tuple[str, str, str] | None:
         """The three joints of ``link`` spanning the largest area (None if all collinear):
-        the triangle whose orientation tells the link from its mirror image. Areas come
-        from the squared distances (16 A², exact for an exact scene), and an area below
-        FLAT_AREA of the link's size counts as none: the rounded frame of a straight bar
-        scaled by 1e6 had a "widest triangle" of area 1e-4, whose orientation then
-        flipped at random (issue 22: a 3-RPR's base, all its modes rejected as mirrored)."""
-        size = max(link.squared_distances.values())
-        best, widest = None, FLAT_AREA**2 * size**2
-        for triangle in combinations(link.joints, 3):
-            i, j, k = triangle
-            area16 = triangle_radicand(*(link.squared_distances[frozenset(p)] for p in ((i, j), (i, k), (j, k))))
-            if area16 > widest:
-                best, widest = triangle, area16
-        return best
+        :attr:`SceneLink.widest_triangle`."""
+        return link.widest_triangle
 
     def largest_distance(self, u: str, v: str) -> float:
         """An upper bound on the distance between joints ``u`` and ``v`` in any assembly:
@@ -208,9 +210,7 @@ class Scene:
         """Sign of the oriented area of three joints of one rigid link, in its own shape."""
         for link in self.links:
             if set(triangle) <= set(link.joints):
-                (xi, yi), (xj, yj), (xk, yk) = (link.local[n] for n in triangle)
-                cross = (xj - xi) * (yk - yi) - (yj - yi) * (xk - xi)
-                return 1 if cross > 0 else -1
+                return link.orientation(triangle)
         raise SceneError(f"joints {', '.join(triangle)}: not on one link")
 
 

@@ -83,7 +83,9 @@ def solve_many(scene: Scene, instances: Iterable, columns: Sequence[str] | None 
     scenes = instance_scenes(scene, instances, columns)
     jobs = [(instance, method, return_errors, options) for instance in scenes]
     if workers == 1 or len(scenes) < 2:
-        return _collected(map(_solved, jobs), on_solution)
+        certified = _certified_together(scenes) if method == "numeric" and not options else [None] * len(scenes)
+        return _collected((solution or _solved(job) for solution, job in zip(certified, jobs, strict=True)),
+                          on_solution)
     from baranov.enumerate.parallel import worker_pool
 
     try:  # the plan searched and cached before the workers fork
@@ -92,6 +94,31 @@ def solve_many(scene: Scene, instances: Iterable, columns: Sequence[str] | None 
         pass  # the instance's own solve says why
     with worker_pool(min(workers, len(scenes))) as pool:
         return _collected(pool.imap(_solved, jobs, chunksize=max(1, len(jobs) // (8 * workers))), on_solution)
+
+
+def _certified_together(scenes: list[Scene]) -> list[Solution | None]:
+    """The numeric solutions of the instances that one branch-and-prune over all of them
+    certifies (:func:`~baranov.solvers.numeric.many.solve_certified_many`: rigid instances
+    of a coupling-1 plan without sliders; instances with the same joints coincident share
+    a plan), None for the others and where that does not apply."""
+    solutions: list[Solution | None] = [None] * len(scenes)
+    if not scenes or scenes[0].sliders or scenes[0].mobility != 0:
+        return solutions
+    from .numeric.many import solve_certified_many
+
+    groups: dict[frozenset, list[int]] = {}
+    for number, instance in enumerate(scenes):
+        groups.setdefault(instance.coincident_pairs, []).append(number)
+    for members in groups.values():
+        try:
+            plan = solvable_plan(scenes[members[0]])
+        except (SolverError, ValueError):
+            continue  # each instance's own solve says why
+        if plan.number_of_parameters == 1:
+            for number, solution in zip(members, solve_certified_many([scenes[n] for n in members], plan),
+                                        strict=True):
+                solutions[number] = solution
+    return solutions
 
 
 def _solved(job) -> Solution | SolverError:

@@ -6,6 +6,7 @@ linkage's size."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -38,34 +39,53 @@ def joint_residual(scene: Scene, points: dict[str, complex]) -> float:
     return float(joint_residuals(scene, joints, np.array([[points[j] for j in joints]]))[0])
 
 
-def joint_residuals(scene: Scene, joints: list[str], points: np.ndarray) -> np.ndarray:
+def joint_residuals(scene: Scene, joints: list[str], points: np.ndarray, instances: Sequence[Scene] | None = None,
+                    owner: np.ndarray | None = None) -> np.ndarray:
     """For configurations ``points`` (complex (K, J), points named ``joints``: joint
     names, and ``P9'``, ``P9''`` for a slider's two points, :meth:`Scene.point_name`): the
     largest relative error on every link dimension, slider and ground joint
     (:func:`constraint_residuals`); 1.0 if a rigid link is mirrored (its widest triangle
     reversed) or a slider's axis reversed on one link; inf where a joint is not finite.
-    For coincident joints (target 0) the error is relative to the link's size."""
+    For coincident joints (target 0) the error is relative to the link's size.
+
+    ``instances``, ``owner``: configuration k is one of ``instances[owner[k]]``, an
+    instance of ``scene`` (:func:`~baranov.scene.with_dimensions`: the same links, ground
+    and sliders, other dimensions), and is checked on that instance's dimensions and link
+    shapes: many instances verified at once, as each alone."""
     at = {j: points[:, n] for n, j in enumerate(joints)}
-    residual = np.abs(constraint_residuals(scene, at)).max(axis=1, initial=0.0)
-    for link in scene.links:
-        triangle = scene.widest_triangle(link) if len(link.joints) >= 3 else None
-        if triangle is not None:
+    residual = np.abs(constraint_residuals(scene, at, instances, owner)).max(axis=1, initial=0.0)
+    for index, link in enumerate(scene.links):
+        if len(link.joints) < 3:
+            continue
+        shapes = [instance.links[index] for instance in instances] if instances is not None else [link]
+        triangles = [shape.widest_triangle for shape in shapes]
+        for triangle in set(triangles) - {None}:  # each instance's own (one, where the link is unchanged)
+            mine = _per_configuration([t == triangle for t in triangles], owner).astype(bool)
+            turns = _per_configuration([shape.orientation(triangle) for shape in shapes], owner)
             i, j, k = (at[scene.point_name(link.name, n)] for n in triangle)
             cross = ((j - i).conjugate() * (k - i)).imag
-            mirrored = np.where(cross > 0, 1, -1) != scene.orientation(triangle)
+            mirrored = mine & (np.where(cross > 0, 1, -1) != turns)
             residual = np.where(mirrored, np.maximum(residual, 1.0), residual)
     for slider in scene.sliders:
         (_, direction), (_, other_direction) = (slider_axis(scene, slider, axis.link, at) for axis in slider.axes)
         reversed_axis = ~((direction.conjugate() * other_direction).real > 0)
         residual = np.where(reversed_axis, np.maximum(residual, 1.0), residual)
-    size = distance_bound(scene)
-    for joint, (x, y) in scene.world.items():
+    size = _per_configuration([distance_bound(instance) for instance in instances or [scene]], owner)
+    for joint, (x, y) in scene.world.items():  # the fixed link is every instance's
         target = complex(float(x), float(y))
-        residual = np.maximum(residual, np.abs(at[scene.point_name(scene.ground, joint)] - target) / max(abs(target), size))
+        residual = np.maximum(residual, np.abs(at[scene.point_name(scene.ground, joint)] - target)
+                              / np.maximum(abs(target), size))
     return np.where(np.isfinite(points).all(axis=1), residual, np.inf)
 
 
-def constraint_residuals(scene: Scene, at: dict[str, np.ndarray]) -> np.ndarray:
+def _per_configuration(values: list, owner: np.ndarray | None):
+    """One value of each instance, as each configuration's (``owner``: its instance); the
+    value itself for one instance (``owner`` None)."""
+    return np.asarray(values, dtype=float)[owner] if owner is not None else np.asarray(values[0], dtype=float)
+
+
+def constraint_residuals(scene: Scene, at: dict[str, np.ndarray], instances: Sequence[Scene] | None = None,
+                         owner: np.ndarray | None = None) -> np.ndarray:
     """The signed, smooth errors of configurations (point name → complex array of shape
     (K,)) on every constraint of the linkage, shape (K, m): per link dimension
     (|p_u − p_v|² − s_{u,v}) / s_{u,v} (relative to the link's size where s_{u,v} = 0);
@@ -73,14 +93,17 @@ def constraint_residuals(scene: Scene, at: dict[str, np.ndarray]) -> np.ndarray:
     second link's point from the first link's axis over the linkage's size. Zero exactly
     at the configurations that satisfy them (senses and mirrors aside:
     :func:`joint_residuals`); what Gauss–Newton polishes a slider chain on
-    (:func:`~baranov.solvers.polish.polish_on_constraints`)."""
+    (:func:`~baranov.solvers.polish.polish_on_constraints`). ``instances``, ``owner``: as
+    :func:`joint_residuals` takes them."""
     columns = []
-    for link in scene.links:
+    for index, link in enumerate(scene.links):
         point = {joint: at[scene.point_name(link.name, joint)] for joint in link.joints}
-        size = max(float(target) for target in link.squared_distances.values())
-        for pair, target in link.squared_distances.items():
+        shapes = [instance.links[index] for instance in instances] if instances is not None else [link]
+        size = _per_configuration([max(float(t) for t in shape.squared_distances.values()) for shape in shapes], owner)
+        for pair in link.squared_distances:
             u, v = tuple(pair)
-            columns.append((np.abs(point[u] - point[v]) ** 2 - float(target)) / (float(target) or size))
+            target = _per_configuration([float(shape.squared_distances[pair]) for shape in shapes], owner)
+            columns.append((np.abs(point[u] - point[v]) ** 2 - target) / np.where(target != 0, target, size))
     return _stacked(columns + _slider_columns(scene, at), at)
 
 

@@ -21,8 +21,11 @@ from baranov.solvers import solve
 from baranov.solvers.coincidence import solvable_plan
 from baranov.solvers.numeric.branch_and_prune import (
     AT_EDGE,
+    instance_inputs,
     parameter_domain,
+    prune_instances,
     prune_one_parameter,
+    searched_domain,
 )
 from baranov.solvers.placement import compile_scene
 from baranov.solvers.verification import distance_bound
@@ -86,3 +89,28 @@ def test_a_mode_on_a_flat_triangle_is_left_undecided():
     if pruned.complete:
         pytest.fail("3-RPR-I's mode at a flat triangle was decided")
     assert (pruned.unresolved[:, 3] == AT_EDGE).any()
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from([t for t in COUPLING_ONE if t[0] in (7, 9)]), st.integers(0, 2**32 - 1))
+def test_instances_pruned_together_are_pruned_as_each_alone(truss, seed):
+    """prune_instances over random instances of one truss (their boxes side by side in
+    the same rounds) proves what prune_one_parameter proves of each: the same roots, boxes
+    left undecided and number of evaluations."""
+    links, index = truss
+    rng = np.random.default_rng(seed)
+    chain = baranov_trusses(links)[index]
+    scenes = [scene_of(chain, generic_integer_configuration(chain, rng)) for _ in range(3)]
+    plan = solvable_plan(scenes[0])
+    if plan.number_of_parameters != 1:
+        return
+    branches = sign_branches(len(plan.free_sign_triangles))
+    systems = [compile_scene(scene, plan) for scene in scenes]
+    program = systems[0].straight_line_program()
+    domains = [searched_domain(scene, plan) for scene in scenes]
+    together = prune_instances(program, branches, [instance_inputs(program, scene.known, system.fixed_signs)
+                                                   for scene, system in zip(scenes, systems, strict=True)], domains)
+    for scene, system, domain, pruned in zip(scenes, systems, domains, together, strict=True):
+        alone = prune_one_parameter(system, branches, domain, scene.known)
+        assert pruned.evaluations == alone.evaluations
+        assert np.array_equal(pruned.roots, alone.roots) and np.array_equal(pruned.unresolved, alone.unresolved)

@@ -158,3 +158,31 @@ def test_the_kernel_in_use_follows_baranov_kernel(monkeypatch):
     monkeypatch.setenv("BARANOV_KERNEL", "fast")
     with pytest.raises(KernelChoiceError, match="BARANOV_KERNEL='fast'"):
         compiled.residuals(values, branches)
+
+
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from([t for t in TRUSSES if t[0] == 7]), st.integers(0, 2**32 - 1))
+def test_rows_of_many_instances_run_as_each_instance_alone(truss, seed):
+    """run_program with each row's own known distances and link signs (a batch of
+    instances of one plan) gives each row what a run on its instance alone gives, bit
+    for bit."""
+    links, index = truss
+    rng = np.random.default_rng(seed)
+    chain = baranov_trusses(links)[index]
+    scenes = [scene_of(chain, generic_integer_configuration(chain, rng)) for _ in range(3)]
+    plan = solvable_plan(scenes[0])
+    systems = [compile_scene(scene, plan) for scene in scenes]
+    program = systems[0].straight_line_program()
+    branches = sign_branches(len(plan.free_sign_triangles))
+    owner = np.arange(12) % len(scenes)
+    values = rng.uniform(0, 4 * max(systems[0].known.values()), (12, plan.number_of_parameters))
+    signs = branches[np.arange(12) % len(branches)].astype(float)
+    known = np.array([[system.known[pair] for pair in program.known_pairs] for system in systems])[owner]
+    fixed = np.array([[system.fixed_signs[t] for t in program.fixed_triangles] for system in systems])[owner]
+    together = straight_line.run_program(program, known, fixed.reshape(12, -1), values, signs, paired=True,
+                                         points=True)
+    for row in range(12):
+        alone = systems[owner[row]]._run_program(values[row:row + 1], signs[row:row + 1], paired=True, points=True)
+        for part, mine, expected in zip(("residuals", "failures", "radicands", "margins", "points"), together, alone,
+                                        strict=True):
+            assert _bits(mine[row:row + 1]) == _bits(expected), part

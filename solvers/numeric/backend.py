@@ -37,7 +37,7 @@ from ..modes import AssemblyMode, Certificate, MovableLinkageError, Solution, So
 from ..placement import NEARLY_FLAT, compile_scene, placed_from_ground, polished_mode, read_back
 from ..polish import polish_configurations, polish_on_constraints
 from ..verification import RESIDUAL_TOLERANCE, distance_bound, placement_residuals
-from .branch_and_prune import REASONS, evaluation_budget, instance_inputs, prune_one_parameter, searched_domain
+from .branch_and_prune import REASONS, PrunedRoots, evaluation_budget, instance_inputs, prune_one_parameter, searched_domain
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
 from .two_parameter import ridge_roots, shared_curve, two_parameter_roots
 
@@ -128,6 +128,15 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     domain = searched_domain(scene, plan)
     pruned = prune_one_parameter(compiled, branches, domain, scene.known,
                                  budget=int(min(evaluation_budget(len(branches)), remaining / SECONDS_PER_BOX)))
+    return modes_of_pruned(scene, compiled, branches, pruned)
+
+
+def modes_of_pruned(scene: Scene, compiled: CompiledSystem, branches: np.ndarray,
+                    pruned: PrunedRoots) -> tuple[tuple[AssemblyMode, ...], Certificate]:
+    """The modes of a coupling-1 plan's certified roots (``pruned``), each read back,
+    polished and verified, and the certificate: complete where every box of the domain
+    was decided and every certified root verified as a distinct mode; else its gaps name
+    the boxes left to the searches."""
     name = compiled.parameter_names[0]
     gaps = tuple(f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branches[int(k)])}: {REASONS[int(why)]}"
                  for low, high, k, why in pruned.unresolved)
@@ -136,12 +145,20 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
                                              "listed come from the sampling searches"))
     candidates = [(np.array([0.5 * (low + high)]), branches[int(k)]) for low, high, k in pruned.roots]
     modes = assembly_modes(scene, compiled, candidates, distinct=True)
+    return modes, certificate_of_pruned(compiled, branches, pruned, modes)
+
+
+def certificate_of_pruned(compiled: CompiledSystem, branches: np.ndarray, pruned: PrunedRoots,
+                          modes: tuple[AssemblyMode, ...]) -> Certificate:
+    """The certificate of a branch-and-prune that decided every box (``pruned``) and of
+    the ``modes`` verified from its roots: complete where each root verified as a mode."""
     if len(modes) != len(pruned.roots):
-        return modes, Certificate(False, None, (f"{len(pruned.roots)} roots certified, {len(modes)} verified as "
-                                                "distinct modes",))
-    proof = (f"interval branch-and-prune of {name} in [{domain[0]:.6g}, {domain[1]:.6g}], {len(branches)} branches: "
-             f"each root alone in its box, the rest excluded; {pruned.evaluations} boxes")
-    return modes, Certificate(True, None, (), proof)
+        return Certificate(False, None, (f"{len(pruned.roots)} roots certified, {len(modes)} verified as "
+                                         "distinct modes",))
+    low, high = pruned.domain
+    proof = (f"interval branch-and-prune of {compiled.parameter_names[0]} in [{low:.6g}, {high:.6g}], "
+             f"{len(branches)} branches: each root alone in its box, the rest excluded; {pruned.evaluations} boxes")
+    return Certificate(True, None, (), proof)
 
 
 def _certified_construction(scene: Scene, compiled: CompiledSystem, branches: np.ndarray
@@ -156,8 +173,8 @@ def _certified_construction(scene: Scene, compiled: CompiledSystem, branches: np
         return (), Certificate(False, None, ("slider chains are not yet run through the interval program",))
     program = compiled.straight_line_program()
     empty = np.zeros((len(branches), 0))
-    _, _, status = evaluate_boxes(interval_program(program), *instance_inputs(compiled, scene.known), empty, empty,
-                                  branches)
+    inputs = instance_inputs(program, scene.known, compiled.fixed_signs)
+    _, _, status = evaluate_boxes(interval_program(program), *inputs, empty, empty, branches)
     if (status == EDGE).any() or len(program.residual_registers):
         return (), Certificate(False, None, ("a triangle of the construction may be flat: the interval evaluation "
                                              "decides no mode on that branch",))

@@ -40,6 +40,7 @@ lies in the domain outside the certified and unresolved boxes.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from itertools import combinations
 
@@ -62,6 +63,7 @@ from baranov.closure.interval_program import (
     rounded_down,
     rounded_up,
 )
+from baranov.closure.straight_line import StraightLineProgram
 
 #: A box's status where f's model (or a triangle) excludes it.
 EXCLUDED = 3
@@ -80,6 +82,11 @@ EVALUATION_BUDGET = 20_000
 #: boxes to certify its 76 modes (0.25 s), and stopped at 20 000 it left them to the
 #: searches, at twice c64bf01's time (docs/bench/numeric-speed.md).
 BOXES_PER_BRANCH = 400
+
+
+#: Boxes side by side in a round over many instances, which fill every column: a round's
+#: fixed costs spread over more boxes (7/B1 sweep: 3.5 µs a box at 32, 1.6 at 128, measured).
+MANY_COLUMNS = 128
 
 
 def evaluation_budget(branches: int) -> int:
@@ -144,16 +151,17 @@ SEARCH, CERTIFY, CONTRACT = 0, 1, 2
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _evaluated(instructions, values, registers, feasible, status, residual, derivative, low, high, count, out
-               ):  # pragma: no cover - compiled
-    """Evaluate the boxes [low[j], high[j]] loaded in the first ``count`` columns: row j of
+def _evaluated(instructions, values, registers, feasible, status, starts, residual, derivative, low, high, count,
+               out):  # pragma: no cover - compiled
+    """Evaluate the boxes [low[j], high[j]] loaded in the first ``count`` columns (their
+    status starting from their instance's, ``starts[j]``): row j of
     ``out`` gets (status, f's center, slope and remainder, f′'s range low and high, and the
     part [z0, z1] of the box where the triangles at an edge can exist and f's linear model
     vanish); status EXCLUDED where that part is empty. f′'s models are computed only if
     some box is FEASIBLE and not excluded."""
     c, g, e, radius, scratch = registers
     for j in range(count):
-        status[j] = FEASIBLE
+        status[j] = starts[j]
         feasible[0, j], feasible[1, j] = -np.inf, np.inf
     evaluate_models(instructions[:values], c, g, e, radius, feasible, status, scratch, count)
     needed = False
@@ -190,46 +198,57 @@ def _split(stack, unresolved, a, b, k, status, z0, z1, minimum_width):  # pragma
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _prune(instructions, values, base_c, base_e, parameter, sign_registers, branches, residual, derivative, low, high,
-           minimum_width, budget, columns):  # pragma: no cover - compiled
-    """The branch-and-prune loop of :func:`prune_one_parameter` over every branch (the
-    first ``values`` instructions compute the values, the rest the derivatives): rounds
-    of up to ``columns`` boxes, each round one evaluation of the program side by side."""
-    registers = new_registers(base_c, base_e, 1, columns)
+def _prune(instructions, values, instance_c, instance_e, starts, instance_outputs, parameter, sign_registers, branches,
+           residual, derivative, low, high, minimum_width, budget, columns):  # pragma: no cover - compiled
+    """The branch-and-prune loop of :func:`prune_instances` over every branch of every
+    instance (the first ``values`` instructions compute the values, the rest the
+    derivatives; instance i's registers ``instance_c[i]``, ``instance_e[i]``, its status
+    ``starts[i]``, its domain [low[i], high[i]]): rounds of up to ``columns`` boxes of any
+    instances, each round one evaluation of the program side by side. A box's branch
+    index k stands for branch k mod B of instance k // B."""
+    registers = new_registers(instance_c[0], instance_e[0], 1, columns)
     c, g, e, radius, _ = registers
     feasible, status, out = np.empty((2, columns)), np.empty(columns, dtype=np.int64), np.empty((columns, 8))
+    column_starts = np.empty(columns, dtype=np.int64)
     parameters, box_low, box_high = np.array([parameter]), np.empty(1), np.empty(1)
     lows, highs = np.empty(columns), np.empty(columns)
-    stack = [(low, high, 0, SEARCH, 0.0, 0.0, 0.0, 0.0, 0)]
-    for k in range(1, branches.shape[0]):
-        stack.append((low, high, k, SEARCH, 0.0, 0.0, 0.0, 0.0, 0))
-    batch = [stack[0]]
+    count = branches.shape[0]
+    stack = [(low[0], high[0], 0, SEARCH, 0.0, 0.0, 0.0, 0.0, 0)]
+    stack.pop()
+    for i in range(low.shape[0] - 1, -1, -1):  # instance 0 first off the stack
+        if starts[i] != INFEASIBLE:
+            for k in range(count - 1, -1, -1):
+                stack.append((low[i], high[i], i * count + k, SEARCH, 0.0, 0.0, 0.0, 0.0, 0))
+    batch = [(0.0, 0.0, 0, 0, 0.0, 0.0, 0.0, 0.0, 0)]
     roots = [(0.0, 0.0, 0, 0.0, 0.0)]
     roots.pop()
     unresolved = [(0.0, 0.0, 0, 0)]
     unresolved.pop()
-    evaluations = 0
+    evaluations = np.zeros(low.shape[0], dtype=np.int64)
     while len(stack) > 0:
         batch.clear()
         while len(stack) > 0 and len(batch) < columns:
             item = stack.pop()
             a, b, k, kind, u0, u1 = item[0], item[1], item[2], item[3], item[4], item[5]
-            if evaluations >= budget:  # a box being contracted holds its root already
+            i = k // count
+            if evaluations[i] >= budget:  # a box being contracted holds its root already
                 if kind == CONTRACT:
                     roots.append((a, b, k, u0, u1))
                 else:
                     unresolved.append((a, b, k, OVER_BUDGET) if kind == SEARCH else (u0, u1, k, OVER_BUDGET))
                 continue
-            evaluations += 1
+            evaluations[i] += 1
             box_low[0], box_high[0] = a, b
             j = len(batch)
-            lows[j], highs[j] = a, b
-            load_box(parameters, sign_registers, box_low, box_high, branches[k], c, g, e, radius, j)
+            lows[j], highs[j], column_starts[j] = a, b, starts[i]
+            for r in instance_outputs:
+                c[r, j], e[r, j] = instance_c[i, r], instance_e[i, r]
+            load_box(parameters, sign_registers, box_low, box_high, branches[k - i * count], c, g, e, radius, j)
             batch.append(item)
         if len(batch) == 0:
             continue
-        _evaluated(instructions, values, registers, feasible, status, residual, derivative, lows, highs, len(batch),
-                   out)
+        _evaluated(instructions, values, registers, feasible, status, column_starts, residual, derivative, lows, highs,
+                   len(batch), out)
         for j in range(len(batch)):
             a, b, k, kind, u0, u1, z0, z1, steps = batch[j]
             decision, center, slope, rest, g0, g1 = out[j, 0], out[j, 1], out[j, 2], out[j, 3], out[j, 4], out[j, 5]
@@ -238,10 +257,10 @@ def _prune(instructions, values, base_c, base_e, parameter, sign_registers, bran
                 _contract(stack, roots, a, b, k, u0, u1, steps, monotone, center, rest, g0, g1, out[j, 6], out[j, 7])
             elif kind == CERTIFY:
                 _certify(stack, unresolved, a, b, k, u0, u1, z0, z1, decision, monotone, center, rest,
-                         g0, g1, minimum_width)
+                         g0, g1, minimum_width[k // count])
             elif decision != EXCLUDED:
                 _search(stack, unresolved, a, b, k, decision, monotone, center, slope, rest, g0, g1,
-                        out[j, 6], out[j, 7], minimum_width)
+                        out[j, 6], out[j, 7], minimum_width[k // count])
     found = np.empty((len(roots), 5))
     for n in range(len(roots)):
         found[n, 0], found[n, 1], found[n, 2], found[n, 3], found[n, 4] = roots[n]
@@ -327,26 +346,50 @@ def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: 
     Not for plans with slider joints. Cost: O(boxes × instructions); the boxes are about
     the roots' and edges' number times the bisections to isolate them.
     """
-    program = compiled.straight_line_program()
+    inputs = instance_inputs(compiled.straight_line_program(), {**compiled.known, **(exact_known or {})},
+                             compiled.fixed_signs)
+    return prune_instances(compiled.straight_line_program(), branches, [inputs], [domain], minimum_width, budget)[0]
+
+
+def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: Sequence[tuple], domains: Sequence,
+                    minimum_width: float = MINIMUM_WIDTH, budget: int = EVALUATION_BUDGET) -> list[PrunedRoots]:
+    """:func:`prune_one_parameter` for many instances of one coupling-1 plan at once
+    (``inputs``: each instance's :func:`instance_inputs`; ``domains``: its searched
+    interval), their boxes side by side in the same rounds (a sweep fills every column,
+    where one instance of a 7-link truss fills a few). The same boxes, decisions and
+    roots as one instance at a time; ``budget`` is per instance. Cost
+    O(instances × boxes × instructions), without Python work per box."""
     reduced = interval_program(program)
-    base_c, base_e = instance_registers(reduced, *instance_inputs(compiled, exact_known))
-    low, high = (float(end) for end in domain)
-    found, left, evaluations = _prune(reduced.instructions, reduced.values, base_c, base_e,
-                                      int(program.parameter_registers[0]),
+    registers = [instance_registers(reduced, *arguments) for arguments in inputs]
+    low, high = (np.array([float(domain[end]) for domain in domains]) for end in (0, 1))
+    count = len(branches)
+    columns = min(COLUMNS if len(inputs) == 1 else MANY_COLUMNS, max(8, 2 * count * len(inputs)))
+    found, left, evaluations = _prune(reduced.instructions, reduced.values,
+                                      np.array([center for center, _, _ in registers]),
+                                      np.array([remainder for _, remainder, _ in registers]),
+                                      np.array([status for _, _, status in registers], dtype=np.int64),
+                                      reduced.instance_outputs, int(program.parameter_registers[0]),
                                       program.sign_registers, np.ascontiguousarray(branches, dtype=float),
                                       int(program.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
-                                      low, high, minimum_width * high, budget,
-                                      min(COLUMNS, max(8, 2 * len(branches))))
-    return PrunedRoots(_distinct(found), _merged(left), evaluations, (low, high))
+                                      low, high, minimum_width * high, budget, columns)
+    owner_found, owner_left = found[:, 2] // count, left[:, 2] // count
+    pruned = []
+    for i in range(len(inputs)):
+        roots, unresolved = found[owner_found == i], left[owner_left == i]
+        roots[:, 2] -= i * count
+        unresolved[:, 2] -= i * count
+        pruned.append(PrunedRoots(_distinct(roots), _merged(unresolved), int(evaluations[i]), (low[i], high[i])))
+    return pruned
 
 
-def instance_inputs(compiled: CompiledSystem, exact_known=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def instance_inputs(program: StraightLineProgram, known: Mapping, fixed_signs: Mapping
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The inputs of the plan's program for one instance: the float intervals around the
-    known squared distances (exact where ``exact_known`` gives them: pair → int, Fraction,
-    …; else the floats) and the link steps' orientation signs."""
-    program = compiled.straight_line_program()
-    known = [(exact_known or {}).get(pair, compiled.known[pair]) for pair in program.known_pairs]
-    return (*enclosing(known), np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float))
+    squared distances ``known`` (pair → number: exact ones, int, Fraction, …, enclosed
+    exactly; floats as they are) and the link steps' orientation signs ``fixed_signs``
+    (triangle → ±1)."""
+    return (*enclosing([known[pair] for pair in program.known_pairs]),
+            np.array([fixed_signs[t] for t in program.fixed_triangles], float))
 
 
 def _distinct(roots: np.ndarray) -> np.ndarray:

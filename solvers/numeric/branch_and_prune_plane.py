@@ -120,7 +120,7 @@ def _krawczyk(middle, radius, center, rest, jacobian, image):  # pragma: no cove
 
 
 @numba.njit(**_COMPILE)
-def _examine(instructions, values, work, parameters, sign_registers, signs, residuals, derivatives, box, narrowed
+def _examine(instructions, values, start, work, parameters, sign_registers, signs, residuals, derivatives, box, narrowed
              ):  # pragma: no cover - compiled
     """Decide ``box`` (lo0, hi0, lo1, hi1) on the branch ``signs`` by one evaluation:
     (_EXCLUDED | _CERTIFIED | _UNDECIDED, status); ``narrowed`` (4,) receives the box cut to
@@ -128,7 +128,7 @@ def _examine(instructions, values, work, parameters, sign_registers, signs, resi
     c, g, e, radii, scratch, feasible, statuses, low, high = work  # one column: one box
     low[0], high[0], low[1], high[1] = box[0], box[1], box[2], box[3]
     models.load_box(parameters, sign_registers, low, high, signs, c, g, e, radii, 0)
-    statuses[0] = models.FEASIBLE
+    statuses[0] = start  # the instance's status
     models.evaluate_models(instructions[:values], c, g, e, radii, feasible, statuses, scratch, 1)
     status, radius = statuses[0], radii[:, 0].copy()
     if status == models.INFEASIBLE:
@@ -166,7 +166,7 @@ def _examine(instructions, values, work, parameters, sign_registers, signs, resi
 
 
 @numba.njit(**_COMPILE)
-def _contracted(instructions, values, work, parameters, sign_registers, signs, residuals, derivatives, box
+def _contracted(instructions, values, start, work, parameters, sign_registers, signs, residuals, derivatives, box
                 ):  # pragma: no cover - compiled
     """A certified box's root enclosure narrowed by Krawczyk images while each takes off
     a tenth (quadratically near the root); (enclosure (4,), evaluations)."""
@@ -174,7 +174,7 @@ def _contracted(instructions, values, work, parameters, sign_registers, signs, r
     current, narrowed = box.copy(), np.empty(4)
     for _ in range(CONTRACTIONS):
         evaluations += 1
-        outcome, _ = _examine(instructions, values, work, parameters, sign_registers, signs, residuals, derivatives,
+        outcome, _ = _examine(instructions, values, start, work, parameters, sign_registers, signs, residuals, derivatives,
                               current, narrowed)
         if outcome != _CERTIFIED:
             break
@@ -187,7 +187,7 @@ def _contracted(instructions, values, work, parameters, sign_registers, signs, r
 
 
 @numba.njit(**_COMPILE)
-def _prune_plane(instructions, values, base_c, base_e, parameters, sign_registers, branches, residuals, derivatives,
+def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_registers, branches, residuals, derivatives,
                  domain, minimum_width, budget):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_two_parameters` over every branch."""
     work = (*models.new_registers(base_c, base_e, 2, 1), np.empty((0, 1)), np.empty(1, dtype=np.int64),
@@ -208,7 +208,7 @@ def _prune_plane(instructions, values, base_c, base_e, parameters, sign_register
             unresolved.append((box, k, OVER_BUDGET))
             continue
         evaluations += 1
-        outcome, status = _examine(instructions, values, work, parameters, sign_registers, branches[k], residuals,
+        outcome, status = _examine(instructions, values, start, work, parameters, sign_registers, branches[k], residuals,
                                    derivatives, box, narrowed)
         if outcome == _EXCLUDED:
             continue
@@ -222,7 +222,7 @@ def _prune_plane(instructions, values, base_c, base_e, parameters, sign_register
             evaluations += 1
             for n in range(4):
                 uniqueness[n] = narrowed[n] + (narrowed[n] - narrowed[n ^ 1]) * 0.25
-            outcome, _ = _examine(instructions, values, work, parameters, sign_registers, branches[k], residuals,
+            outcome, _ = _examine(instructions, values, start, work, parameters, sign_registers, branches[k], residuals,
                                   derivatives, uniqueness.copy(), narrowed)
             if outcome == _CERTIFIED and not (narrowed[1] < box[0] or narrowed[0] > box[1] or narrowed[3] < box[2]
                                               or narrowed[2] > box[3]):
@@ -233,7 +233,7 @@ def _prune_plane(instructions, values, base_c, base_e, parameters, sign_register
                 narrowed[:] = box  # undecided: split this box
                 kept[:] = widths
         if outcome == _CERTIFIED:
-            enclosure, spent = _contracted(instructions, values, work, parameters, sign_registers, branches[k],
+            enclosure, spent = _contracted(instructions, values, start, work, parameters, sign_registers, branches[k],
                                            residuals, derivatives, narrowed)
             evaluations += spent
             roots.append((enclosure, k, uniqueness))
@@ -278,11 +278,12 @@ def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
     """
     program = compiled.straight_line_program()
     reduced = models.interval_program(program)
-    base_c, base_e = models.instance_registers(reduced, *instance_inputs(compiled, exact_known))
+    inputs = instance_inputs(program, {**compiled.known, **(exact_known or {})}, compiled.fixed_signs)
+    base_c, base_e, start = models.instance_registers(reduced, *inputs)
     box = np.array([float(end) for interval in domain for end in interval])
     derivatives = np.ascontiguousarray(reduced.residual_derivatives, dtype=np.int64)
     found, left, evaluations = _prune_plane(
-        reduced.instructions, reduced.values, base_c, base_e, np.ascontiguousarray(program.parameter_registers),
+        reduced.instructions, reduced.values, base_c, base_e, start, np.ascontiguousarray(program.parameter_registers),
         program.sign_registers, np.ascontiguousarray(branches, dtype=float),
         np.ascontiguousarray(program.residual_registers), derivatives, box, minimum_width, budget)
     return PrunedRoots(_distinct(found), left, evaluations, tuple(map(tuple, box.reshape(2, 2))))
