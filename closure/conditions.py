@@ -17,7 +17,7 @@ uses the *computed* distance s_{i,j} = det(M_j - M_i) s_{a,b}; these appear as
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING
 
 from baranov.planner import DistanceKind, Plan
@@ -110,8 +110,10 @@ class ClosureSystem:
         return [sympy_condition(c) for c in self.conditions]
 
 
+@lru_cache(maxsize=1024)
 def closure_system(plan: Plan) -> ClosureSystem:
-    """Derive the closure conditions of ``plan`` (thesis §2.7).
+    """Derive the closure conditions of ``plan`` (thesis §2.7); once per plan (cached:
+    every solve of a linkage asks for them).
 
     >>> from baranov.literature.trusses import thesis_truss
     >>> from baranov.planner import bilateration_plans

@@ -445,7 +445,7 @@ def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np
     values, failures, radicands = _compiled_loop(
         layout.operations, layout.slots, np.concatenate([instance_slots, layout.constant_slots]),
         np.concatenate([instance, layout.constant_values]), row_slots, np.ascontiguousarray(rows), layout.output_slots,
-        program.steps, max(1, min(BLOCK, BLOCK_BYTES // (8 * layout.slots))))
+        program.steps, max(1, min(BLOCK, BLOCK_BYTES // (8 * layout.slots), len(rows))))
     values, failures, radicands = values.reshape(-1, values.shape[-1]), failures.reshape(-1), radicands.reshape(-1)
     closures, margins = len(program.residual_registers), len(program.residual_registers) + len(program.margin_registers)
     profile = values[:, :closures], failures, radicands, values[:, closures:margins]

@@ -131,7 +131,7 @@ def mode_of(compiled: CompiledSystem, joints: list[str], values: np.ndarray, bra
     return AssemblyMode({name: float(v) for name, v in zip(compiled.parameter_names, compiled.reported(values),
                                                           strict=True)},
                         tuple(int(s) for s in branch),
-                        {j: (float(p.real), float(p.imag)) for j, p in zip(joints, points, strict=True)},
+                        {j: (p.real, p.imag) for j, p in zip(joints, np.asarray(points, complex).tolist(), strict=True)},
                         float(residual))
 
 

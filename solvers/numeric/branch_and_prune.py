@@ -86,6 +86,8 @@ BOXES_PER_BRANCH = 400
 
 #: Boxes side by side in a round over many instances, which fill every column: a round's
 #: fixed costs spread over more boxes (7/B1 sweep: 3.5 µs a box at 32, 1.6 at 128, measured).
+#: One instance takes up to COLUMNS, 4 × its branches: rounds of 16 left 7/B1's frontier
+#: waiting on the stack (7-link examples: 15 ms for the four at 2 × branches, 8 ms at 4 ×).
 MANY_COLUMNS = 128
 
 
@@ -363,7 +365,7 @@ def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: 
     registers = [instance_registers(reduced, *arguments) for arguments in inputs]
     low, high = (np.array([float(domain[end]) for domain in domains]) for end in (0, 1))
     count = len(branches)
-    columns = min(COLUMNS if len(inputs) == 1 else MANY_COLUMNS, max(8, 2 * count * len(inputs)))
+    columns = min(COLUMNS if len(inputs) == 1 else MANY_COLUMNS, max(8, 4 * count * len(inputs)))
     found, left, evaluations = _prune(reduced.instructions, reduced.values,
                                       np.array([center for center, _, _ in registers]),
                                       np.array([remainder for _, remainder, _ in registers]),
