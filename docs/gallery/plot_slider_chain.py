@@ -1,0 +1,21 @@
+"""
+A chain with a slider joint
+===========================
+
+Thesis ch. 4: the 7/B3 Assur chain with a slider at P1 (its two links meet on a line
+instead of a point). Solved exactly: the characteristic polynomial and its certified real
+roots.
+"""
+
+import matplotlib.pyplot as plt
+
+import baranov
+from baranov.solvers.drawing import modes_figure
+
+from _paths import EXAMPLES
+
+scene = baranov.load_scene(EXAMPLES / "7-B3-slider-P1.json")
+solution = baranov.solve(scene, method="exact")
+print(len(solution.assembly_modes), "assembly modes;", solution.certificate.summary())
+modes_figure(scene, solution)
+plt.show()
