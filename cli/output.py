@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import io
+from collections.abc import Mapping
 
 from baranov.solvers.modes import Solution, signs_text
 from baranov.topology import natural_sort_key
@@ -38,11 +39,21 @@ def mode_table(solution: Solution, joints: bool = False, width: int = 100) -> li
     for line, mode in zip(aligned[1:], modes, strict=True):
         lines.append(line)
         if joints:
-            size = max(max(abs(x), abs(y)) for x, y in mode.joints.values())
-            lines += _wrapped([f"{name} = ({coordinate(x, size)}, {coordinate(y, size)})"
-                               for name, (x, y) in sorted(mode.joints.items(), key=lambda item: natural_sort_key(item[0]))],
-                              width, indent=6)
+            lines += joint_lines(mode.joints, width, indent=6)
     return lines
+
+
+def joint_lines(joints: Mapping[str, tuple[float, float]], width: int = 100, indent: int = 6) -> list[str]:
+    """Joint coordinates ``P1 = (x, y)`` in natural order (P2 before P10), wrapped at
+    ``width`` and indented by ``indent``; rounding noise shown as 0 (:func:`coordinate`).
+
+    >>> print("\\n".join(joint_lines({"P10": (1.5, 0.0), "P2": (3.0000000000000004, -4e-16)}, indent=2)))
+      P2 = (3, 0)   P10 = (1.5, 0)
+    """
+    size = max(max(abs(x), abs(y)) for x, y in joints.values())
+    return _wrapped([f"{name} = ({coordinate(x, size)}, {coordinate(y, size)})"
+                     for name, (x, y) in sorted(joints.items(), key=lambda item: natural_sort_key(item[0]))],
+                    width, indent)
 
 
 def pose_table(poses, parameters: tuple[str, ...]) -> list[str]:

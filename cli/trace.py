@@ -37,6 +37,8 @@ def add_trace_parser(commands) -> None:
     trace.add_argument("--degree", action="store_true",
                        help="also the algebraic degree of each tracer's coupler curve and of a generic point's on "
                             "each moving link (exact dimensions and msolve needed; seconds to a minute per curve)")
+    trace.add_argument("--joints", action="store_true",
+                       help="with --input: every driven configuration's joint coordinates below its piece's line")
     trace.add_argument("--json", action="store_true", help="the pieces and branch points as JSON")
     trace.add_argument("--plot", type=Path, help="draw the configuration space and the coupler curves into this PNG")
 
@@ -141,6 +143,8 @@ def _checked_options(args: argparse.Namespace, scene, system):
     driver = _driver(scene, args.input) if args.input is not None else None
     if args.grid < 1:
         raise UsageError(f"--grid {args.grid}: at least 1")
+    if args.joints and driver is None:
+        raise UsageError("--joints: give --input too: the coordinates are those of the driven configurations")
     if args.animate is not None and (driver is None or not args.animate.parent.is_dir()):
         raise UsageError(f"--animate {args.animate}: " + ("give --input too: the animation follows the driven motion"
                                                          if driver is None else
@@ -188,6 +192,8 @@ def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, ex
 def _print_summary(args, system, traced, triangles, degrees, driver, driven, exact=None) -> None:
     from baranov.motion import sign_index
 
+    from .output import joint_lines
+
     print(f"{args.scene}: {len(traced.pieces)} pieces in ({', '.join(system.parameter_names)}), "
           f"{len(traced.branch_points)} branch points, {len(traced.loose_ends)} piece ends not joined")
     print("piece  eta  signs  points  " + "  ".join(f"{name} range" for name in system.parameter_names))
@@ -216,6 +222,9 @@ def _print_summary(args, system, traced, triangles, degrees, driver, driven, exa
             noun = "configuration" if len(branch.points) == 1 else "configurations"
             print(f"  piece {branch.piece:3d}: {len(branch.points):4d} {noun}, from {branch.values[0]:.6g}{unit} "
                   f"to {branch.values[-1]:.6g}{unit}")
+            for value, point in zip(branch.values, branch.points, strict=True) if args.joints else ():
+                lines = joint_lines(point.joints, indent=8)
+                print(f"    {driver.name} = {value:.6g}{unit}:\n" + "\n".join(lines))
     if degrees:
         print("coupler-curve degrees: " + ", ".join(f"{where} {degree}" for where, degree in degrees.items()))
 

@@ -116,10 +116,10 @@ def common_sides(s_ij: Fraction2, s_ik: Fraction2, s_jk: Fraction2, multiply=ope
 
 
 def squared_distance(p_u: Point, p_v: Point, reference: Fraction2, multiply=operator.mul) -> Fraction2:
-    """s_{u,v} = |p_v − p_u|² s_{a,b} as (numerator, denominator), for points placed in
+    """s_{u,v} = ``|p_v − p_u|²`` s_{a,b} as (numerator, denominator), for points placed in
     the frame p_a = 0, p_b = 1 (thesis §2.4: computed distances carry the reference
     distance s_{a,b}). Coordinates are squared separately, so complex coordinates (at
-    complex parameter values) give the polynomial continuation, not |·|².
+    complex parameter values) give the polynomial continuation, not ``|·|²``.
 
     >>> squared_distance((0, 0, 1), (3, 4, 1), (1, 1))
     (25, 1)
@@ -151,25 +151,35 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
     §2.5), in one arithmetic: the single kernel that numeric residuals, ball placements,
     the exact radical tower and the scene's link frames all run through.
 
-    Args:
-        plan: a :class:`~baranov.planner.Plan` (reference pair, steps, closure pairs).
-        known: (numerator, denominator) of s_{u,v} for a link's pair or a parameter,
-            None for a pair the plan computes.
-        signed_root: ``signed_root(index, step, sides, radicand)``: ±√radicand for the
-            step's orientation (``sides``: s_ij, s_ik, s_jk over their common
-            denominator, numerators only, :func:`common_sides`).
-        multiply: the arithmetic's product (the exact tower's keeps normal form).
-        reduced_point, reduced_distance: lowest terms (floats divide through; the tower
-            cancels a gcd); identity by default.
-        after_step: called with (index, step, new point); False stops the placement.
-        slider_step: ``slider_step(index, step, points, reference, distance)`` places a
-            step that touches a slider joint (:class:`~.sliders.SliderPlacement`: the
-            limit of its bilateration) and returns the new point, or the axis direction
-            as a point for a slider located; None for a step it leaves to bilateration.
-        slider_frame: for a reference pair that holds a slider, the frame on its axis:
-            the other joint placed, and s_ref (world units: 1); None otherwise.
+    Parameters
+    ----------
+    plan
+        a :class:`~baranov.planner.Plan` (reference pair, steps, closure pairs).
+    known
+        (numerator, denominator) of s_{u,v} for a link's pair or a parameter,
+        None for a pair the plan computes.
+    signed_root
+        ``signed_root(index, step, sides, radicand)``: ±√radicand for the
+        step's orientation (``sides``: s_ij, s_ik, s_jk over their common
+        denominator, numerators only, :func:`common_sides`).
+    multiply
+        the arithmetic's product (the exact tower's keeps normal form).
+    reduced_point, reduced_distance
+        lowest terms (floats divide through; the tower
+        cancels a gcd); identity by default.
+    after_step
+        called with (index, step, new point); False stops the placement.
+    slider_step
+        ``slider_step(index, step, points, reference, distance)`` places a
+        step that touches a slider joint (:class:`~.sliders.SliderPlacement`: the
+        limit of its bilateration) and returns the new point, or the axis direction
+        as a point for a slider located; None for a step it leaves to bilateration.
+    slider_frame
+        for a reference pair that holds a slider, the frame on its axis:
+        the other joint placed, and s_ref (world units: 1); None otherwise.
 
-    Returns:
+    Returns
+    -------
         (points, the reference distance s_{a,b}, a function giving s_{u,v} for any pair
         of placed joints: known, else computed). The reference joints sit at 0 and 1.
         O(steps) kernel calls.

@@ -172,7 +172,7 @@ def _a_symbol(triangle: Triangle) -> sympy.Symbol:
 
 def sympy_condition(condition: DistanceCondition) -> sympy.Eq:
     """``s_{u,v} = det(Ω) s_ref`` with every Z_{i,j,k} written out (thesis eq. 2.7) as
-    (s_ij + s_ik - s_jk + 4 i A_ijk) / (2 s_ij), and det(Ω) = |Ω|², unexpanded."""
+    (s_ij + s_ik - s_jk + 4 i A_ijk) / (2 s_ij), and det(Ω) = ``|Ω|²``, unexpanded."""
     import sympy
 
     total = sympy.Integer(0)

@@ -42,17 +42,23 @@ def sign_branches(count: int) -> np.ndarray:
 class CompiledSystem:
     """A closure system bound to concrete link dimensions.
 
-    Args:
-        system: the closure system of a plan.
-        known: squared distance of every pair of joints on a common link.
-        fixed_signs: orientation sign (±1) of every fixed-sign (link-step) triangle of the
-            plan, keyed by the step's triangle (i, j, k).
-        sliders: the slider joints (:class:`~.sliders.SliderGeometry`): the steps that
-            touch one are placed by :class:`~.sliders.SliderPlacement`, a closure pair of
-            a slider and a joint compares the joint's oriented distance to the axis.
-        searched: the parameters searched through a map
-            (:class:`~.sliders.SearchedParameter`: an oriented distance t to a slider's
-            axis, or a parameter without bound); :meth:`reported` gives them back.
+    Parameters
+    ----------
+    system
+        the closure system of a plan.
+    known
+        squared distance of every pair of joints on a common link.
+    fixed_signs
+        orientation sign (±1) of every fixed-sign (link-step) triangle of the
+        plan, keyed by the step's triangle (i, j, k).
+    sliders
+        the slider joints (:class:`~.sliders.SliderGeometry`): the steps that
+        touch one are placed by :class:`~.sliders.SliderPlacement`, a closure pair of
+        a slider and a joint compares the joint's oriented distance to the axis.
+    searched
+        the parameters searched through a map
+        (:class:`~.sliders.SearchedParameter`: an oriented distance t to a slider's
+        axis, or a parameter without bound); :meth:`reported` gives them back.
     """
 
     def __init__(self, system: ClosureSystem, known: Mapping[Pair, float], fixed_signs: Mapping[Triangle, int],

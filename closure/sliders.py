@@ -51,15 +51,20 @@ import numpy as np
 class Axis:
     """A slider's axis placed in the plan's frame.
 
-    Attributes:
-        direction: ũ, the frame vector of one axis unit along the sliding direction
-            (|ũ|² = unit/s_ref).
-        anchor: a point of the frame.
-        height: the anchor's oriented distance to the axis, in axis units.
-        unit: q, the squared world length of the axis unit: 1 (world units) but where
-            the exact method measures this slider's heights in units of √q, so that they
-            stay rational (:func:`~baranov.scene.sliders.axis_unit`; thesis §4.2.3's
-            second axis, 45° from the first: q = 2).
+    Attributes
+    ----------
+    direction
+        ũ, the frame vector of one axis unit along the sliding direction
+        (|ũ|² = unit/s_ref).
+    anchor
+        a point of the frame.
+    height
+        the anchor's oriented distance to the axis, in axis units.
+    unit
+        q, the squared world length of the axis unit: 1 (world units) but where
+        the exact method measures this slider's heights in units of √q, so that they
+        stay rational (:func:`~baranov.scene.sliders.axis_unit`; thesis §4.2.3's
+        second axis, 45° from the first: q = 2).
     """
 
     direction: Any
@@ -195,10 +200,14 @@ class SearchedParameter:
     dimensions joins without sliding has no bound: a tangent maps (0, scale²] onto the
     whole line (t) or half-line (s), evenly in √p around |value| ≈ scale.
 
-    Attributes:
-        signed: an oriented distance t rather than a squared distance s.
-        bounded: |t| ≤ scale (t = (2√p/scale − 1) scale); else the tangent map.
-        scale: the bound, or the linkage's size where there is none.
+    Attributes
+    ----------
+    signed
+        an oriented distance t rather than a squared distance s.
+    bounded
+        |t| ≤ scale (t = (2√p/scale − 1) scale); else the tangent map.
+    scale
+        the bound, or the linkage's size where there is none.
     """
 
     signed: bool
@@ -233,14 +242,20 @@ class SearchedParameter:
 class SliderGeometry:
     """What a plan needs of one slider joint, from the scene.
 
-    Attributes:
-        links: the names of its two links, in scene order (P_i' on the first).
-        offsets: for each link, each of its other revolute joints in the axis frame of
-            the slider's point on it: a + i h (:func:`~baranov.scene.sliders.axis_frame`).
-        turns: for each slider sharing a link with this one, the direction of its axis
-            in this one's axis frame (:func:`~baranov.scene.sliders.axis_turn`).
-        slider_offsets: for each link, the points of its other sliders in that frame.
-        unit: q, the squared world length of the unit of its frames (:attr:`Axis.unit`).
+    Attributes
+    ----------
+    links
+        the names of its two links, in scene order (P_i' on the first).
+    offsets
+        for each link, each of its other revolute joints in the axis frame of
+        the slider's point on it: a + i h (:func:`~baranov.scene.sliders.axis_frame`).
+    turns
+        for each slider sharing a link with this one, the direction of its axis
+        in this one's axis frame (:func:`~baranov.scene.sliders.axis_turn`).
+    slider_offsets
+        for each link, the points of its other sliders in that frame.
+    unit
+        q, the squared world length of the unit of its frames (:attr:`Axis.unit`).
     """
 
     links: tuple[str, str]
@@ -284,13 +299,17 @@ class SliderPlacement:
     ``slider_step``): the axes placed so far, and the constructions above chosen by which
     of a step's joints are sliders. Complex arithmetic (the numeric evaluation).
 
-    Args:
-        geometry: the slider joints.
-        parameter: the value of a parameter pair, None for another pair; for a pair of a
-            slider and a joint, the joint's oriented distance t to the axis (thesis
-            §4.2.4).
-        along_root: ``along_root(index, step, s, radicand)``: σ√radicand (σ the step's
-            sign), for the radicand s − Δh² of a step with a free sign.
+    Parameters
+    ----------
+    geometry
+        the slider joints.
+    parameter
+        the value of a parameter pair, None for another pair; for a pair of a
+        slider and a joint, the joint's oriented distance t to the axis (thesis
+        §4.2.4).
+    along_root
+        ``along_root(index, step, s, radicand)``: σ√radicand (σ the step's
+        sign), for the radicand s − Δh² of a step with a free sign.
     """
 
     def __init__(self, geometry: Mapping[str, SliderGeometry], parameter: Callable[[str, str], Any],

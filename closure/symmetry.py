@@ -92,7 +92,7 @@ def _plan_identity(plan: Plan) -> tuple:
 
 def symmetric_variants(plan: Plan, chain: KinematicChain) -> list[tuple[Automorphism, Plan]]:
     """One plan per image of ``plan`` under the automorphism group (the identity first):
-    |Aut| / |stabiliser| plans, all with the same ranking qualities, among which a solver
+    ``|Aut| / |stabiliser|`` plans, all with the same ranking qualities, among which a solver
     may pick the best conditioned for given dimensions.
 
     >>> from baranov.literature.trusses import thesis_truss
@@ -136,12 +136,17 @@ class SymmetricFormulation:
     plan's parameter set onto itself: two conditions in the same parameters, the second
     derived by permutation (Appendix A's treatment of 9/B25–B28).
 
-    Attributes:
-        plan: the plan the first condition comes from.
-        automorphism: the permutation that derives the second condition.
-        system: the plan's closure system.
-        image: the closure system of the permuted plan (its first condition is the
-            derived one; its computed distances are the ones the derived condition uses).
+    Attributes
+    ----------
+    plan
+        the plan the first condition comes from.
+    automorphism
+        the permutation that derives the second condition.
+    system
+        the plan's closure system.
+    image
+        the closure system of the permuted plan (its first condition is the
+        derived one; its computed distances are the ones the derived condition uses).
     """
 
     plan: Plan

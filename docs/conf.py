@@ -34,7 +34,11 @@ extensions = [
 
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 root_doc = "index"
-exclude_patterns = ["_build", "site", "gallery/README.txt", "**/README.md", "Thumbs.db", ".DS_Store"]
+# the measurement fragments without a title of their own are pages of docs/stability.md
+# (copied there by bench/stability.py), not pages of the site
+FRAGMENTS = [f"bench/{page.name}" for page in sorted((HERE / "bench").glob("*.md"))
+             if not page.read_text(encoding="utf-8").startswith("# ")]
+exclude_patterns = ["_build", "site", "gallery/README.txt", "Thumbs.db", ".DS_Store", *FRAGMENTS]
 
 myst_enable_extensions = ["colon_fence", "deflist"]
 myst_heading_anchors = 3
@@ -52,6 +56,7 @@ sphinx_gallery_conf = {
     "examples_dirs": "gallery",
     "gallery_dirs": "auto_examples",
     "filename_pattern": r"/plot_",
+    "ignore_pattern": r"(__init__|_paths)\.py",
     "download_all_examples": False,
     "remove_config_comments": True,
 }

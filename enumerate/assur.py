@@ -19,9 +19,12 @@ from baranov.topology import AutomorphismGroup, KinematicChain, automorphism_gro
 class AssurGroup:
     """An Assur group: ``truss`` with link ``removed_link`` taken away (it is the frame).
 
-    Attributes:
-        truss: the Baranov truss the group comes from.
-        removed_link: index of the removed link.
+    Attributes
+    ----------
+    truss
+        the Baranov truss the group comes from.
+    removed_link
+        index of the removed link.
     """
 
     truss: KinematicChain

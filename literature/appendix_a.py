@@ -39,13 +39,19 @@ from baranov.topology import KinematicChain, joint_graph, natural_sort_key
 class AppendixCondition:
     """One line of Appendix A: ``pair = f(arguments) = det(omega) reference``.
 
-    Attributes:
-        pair: the distance the line computes, e.g. ``"s5,12"``.
-        omega: ``"Ω1"``/``"Ω2"`` where the line defines a computed distance by that Ω;
-            None for the final closure condition (``pair`` is then a link dimension).
-        arguments: the distances it is a function of, as printed (``"s1,7, s3,8"``).
-        reference: the reference distance (a parameter), e.g. ``"s1,7"``.
-        expression: the matrix expression Ω, in the thesis's notation.
+    Attributes
+    ----------
+    pair
+        the distance the line computes, e.g. ``"s5,12"``.
+    omega
+        ``"Ω1"``/``"Ω2"`` where the line defines a computed distance by that Ω;
+        None for the final closure condition (``pair`` is then a link dimension).
+    arguments
+        the distances it is a function of, as printed (``"s1,7, s3,8"``).
+    reference
+        the reference distance (a parameter), e.g. ``"s1,7"``.
+    expression
+        the matrix expression Ω, in the thesis's notation.
     """
 
     pair: str

@@ -24,10 +24,14 @@ from baranov.topology import (
 class PublishedTruss:
     """A truss from the literature.
 
-    Attributes:
-        name: Manolescu's name as used in the thesis, e.g. ``"7/B1"``.
-        links: joint names of every link (rigid links first, as the thesis lists them).
-        source: where in the thesis each link was read.
+    Attributes
+    ----------
+    name
+        Manolescu's name as used in the thesis, e.g. ``"7/B1"``.
+    links
+        joint names of every link (rigid links first, as the thesis lists them).
+    source
+        where in the thesis each link was read.
     """
 
     name: str

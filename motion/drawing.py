@@ -4,6 +4,8 @@ curves, the path of a tracer joint along every piece, in the same colours."""
 
 from __future__ import annotations
 
+from baranov.solvers.modes import signs_text
+
 from .configuration_space import OneDofSystem, sign_index
 from .tracing import Trace
 
@@ -11,11 +13,7 @@ from .tracing import Trace
 def render_trace(system: OneDofSystem, traced: Trace, tracers: list[str],
                  eta_triangles: list[tuple[str, str, str]] | None = None,
                  fixed: dict[str, tuple[float, float]] | None = None) -> bytes:
-    """A PNG: the configuration space (two parameters: a curve; one: ranges per sign
-    vector, drawn at the sign vector's index) and the paths of ``tracers`` in the plane;
-    pieces labelled by η over ``eta_triangles`` (default: the plan's free-sign triangles);
-    ``fixed``: the fixed joints' places (default: the scene's ground; another link's in a
-    kinematic inversion, :mod:`baranov.motion.inversion`)."""
+    """A PNG image (bytes) of :func:`trace_figure`."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -23,39 +21,73 @@ def render_trace(system: OneDofSystem, traced: Trace, tracers: list[str],
 
     from baranov.solvers.drawing import png_bytes
 
+    figure = trace_figure(system, traced, tracers, eta_triangles, fixed)
+    image = png_bytes(figure)
+    plt.close(figure)
+    return image
+
+
+def trace_figure(system: OneDofSystem, traced: Trace, tracers: list[str],
+                 eta_triangles: list[tuple[str, str, str]] | None = None,
+                 fixed: dict[str, tuple[float, float]] | None = None):
+    """A matplotlib figure: the configuration space (two parameters: a curve; one: the ranges of each
+    sign vector as bars on its row, branch points as ticks) and the paths of ``tracers``
+    in the plane (one line style each), both coloured by η over ``eta_triangles``
+    (default: the plan's free-sign triangles);
+    ``fixed``: the fixed joints' places (default: the scene's ground; another link's in a
+    kinematic inversion, :mod:`baranov.motion.inversion`)."""
+    import matplotlib.pyplot as plt
+
     names = system.parameter_names
-    colours = plt.get_cmap("tab20")
-    signs = sorted({piece.signs for piece in traced.pieces})
-    colour = {s: colours(n % 20) for n, s in enumerate(signs)}
+    triangles = eta_triangles or list(system.plan.free_sign_triangles)
+    # one colour per sign vector of the plan (a row of its own with one parameter), the
+    # same in both panels, labelled with it and the thesis's η over ``triangles``
+    keys = [(sign_index(piece.points[0], triangles), signs_text(piece.signs)) for piece in traced.pieces]
+    rows = sorted(set(keys))
+    colours = plt.get_cmap("tab10" if len(rows) <= 10 else "tab20")
+    colour = {key: colours(n % colours.N) for n, key in enumerate(rows)}
+    label = {key: f"η = {key[0]} ({key[1]})" for key in rows}
+    styles = ["-", "--", ":", "-."]
     figure, (space, paths) = plt.subplots(1, 2, figsize=(12, 5.5))
-    for piece in traced.pieces:
+    for piece, key in zip(traced.pieces, keys, strict=True):
         u = [point.parameters[names[0]] for point in piece.points]
         v = ([point.parameters[names[-1]] for point in piece.points] if len(names) > 1
-             else [signs.index(piece.signs)] * len(u))
-        label = f"η = {sign_index(piece.points[0], eta_triangles or list(system.plan.free_sign_triangles))}"
-        space.plot(u + u[:1] if piece.closed else u, v + v[:1] if piece.closed else v, color=colour[piece.signs],
-                   lw=1.5, label=label)
-        for tracer in tracers:
+             else [rows.index(key)] * len(u))
+        space.plot(u + u[:1] if piece.closed else u, v + v[:1] if piece.closed else v, color=colour[key],
+                   lw=1.5 if len(names) > 1 else 6, solid_capstyle="butt", label=label[key])
+        for number, tracer in enumerate(tracers):
             x = [point.joints[tracer][0] for point in piece.points]
             y = [point.joints[tracer][1] for point in piece.points]
-            paths.plot(x + x[:1] if piece.closed else x, y + y[:1] if piece.closed else y, color=colour[piece.signs],
-                       lw=1.2)
+            paths.plot(x + x[:1] if piece.closed else x, y + y[:1] if piece.closed else y, color=colour[key],
+                       lw=1.2, linestyle=styles[number % len(styles)])
     for branch_point in traced.branch_points:
         values = [branch_point.parameters[name] for name in names]
         if len(names) > 1:
             space.plot(*values, "ko", ms=3)
-    handles, labels = space.get_legend_handles_labels()
-    unique = dict(zip(labels, handles, strict=True))
-    order = sorted(unique, key=lambda text: int(text.split("= ")[1]))
-    space.legend([unique[k] for k in order], order, fontsize=6, ncol=2, title="sign vector", title_fontsize=7)
+        else:  # where two pieces meet: a tick across each of their rows
+            for index, _ in branch_point.pieces:
+                space.plot(values[0], rows.index(keys[index]), "k|", ms=14, mew=1.5)
+    if len(names) > 1:
+        handles, labels = space.get_legend_handles_labels()
+        unique = dict(zip(labels, handles, strict=False))
+        order = [label[key] for key in rows]
+        space.legend([unique[text] for text in order], order, fontsize=7, ncol=2 if len(order) > 8 else 1,
+                     title="sign vector", title_fontsize=7)
     space.set_xlabel(names[0])
-    space.set_ylabel(names[-1] if len(names) > 1 else "sign vector")
+    if len(names) > 1:
+        space.set_ylabel(names[-1])
+    else:  # one parameter: a row per sign vector, its ranges as bars, branch points as ticks
+        space.set_yticks(range(len(rows)), [label[key] for key in rows])
+        space.set_ylim(-0.7, len(rows) - 0.3)
     space.set_title(f"configuration space: {len(traced.pieces)} pieces, {len(traced.branch_points)} branch points")
+    if len(tracers) > 1:
+        from matplotlib.lines import Line2D
+
+        paths.legend([Line2D([], [], color="black", linestyle=styles[n % len(styles)]) for n in range(len(tracers))],
+                     tracers, fontsize=7, title="tracer", title_fontsize=7)
     fixed = fixed or system.scene.world
     paths.plot([p[0] for p in fixed.values()], [p[1] for p in fixed.values()], "k^", ms=7)
     paths.set_aspect("equal")
     paths.set_title(f"coupler curves of {', '.join(tracers)} (fixed joints ▲)")
     figure.tight_layout()
-    image = png_bytes(figure)
-    plt.close(figure)
-    return image
+    return figure

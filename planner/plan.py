@@ -63,15 +63,22 @@ class DistanceKind(str, Enum):
 class Step:
     """Locate ``joint`` (k) from ``base`` = (i, j): p_{i,k} = Z_{i,j,k} p_{i,j}.
 
-    Attributes:
-        joint: the located joint k.
-        base: the two located joints (i, j).
-        kind: link, cross or parameter step.
-        link: the rigid link of a ``link`` step (its shape fixes the sign), else None.
-        base_distance: whether s_{i,j} is known, a parameter, or computed.
-        radical_depth: nesting of square roots in M_k: 0 when every radicand is a
-            constant, 1 when a radicand holds a parameter, 1 + d when it holds a
-            distance computed from matrices of depth d.
+    Attributes
+    ----------
+    joint
+        the located joint k.
+    base
+        the two located joints (i, j).
+    kind
+        link, cross or parameter step.
+    link
+        the rigid link of a ``link`` step (its shape fixes the sign), else None.
+    base_distance
+        whether s_{i,j} is known, a parameter, or computed.
+    radical_depth
+        nesting of square roots in M_k: 0 when every radicand is a
+        constant, 1 when a radicand holds a parameter, 1 + d when it holds a
+        distance computed from matrices of depth d.
     """
 
     joint: str
@@ -96,15 +103,21 @@ class Step:
 class Plan:
     """A complete bilateration plan for a rigid chain.
 
-    Attributes:
-        reference: the pair (a, b) of the reference vector p_{a,b}.
-        parameters: the unknown squared distances, as joint pairs; the reference pair
-            first when it is not a link dimension.
-        steps: the bilaterations, in order; every joint but a and b is located once.
-        closure_pairs: link dimensions the plan does not enforce: each gives a closure
-            condition s_{u,v} = det(M_v - M_u) s_ref.
-        orientation_checks: triangles (u, v, x) of a rigid link whose orientation the
-            plan does not fix by construction; a configuration must show the link's sign.
+    Attributes
+    ----------
+    reference
+        the pair (a, b) of the reference vector p_{a,b}.
+    parameters
+        the unknown squared distances, as joint pairs; the reference pair
+        first when it is not a link dimension.
+    steps
+        the bilaterations, in order; every joint but a and b is located once.
+    closure_pairs
+        link dimensions the plan does not enforce: each gives a closure
+        condition s_{u,v} = det(M_v - M_u) s_ref.
+    orientation_checks
+        triangles (u, v, x) of a rigid link whose orientation the
+        plan does not fix by construction; a configuration must show the link's sign.
     """
 
     reference: tuple[str, str]

@@ -462,13 +462,18 @@ def bilateration_plans(
 ) -> list[Plan]:
     """The ``count`` best plans with the fewest parameters, best first.
 
-    Args:
-        chain: a rigid chain (mobility 0, no over-constrained sub-chain).
-        count: how many plans to return (fewer if fewer exist).
-        reference: fix the reference pair, e.g. ``("P1", "P6")``.
-        parameters: allow only these joint pairs as parameters (the reference pair
-            included when it is not a link dimension), e.g. ``[("P1", "P6")]`` for the
-            thesis's formulation of 5/B1. The minimum is then taken over such plans.
+    Parameters
+    ----------
+    chain
+        a rigid chain (mobility 0, no over-constrained sub-chain).
+    count
+        how many plans to return (fewer if fewer exist).
+    reference
+        fix the reference pair, e.g. ``("P1", "P6")``.
+    parameters
+        allow only these joint pairs as parameters (the reference pair
+        included when it is not a link dimension), e.g. ``[("P1", "P6")]`` for the
+        thesis's formulation of 5/B1. The minimum is then taken over such plans.
 
     Raises :class:`~baranov.topology.TopologyError` for a chain that is not rigid or is
     over-constrained, or naming a constraint no plan can meet.

@@ -35,13 +35,18 @@ INPUT_KEYS = ("name", "angle", "distance", "degrees", "squared_distance", "comme
 class SceneInput:
     """One driven quantity of a mobile linkage (see the module docstring).
 
-    Attributes:
-        name: the input's name, unique in its scene.
-        kind: ``"angle"`` or ``"distance"``.
-        joints: ``(a, f, t)`` for an angle at P_a from P_f to P_t; ``(u, v)`` for a
-            distance.
-        value: degrees for an angle, a squared distance for a distance; ``None`` if not
-            given.
+    Attributes
+    ----------
+    name
+        the input's name, unique in its scene.
+    kind
+        ``"angle"`` or ``"distance"``.
+    joints
+        ``(a, f, t)`` for an angle at P_a from P_f to P_t; ``(u, v)`` for a
+        distance.
+    value
+        degrees for an angle, a squared distance for a distance; ``None`` if not
+        given.
     """
 
     name: str

@@ -75,11 +75,16 @@ class SceneError(ValueError):
 class SceneLink:
     """One link of a scene.
 
-    Attributes:
-        name: the link's name.
-        joints: its joints, in the order given.
-        squared_distances: squared distance of every pair of its joints.
-        local: coordinates of its joints in a frame of the link's own.
+    Attributes
+    ----------
+    name
+        the link's name.
+    joints
+        its joints, in the order given.
+    squared_distances
+        squared distance of every pair of its joints.
+    local
+        coordinates of its joints in a frame of the link's own.
     """
 
     name: str

@@ -48,12 +48,16 @@ SLIDER_KEYS = ("joint", "angles", "comment")
 class SliderAxis:
     """The axis of a slider joint as fixed in one of its links.
 
-    Attributes:
-        link: the link's name.
-        reference: the joint P_j of that link whose angle is given.
-        direction: (cos α_j, sin α_j) up to a positive factor, α_j the angle of the
-            vector from the slider's point on this link to P_j, from the sliding
-            direction.
+    Attributes
+    ----------
+    link
+        the link's name.
+    reference
+        the joint P_j of that link whose angle is given.
+    direction
+        (cos α_j, sin α_j) up to a positive factor, α_j the angle of the
+        vector from the slider's point on this link to P_j, from the sliding
+        direction.
     """
 
     link: str

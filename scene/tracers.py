@@ -31,12 +31,17 @@ TRACER_KEYS = ("name", "link", "at", "comment")
 class TracerPoint:
     """A point of a link that is not a joint (see the module docstring).
 
-    Attributes:
-        name: its name, unique among the scene's joints and tracers.
-        link: the link it is attached to.
-        along: λ, its offset along P_a → P_b in units of |P_a P_b| (P_a, P_b the link's
-            first two joints).
-        across: μ, its offset to the left of P_a → P_b in the same unit.
+    Attributes
+    ----------
+    name
+        its name, unique among the scene's joints and tracers.
+    link
+        the link it is attached to.
+    along
+        λ, its offset along P_a → P_b in units of ``|P_a P_b|`` (P_a, P_b the link's
+        first two joints).
+    across
+        μ, its offset to the left of P_a → P_b in the same unit.
     """
 
     name: str

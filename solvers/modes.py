@@ -27,12 +27,17 @@ def signs_text(signs) -> str:
 class AssemblyMode:
     """One assembly mode of a linkage.
 
-    Attributes:
-        parameters: value of each plan parameter, keyed like ``"s1,6"``.
-        signs: the free-sign branch (±1 per free-sign triangle of the plan).
-        joints: world coordinates of every joint.
-        max_residual: largest relative error over all link dimensions (and 1.0 for a
-            rigid link found mirrored, which is never reported as a mode).
+    Attributes
+    ----------
+    parameters
+        value of each plan parameter, keyed like ``"s1,6"``.
+    signs
+        the free-sign branch (±1 per free-sign triangle of the plan).
+    joints
+        world coordinates of every joint.
+    max_residual
+        largest relative error over all link dimensions (and 1.0 for a
+        rigid link found mirrored, which is never reported as a mode).
     """
 
     parameters: dict[str, float]
@@ -46,15 +51,19 @@ class Certificate:
     """What an exact solve proves about its list of assembly modes (docs/exact.md, "What
     the exact backend guarantees").
 
-    Attributes:
-        complete: every real assembly mode is in the list: each step from the closure
-            conditions to the configurations was exact or checked at run time on this
-            instance (``gaps`` is empty).
-        probabilistic: a step whose result is correct with overwhelming probability but
-            not proved (coupling degree 2: the polynomial lifted from its images modulo
-            random primes), or None.
-        gaps: what could not be certified on this instance, one sentence each (e.g. a
-            real root where the plan is undefined and no other plan could decide).
+    Attributes
+    ----------
+    complete
+        every real assembly mode is in the list: each step from the closure
+        conditions to the configurations was exact or checked at run time on this
+        instance (``gaps`` is empty).
+    probabilistic
+        a step whose result is correct with overwhelming probability but
+        not proved (coupling degree 2: the polynomial lifted from its images modulo
+        random primes), or None.
+    gaps
+        what could not be certified on this instance, one sentence each (e.g. a
+        real root where the plan is undefined and no other plan could decide).
     """
 
     complete: bool

@@ -69,15 +69,20 @@ class MsolveUnavailable(RuntimeError):
 class OracleResult:
     """What msolve says about a scene.
 
-    Attributes:
-        status: ``"finite"`` (``configurations`` lists every real assembly mode),
-            ``"infinite"`` (the complex solution set has positive dimension: the instance
-            is not rigid in some complex branch; no list), or ``"failed"`` (msolve exited
-            with an error or ran out of time; ``message`` says which).
-        configurations: world coordinates of every joint, one dict per real mode (midpoints
-            of msolve's isolating boxes).
-        width: the widest isolating interval over all modes and coordinates.
-        seconds: msolve's wall time.
+    Attributes
+    ----------
+    status
+        ``"finite"`` (``configurations`` lists every real assembly mode),
+        ``"infinite"`` (the complex solution set has positive dimension: the instance
+        is not rigid in some complex branch; no list), or ``"failed"`` (msolve exited
+        with an error or ran out of time; ``message`` says which).
+    configurations
+        world coordinates of every joint, one dict per real mode (midpoints
+        of msolve's isolating boxes).
+    width
+        the widest isolating interval over all modes and coordinates.
+    seconds
+        msolve's wall time.
     """
 
     status: str

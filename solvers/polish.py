@@ -30,12 +30,17 @@ def polish_configurations(scene: Scene, joints: list[str], points: np.ndarray, s
     a singular mode the largest residual stalls at 1e-11 while the steps still approach
     the mode: :func:`~baranov.solvers.mode_clusters.merged_clusters`).
 
-    Args:
-        scene: the linkage.
-        joints: joint names, in the order of the second axis of ``points``.
-        points: shape (K, J, 2), approximate configurations.
+    Parameters
+    ----------
+    scene
+        the linkage.
+    joints
+        joint names, in the order of the second axis of ``points``.
+    points
+        shape (K, J, 2), approximate configurations.
 
-    Returns:
+    Returns
+    -------
         The polished configurations, shape (K, J, 2), and the largest relative link
         residual of each. Cost O(K · E · (2J)²) per step for E link dimensions.
     """
@@ -104,13 +109,18 @@ def polish_on_constraints(scene: Scene, joints: list[str], points: np.ndarray, s
     ``model``: other constraints of the same signature, e.g.
     :func:`~baranov.solvers.verification.placement_residuals`.
 
-    Args:
-        scene: the linkage.
-        joints: point names (``P9'``, ``P9''`` for a slider's), in the order of the second
-            axis of ``points``.
-        points: complex, shape (K, J), approximate configurations.
+    Parameters
+    ----------
+    scene
+        the linkage.
+    joints
+        point names (``P9'``, ``P9''`` for a slider's), in the order of the second
+        axis of ``points``.
+    points
+        complex, shape (K, J), approximate configurations.
 
-    Returns:
+    Returns
+    -------
         The polished configurations (complex (K, J)) and the largest constraint residual of
         each. Cost O(K · J · m) per step for m constraints.
     """

@@ -161,6 +161,8 @@ CASES = [
          (("scene.json", json.dumps(FOUR_BAR)),)),
     Case("trace: an unknown tracer joint", ("trace", "scene.json", "--tracer", "P9"),
          (("scene.json", json.dumps(FOUR_BAR)),)),
+    Case("trace: --joints without --input", ("trace", "scene.json", "--joints"),
+         (("scene.json", json.dumps(FOUR_BAR)),)),
     Case("trace: a tracer point on no link of the scene", ("trace", "scene.json"),
          (("scene.json", json.dumps({**FOUR_BAR, "tracers": [{"name": "C", "link": "d", "at": [1, 2]}]})),)),
     Case("no command", ()),

@@ -589,7 +589,7 @@ def test_a_crank_turns_round_through_the_branch_points(capsys, tmp_path):
     path = tmp_path / "motion.gif"
     args = ["trace", str(EXAMPLES / "stephenson-six-bar.json"), "--tracer", "P5"]
     assert main([*args, "--input", "crank", "--animate", str(path)]) == 0
-    assert Image.open(path).n_frames == 36
+    assert Image.open(path).n_frames == 36 and Image.open(path).size == (640, 640)
     capsys.readouterr()
     assert main([*args, "--animate", str(path)]) == 2
     assert "give --input too" in capsys.readouterr().err
@@ -713,3 +713,48 @@ def test_tracer_points_are_validated():
     ]:
         with pytest.raises(SceneError, match=re.escape(message)):
             scene_from_dict({**base, "tracers": tracers})
+
+
+def test_trace_pictures_name_every_colour_they_draw():
+    """The four-bar with a coupler point (one parameter): each sign vector of the plan is
+    a row of the configuration space, labelled with it and its η, drawn in one colour, and
+    the coupler curve of a piece has its piece's colour (issue 57: eight colours had been
+    drawn under a legend of η = 0 … 3)."""
+    from matplotlib.colors import to_hex
+
+    from baranov.motion.drawing import trace_figure
+    from baranov.motion.tracer_paths import traced_with_tracer_points
+    from baranov.solvers.modes import signs_text
+
+    scene = load_scene(EXAMPLES / "four-bar-coupler-point.json")
+    system = one_dof_system(scene)
+    traced = traced_with_tracer_points(scene, trace(system))
+    figure = trace_figure(system, traced, ["C"])
+    space, paths = figure.axes
+    labels = [tick.get_text() for tick in space.get_yticklabels()]
+    assert sorted(label.split("(")[1].rstrip(")") for label in labels) == \
+        sorted({signs_text(piece.signs) for piece in traced.pieces})
+    bars = [line for line in space.get_lines() if line.get_linewidth() > 3]
+    colour_of_row = {int(round(line.get_ydata()[0])): to_hex(line.get_color()) for line in bars}
+    assert len(set(colour_of_row.values())) == len(labels)
+    curves = [to_hex(line.get_color()) for line in paths.get_lines() if line.get_linestyle() == "-"]
+    assert sorted(set(curves)) == sorted(set(colour_of_row.values()))
+
+
+def test_trace_joints_prints_the_driven_configurations(capsys):
+    """``trace --input crank --joints`` prints each driven configuration's coordinates,
+    those of ``--json``; without --input it is refused in one line (exit 2)."""
+    import json
+
+    path = str(EXAMPLES / "four-bar-coupler-point.json")
+    assert main(["trace", path, "--input", "crank", "--grid", "4", "--json"]) == 0
+    driven = json.loads(capsys.readouterr().out)["driven"]
+    assert main(["trace", path, "--input", "crank", "--grid", "4", "--joints"]) == 0
+    out = capsys.readouterr().out
+    first = driven[0]["points"][0]
+    x, y = first["joints"]["P3"]
+    assert f"crank = {driven[0]['values'][0]:.6g}°:" in out
+    assert f"P3 = ({x:.10g}, {y:.10g})" in out
+    assert out.count("crank = ") == sum(len(branch["points"]) for branch in driven)
+    assert main(["trace", path, "--joints"]) == 2
+    assert capsys.readouterr().err.count("\n") == 1

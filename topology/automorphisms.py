@@ -34,9 +34,12 @@ from .rigidity import adjacency_masks
 class Automorphism:
     """One symmetry of a chain.
 
-    Attributes:
-        links: ``links[i]`` is the image of link ``i``.
-        joints: ``joints[k]`` is the name of the image of the k-th joint (chain order).
+    Attributes
+    ----------
+    links
+        ``links[i]`` is the image of link ``i``.
+    joints
+        ``joints[k]`` is the name of the image of the k-th joint (chain order).
     """
 
     links: tuple[int, ...]
@@ -47,12 +50,17 @@ class Automorphism:
 class AutomorphismGroup:
     """The automorphism group of a chain (see :func:`automorphism_group`).
 
-    Attributes:
-        order: exact group order (nauty's, where a float holds it exactly; else
-            Schreier–Sims in sympy).
-        generators: a generating set as found by nauty (empty for the trivial group).
-        link_orbits: orbits of links, each sorted, ordered by their smallest link.
-        joint_orbits: orbits of joints (names), ordered by first joint in chain order.
+    Attributes
+    ----------
+    order
+        exact group order (nauty's, where a float holds it exactly; else
+        Schreier–Sims in sympy).
+    generators
+        a generating set as found by nauty (empty for the trivial group).
+    link_orbits
+        orbits of links, each sorted, ordered by their smallest link.
+    joint_orbits
+        orbits of joints (names), ordered by first joint in chain order.
     """
 
     order: int
@@ -67,7 +75,7 @@ class AutomorphismGroup:
         return _permutation_group(self.generators, self.number_of_links, self.joint_names)
 
     def elements(self) -> list[Automorphism]:
-        """Every automorphism as link and joint permutations, identity first (|G| items)."""
+        """Every automorphism as link and joint permutations, identity first (``|G|`` items)."""
         n = self.number_of_links
         result = []
         for perm in sorted(self._group.generate(), key=lambda p: p.array_form):

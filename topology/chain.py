@@ -39,10 +39,14 @@ class JointKind(str, Enum):
 class Joint:
     """A joint (kinematic pair) between two links.
 
-    Attributes:
-        name: user-facing name, e.g. ``"P3"``.
-        links: the two link indices it connects, in increasing order.
-        kind: revolute (default) or slider.
+    Attributes
+    ----------
+    name
+        user-facing name, e.g. ``"P3"``.
+    links
+        the two link indices it connects, in increasing order.
+    kind
+        revolute (default) or slider.
     """
 
     name: str
@@ -161,12 +165,15 @@ def chain_from_link_graph(
 ) -> KinematicChain:
     """Build a chain of revolute joints from its link graph.
 
-    Args:
-        link_graph: a :class:`networkx.Graph` (links = vertices, joints = edges), an
-            edge list of link pairs, or a graph6 string (with or without the
-            ``>>graph6<<`` header).
-        joint_names: names of the joints in the order of the edges sorted by their
-            (link, link) indices; default ``P1, P2, ...``.
+    Parameters
+    ----------
+    link_graph
+        a :class:`networkx.Graph` (links = vertices, joints = edges), an
+        edge list of link pairs, or a graph6 string (with or without the
+        ``>>graph6<<`` header).
+    joint_names
+        names of the joints in the order of the edges sorted by their
+        (link, link) indices; default ``P1, P2, ...``.
 
     Links are renumbered ``0..L-1`` in the sorted order of the given labels (graph6:
     as encoded). Raises :class:`TopologyError` for repeated joints between two links,

@@ -88,8 +88,8 @@ def smallest_rigid_subchain(chain: KinematicChain) -> tuple[int, ...] | None:
     Among the smallest, the one with the lowest bit mask is returned, so the answer is
     deterministic. Complexity O(2^L) with numpy for L ≤ 24; above that, a search over
     connected link sets by increasing size (a smallest rigid set is connected: if S
-    splits into parts S_1..S_k with no joint between them, then Σ(2e(S_i) - 3|S_i|) ≥ -3
-    forces some part with |S_i| ≥ 2 to be rigid already).
+    splits into parts S_1..S_k with no joint between them, then ``Σ(2e(S_i) - 3|S_i|) ≥ -3``
+    forces some part with ``|S_i| ≥ 2`` to be rigid already).
 
     >>> from baranov.topology import chain_from_link_graph
     >>> # a triad (links 0,1,2) sharing link 2 with a four-bar loop: 5 links, 6 joints
@@ -208,7 +208,7 @@ def is_baranov_link_graph(masks: Sequence[int]) -> bool:
     """Baranov predicate on a link graph given by adjacency bit masks.
 
     True when L = len(masks) is odd, the graph has 3(L-1)/2 edges, and no proper link
-    subset S with |S| ≥ 2 has 2·e(S) > 3|S| - 4. (Connectivity and "every link has two
+    subset S with ``|S| ≥ 2`` has ``2·e(S) > 3|S| - 4``. (Connectivity and "every link has two
     joints" follow from the counts.) O(2^L) for L ≤ 24.
 
     >>> is_baranov_link_graph([0b110, 0b101, 0b011])  # the triad

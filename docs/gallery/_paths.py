@@ -1,5 +1,6 @@
-"""The repository's examples/ folder, wherever a gallery script is run from."""
+"""The repository and its examples/ folder, wherever a gallery script is run from."""
 
 from pathlib import Path
 
-EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+REPOSITORY = Path(__file__).resolve().parents[2]
+EXAMPLES = REPOSITORY / "examples"

@@ -10,16 +10,16 @@ the coupler point.
 import io
 
 import matplotlib.pyplot as plt
+from _paths import EXAMPLES
 
 import baranov
 from baranov.motion import one_dof_system, trace
 from baranov.motion.drawing import render_trace
-
-from _paths import EXAMPLES
+from baranov.motion.tracer_paths import traced_with_tracer_points
 
 scene = baranov.load_scene(EXAMPLES / "four-bar-coupler-point.json")
 system = one_dof_system(scene)
-traced = trace(system)
+traced = traced_with_tracer_points(scene, trace(system))  # the coupler point's place on each configuration
 print(len(traced.pieces), "pieces")
 tracers = [tracer.name for tracer in scene.tracers]
 picture = plt.imread(io.BytesIO(render_trace(system, traced, tracers)))

@@ -11,11 +11,10 @@ complete (an interval branch-and-prune of the parameter's whole range).
 import io
 
 import matplotlib.pyplot as plt
+from _paths import EXAMPLES
 
 import baranov
-from baranov.solvers.drawing import modes_figure
-
-from _paths import EXAMPLES
+from baranov.solvers.drawing import render_modes
 
 scene = baranov.load_scene(EXAMPLES / "7-B1.json")
 solution = baranov.solve(scene)
@@ -23,7 +22,9 @@ print(len(solution.assembly_modes), "assembly modes;", solution.certificate.summ
 for mode in solution.assembly_modes:
     print(mode.parameters, mode.signs)
 
-figure = modes_figure(scene, solution)
+figure, axis = plt.subplots(figsize=(10, 6))
+axis.imshow(plt.imread(io.BytesIO(render_modes(scene, solution))))
+axis.set_axis_off()
 plt.show()
 
 # %%

@@ -10,11 +10,10 @@ assembly modes are the platform's poses.
 import io
 
 import matplotlib.pyplot as plt
+from _paths import EXAMPLES
 
 from baranov.robots import load_robot, locked_scene, robot_family, robot_solution
 from baranov.robots.drawing import render_robot
-
-from _paths import EXAMPLES
 
 robot, _ = load_robot(EXAMPLES / "robot-I-3RPR.json")
 actuators = [2, 11, 13]

@@ -7,15 +7,18 @@ instead of a point). Solved exactly: the characteristic polynomial and its certi
 roots.
 """
 
+import io
+
 import matplotlib.pyplot as plt
+from _paths import EXAMPLES
 
 import baranov
-from baranov.solvers.drawing import modes_figure
-
-from _paths import EXAMPLES
+from baranov.solvers.drawing import render_modes
 
 scene = baranov.load_scene(EXAMPLES / "7-B3-slider-P1.json")
 solution = baranov.solve(scene, method="exact")
 print(len(solution.assembly_modes), "assembly modes;", solution.certificate.summary())
-modes_figure(scene, solution)
+figure, axis = plt.subplots(figsize=(10, 6))
+axis.imshow(plt.imread(io.BytesIO(render_modes(scene, solution))))
+axis.set_axis_off()
 plt.show()

@@ -11,10 +11,9 @@ modes merge and the linkage can jam or switch.
 from fractions import Fraction
 
 import matplotlib.pyplot as plt
+from _paths import EXAMPLES
 
 import baranov
-
-from _paths import EXAMPLES
 
 scene = baranov.load_scene(EXAMPLES / "7-B1.json")
 lengths = [6 + Fraction(8 * k, 119) for k in range(120)]
@@ -22,7 +21,7 @@ solutions = baranov.solve_many(scene, [[length**2] for length in lengths], colum
 
 figure, axis = plt.subplots(figsize=(7, 4.5))
 colours = {}
-for length, solution in zip(lengths, solutions):
+for length, solution in zip(lengths, solutions, strict=True):
     for mode in solution.assembly_modes:
         (name, value), = mode.parameters.items()
         colour = colours.setdefault(mode.signs, f"C{len(colours) % 10}")

@@ -30,8 +30,6 @@ def generate_pages(docs: Path) -> None:
         entries = _entries(catalog / f"trusses-{links}.jsonl")
         sliders = _slider_counts(catalog / f"slider-chains-{links}.jsonl")
         _write(out / f"catalog-{links}.md", links_page(links, entries, sliders))
-        for entry in entries:
-            _write(out / "trusses" / f"{_slug(entry['id'])}.md", truss_page(entry, sliders.get(entry["id"], [])))
     _write(out / "catalog-13.md", thirteen_table(_entries(catalog / "trusses-13.jsonl.gz")))
 
 
@@ -87,7 +85,7 @@ def catalog_index(catalog: Path) -> str:
     lines = ["# The catalog, browsable", "",
              "Every Baranov truss to 13 links, generated from the catalog files in `catalog/` "
              "(`make catalog` regenerates them; the catalog page of the user guide says how they are made and "
-             "checked). Each truss up to 11 links has a page with its plan, closure conditions, symmetry, "
+             "checked). Each truss up to 11 links has a section with its plan, closure conditions, symmetry, "
              "coupling degree, number of assembly modes and slider chains; the 13-link class is one table to "
              "search and sort.", "", "| links | trusses | page |", "|---|---|---|"]
     for links in range(3, PAGE_LINKS + 1, 2):
@@ -106,19 +104,21 @@ def links_page(links: int, entries: list[dict], sliders: dict[str, list[dict]]) 
              "slider chains |", "|---|---|---|---|---|---|---|"]
     for entry in entries:
         name = entry.get("name") if entry.get("name") != entry["id"] else ""
-        lines.append(f"| [{entry['id']}](trusses/{_slug(entry['id'])}.md) | {name} | "
+        lines.append(f"| [{entry['id']}](#{_slug(entry['id']).lower()}) | {name} | "
                      f"{' '.join(map(str, entry['link_degrees']))} | {entry.get('coupling_degree', '—')} | "
                      f"{entry.get('automorphism_group_order', '—')} | {_modes(entry)} | "
                      f"{len(sliders.get(entry['id'], []))} |")
-    lines += ["", "```{toctree}", ":hidden:", ""]
-    lines += [f"trusses/{_slug(entry['id'])}" for entry in entries] + ["```", ""]
-    return "\n".join(lines)
+    for entry in entries:
+        lines += ["", f"({_slug(entry['id']).lower()})=", truss_section(entry, sliders.get(entry["id"], []))]
+    return "\n".join(lines) + "\n"
 
 
-def truss_page(entry: dict, sliders: list[dict]) -> str:
-    """One truss: its joints, plan, closure conditions and counts, as the catalog holds them."""
+def truss_section(entry: dict, sliders: list[dict]) -> str:
+    """One truss: its joints, plan, closure conditions and counts, as the catalog holds them
+    (under a rubric, not a section: hundreds of sections would each enter the site's
+    navigation, which every page copies)."""
     title = entry["id"] + (f" ({entry['name']})" if entry.get("name") and entry["name"] != entry["id"] else "")
-    lines = [f"# {title}", "",
+    lines = ["```{rubric} " + title, "```", "",
              f"`baranov show {entry['id']}` prints this truss; `baranov.truss(\"{entry['id']}\")` returns it.", "",
              f"- links: {entry['links'] if 'links' in entry else len(entry['link_degrees'])}, link degrees "
              f"{' '.join(map(str, entry['link_degrees']))} (graph6 of the link graph: `{entry['link_graph6']}`)",
@@ -131,23 +131,32 @@ def truss_page(entry: dict, sliders: list[dict]) -> str:
         lines.append(f"- thesis name: {entry['name_evidence']}")
     if entry.get("joints"):
         joints = ", ".join(f"{joint}: links {a}, {b}" for joint, (a, b) in entry["joints"].items())
-        lines += ["", "## Joints", "", joints]
+        lines += ["", "**Joints**", "", joints]
     plan = entry.get("plan")
     if plan:
         parameters = ", ".join(f"s{u[1:]},{v[1:]}" for u, v in plan["parameters"]) or "none"
-        lines += ["", "## Bilateration plan", "",
+        lines += ["", "**Bilateration plan**", "",
                   f"Reference p{plan['reference'][0][1:]},{plan['reference'][1][1:]}; parameters: {parameters}.", "",
                   "| joint | from | kind | base distance |", "|---|---|---|---|"]
         for step in plan["steps"]:
             lines.append(f"| {step['joint']} | {step['base'][0]}, {step['base'][1]} | {step['kind']} | "
                          f"{step['base_distance']} |")
     if entry.get("closure_conditions"):
-        lines += ["", "## Closure conditions", "", "```text", *entry["closure_conditions"], "```"]
+        lines += ["", "**Closure conditions**", "", "```text", *entry["closure_conditions"], "```"]
     if sliders:
-        lines += ["", "## Slider chains", "", "| sliders | assembly modes | method |", "|---|---|---|"]
-        for row in sliders:
-            lines.append(f"| {', '.join(row['sliders']) or 'none'} | {row.get('assembly_modes', '—')} | "
-                         f"{row.get('method', '—')} |")
+        lines += ["", "**Slider chains**", "",
+                  f"{len(sliders)} chains with slider joints derived from it (catalog/slider-chains-"
+                  f"{len(entry['link_degrees'])}.jsonl), by number of sliders: how many chains have each number "
+                  "of assembly modes.", "", "| sliders | chains | assembly modes (chains) |", "|---|---|---|"]
+        for count in sorted({len(row["sliders"]) for row in sliders}):
+            mine = [row for row in sliders if len(row["sliders"]) == count]
+            tally: dict = {}
+            for row in mine:
+                tally[row.get("assembly_modes")] = tally.get(row.get("assembly_modes"), 0) + 1
+            spread = ", ".join(f"{'—' if modes is None else modes} ({number})"
+                               for modes, number in sorted(tally.items(), key=lambda item: (item[0] is None, item[0] or 0),
+                                                           reverse=True))
+            lines.append(f"| {count} | {len(mine)} | {spread} |")
     return "\n".join(lines) + "\n"
 
 

@@ -74,15 +74,21 @@ class RadicalTower:
     (:func:`_multiply`); reducing unreduced products instead took 37 s of a random
     11-link instance's 38 s, against 1.1 s.
 
-    Attributes:
-        context: the flint polynomial ring Q[r_m, …, r_1, t_1, …, t_c] (lex order).
-        parameters: the plan's parameter pairs, one per t_n.
-        radicands: Δ-numerator of r_n, a polynomial in the t's and r_1, …, r_{n-1}.
-        conditions: numerator of s_{u,v}(computed) · den(known) - known · den, one per
-            closure pair.
-        denominators: den, the denominator of s_{u,v}(computed), one per closure pair:
-            where it vanishes the condition holds without the distance being the known
-            one (the extraneous roots; thesis eqs. 3.6, 3.20, 3.34, 3.92).
+    Attributes
+    ----------
+    context
+        the flint polynomial ring Q[r_m, …, r_1, t_1, …, t_c] (lex order).
+    parameters
+        the plan's parameter pairs, one per t_n.
+    radicands
+        Δ-numerator of r_n, a polynomial in the t's and r_1, …, r_{n-1}.
+    conditions
+        numerator of s_{u,v}(computed) · den(known) - known · den, one per
+        closure pair.
+    denominators
+        den, the denominator of s_{u,v}(computed), one per closure pair:
+        where it vanishes the condition holds without the distance being the known
+        one (the extraneous roots; thesis eqs. 3.6, 3.20, 3.34, 3.92).
     """
 
     context: flint.fmpq_mpoly_ctx
@@ -145,21 +151,29 @@ def _multiply(first: flint.fmpq_mpoly, second: flint.fmpq_mpoly, radicals, radic
 class CharacteristicPolynomial:
     """The characteristic polynomial of a scene in one parameter.
 
-    Attributes:
-        variable: the parameter, e.g. ``"s1,6"``.
-        polynomial: primitive integer polynomial, positive leading coefficient.
-        factors: its irreducible factors with multiplicities.
-        extraneous: the irreducible factors of the norm that were dropped.
-        degenerate: those dropped factors at whose roots the plan is undefined (a base
-            distance vanishes: joints coincide), with the joint pairs found coincident;
-            the plan cannot tell whether they are assembly modes (thesis §5.1.3.2).
-        vanishing: the norm of the closure condition is identically 0: on some branch
-            the condition holds for every value of the parameter, the linkage moves
-            (``polynomial`` is then only the product of the contents divided out).
-        shared_curves: coupling degree 2: the curves in (u, v) along which both closure
-            conditions hold, on which no real configuration was found
-            (:func:`~baranov.solvers.exact.coupling_two.shared_curves`); divided out
-            before the common points are computed.
+    Attributes
+    ----------
+    variable
+        the parameter, e.g. ``"s1,6"``.
+    polynomial
+        primitive integer polynomial, positive leading coefficient.
+    factors
+        its irreducible factors with multiplicities.
+    extraneous
+        the irreducible factors of the norm that were dropped.
+    degenerate
+        those dropped factors at whose roots the plan is undefined (a base
+        distance vanishes: joints coincide), with the joint pairs found coincident;
+        the plan cannot tell whether they are assembly modes (thesis §5.1.3.2).
+    vanishing
+        the norm of the closure condition is identically 0: on some branch
+        the condition holds for every value of the parameter, the linkage moves
+        (``polynomial`` is then only the product of the contents divided out).
+    shared_curves
+        coupling degree 2: the curves in (u, v) along which both closure
+        conditions hold, on which no real configuration was found
+        (:func:`~baranov.solvers.exact.coupling_two.shared_curves`); divided out
+        before the common points are computed.
     """
 
     variable: str

@@ -102,13 +102,18 @@ CONTRACTIONS = 30
 class PrunedRoots:
     """What :func:`prune_one_parameter` proved.
 
-    Attributes:
-        roots: (K, 3): lower end, upper end and branch index of each certified box,
-            holding exactly one real root of that branch's closure condition.
-        unresolved: (U, 4): lower end, upper end, branch index and reason (AT_EDGE,
-            FLAT_DERIVATIVE, OVER_BUDGET) of each undecided box, adjacent boxes merged.
-        evaluations: interval evaluations of the program made.
-        domain: the parameter's range searched, (lower, upper).
+    Attributes
+    ----------
+    roots
+        (K, 3): lower end, upper end and branch index of each certified box,
+        holding exactly one real root of that branch's closure condition.
+    unresolved
+        (U, 4): lower end, upper end, branch index and reason (AT_EDGE,
+        FLAT_DERIVATIVE, OVER_BUDGET) of each undecided box, adjacent boxes merged.
+    evaluations
+        interval evaluations of the program made.
+    domain
+        the parameter's range searched, (lower, upper).
     """
 
     roots: np.ndarray
