@@ -92,6 +92,17 @@ class SceneLink:
     squared_distances: Mapping[frozenset[str], Number]
     local: Mapping[str, tuple[float, float]]
 
+    @cached_property
+    def float_distances(self) -> dict[frozenset[str], float]:
+        """Its squared distances as floats, made once per link (every verification reads
+        them; instances of a scene share their unchanged links)."""
+        return {pair: float(value) for pair, value in self.squared_distances.items()}
+
+    @cached_property
+    def float_size(self) -> float:
+        """Its largest squared distance as a float: the square of its diameter."""
+        return max(self.float_distances.values())
+
     def orientation(self, triangle: tuple[str, str, str]) -> int:
         """Sign of the oriented area of three of its joints, in its own shape."""
         (xi, yi), (xj, yj), (xk, yk) = (self.local[n] for n in triangle)

@@ -28,7 +28,7 @@ def distance_bound(scene: Scene) -> float:
     which every tolerance on positions is relative (never to a fixed unit: issue 22, a
     triad scaled by 1e-6 had its two modes merged and a 3-RPR scaled by 1e6 failed to
     verify its modes when tolerances were floored at 1)."""
-    return sum(math.sqrt(max(float(v) for v in link.squared_distances.values())) for link in scene.links)
+    return sum(math.sqrt(link.float_size) for link in scene.links)
 
 
 def joint_residual(scene: Scene, points: dict[str, complex]) -> float:
@@ -54,18 +54,7 @@ def joint_residuals(scene: Scene, joints: list[str], points: np.ndarray, instanc
     shapes: many instances verified at once, as each alone."""
     at = {j: points[:, n] for n, j in enumerate(joints)}
     residual = np.abs(constraint_residuals(scene, at, instances, owner)).max(axis=1, initial=0.0)
-    for index, link in enumerate(scene.links):
-        if len(link.joints) < 3:
-            continue
-        shapes = [instance.links[index] for instance in instances] if instances is not None else [link]
-        triangles = [shape.widest_triangle for shape in shapes]
-        for triangle in set(triangles) - {None}:  # each instance's own (one, where the link is unchanged)
-            mine = _per_configuration([t == triangle for t in triangles], owner).astype(bool)
-            turns = _per_configuration([shape.orientation(triangle) for shape in shapes], owner)
-            i, j, k = (at[scene.point_name(link.name, n)] for n in triangle)
-            cross = ((j - i).conjugate() * (k - i)).imag
-            mirrored = mine & (np.where(cross > 0, 1, -1) != turns)
-            residual = np.where(mirrored, np.maximum(residual, 1.0), residual)
+    residual = np.where(_mirrored(scene, at, instances, owner), np.maximum(residual, 1.0), residual)
     for slider in scene.sliders:
         (_, direction), (_, other_direction) = (slider_axis(scene, slider, axis.link, at) for axis in slider.axes)
         reversed_axis = ~((direction.conjugate() * other_direction).real > 0)
@@ -76,6 +65,29 @@ def joint_residuals(scene: Scene, joints: list[str], points: np.ndarray, instanc
         residual = np.maximum(residual, np.abs(at[scene.point_name(scene.ground, joint)] - target)
                               / np.maximum(abs(target), size))
     return np.where(np.isfinite(points).all(axis=1), residual, np.inf)
+
+
+def _mirrored(scene: Scene, at: dict[str, np.ndarray], instances: Sequence[Scene] | None,
+              owner: np.ndarray | None) -> np.ndarray:
+    """Whether each configuration has a rigid link mirrored: its widest triangle (each
+    instance's own) turned the other way than in the link's shape. All links at once."""
+    checks = []  # (link, triangle, whether each instance's widest triangle is it, its sign there)
+    for index, link in enumerate(scene.links):
+        if len(link.joints) < 3:
+            continue
+        shapes = [instance.links[index] for instance in instances] if instances is not None else [link]
+        triangles = [shape.widest_triangle for shape in shapes]
+        for triangle in dict.fromkeys(t for t in triangles if t is not None):
+            checks.append((link.name, triangle, [t == triangle for t in triangles],
+                           [shape.orientation(triangle) for shape in shapes]))
+    shape = np.shape(next(iter(at.values())))
+    if not checks:
+        return np.zeros(shape, dtype=bool)
+    i, j, k = (np.stack([at[scene.point_name(name, triangle[n])] for name, triangle, _, _ in checks], axis=-1)
+               for n in range(3))
+    cross = ((j - i).conjugate() * (k - i)).imag
+    mine, turns = (_per_configuration(np.array([check[part] for check in checks]).T, owner) for part in (2, 3))
+    return ((mine != 0) & (np.where(cross > 0, 1, -1) != turns)).any(axis=-1)
 
 
 def _per_configuration(values: list, owner: np.ndarray | None):
@@ -95,16 +107,19 @@ def constraint_residuals(scene: Scene, at: dict[str, np.ndarray], instances: Seq
     :func:`joint_residuals`); what Gauss–Newton polishes a slider chain on
     (:func:`~baranov.solvers.polish.polish_on_constraints`). ``instances``, ``owner``: as
     :func:`joint_residuals` takes them."""
-    columns = []
-    for index, link in enumerate(scene.links):
-        point = {joint: at[scene.point_name(link.name, joint)] for joint in link.joints}
-        shapes = [instance.links[index] for instance in instances] if instances is not None else [link]
-        size = _per_configuration([max(float(t) for t in shape.squared_distances.values()) for shape in shapes], owner)
-        for pair in link.squared_distances:
-            u, v = tuple(pair)
-            target = _per_configuration([float(shape.squared_distances[pair]) for shape in shapes], owner)
-            columns.append((np.abs(point[u] - point[v]) ** 2 - target) / np.where(target != 0, target, size))
-    return _stacked(columns + _slider_columns(scene, at), at)
+    pairs = [(index, link.name, pair) for index, link in enumerate(scene.links) for pair in link.squared_distances]
+    if not pairs:
+        return _stacked(_slider_columns(scene, at), at)
+    ends = [np.stack([at[scene.point_name(name, joint)] for _, name, pair in pairs for joint in sorted(pair)[n:n + 1]],
+                     axis=-1) for n in (0, 1)]
+    targets, sizes = [], []
+    for shape in instances or [scene]:  # each instance's dimensions, in the order of ``pairs``
+        targets.append([shape.links[index].float_distances[pair] for index, _, pair in pairs])
+        sizes.append([shape.links[index].float_size for index, _, _ in pairs])
+    target, size = (np.array(values)[owner] if owner is not None else np.array(values[0]) for values in (targets, sizes))
+    dimensions = (np.abs(ends[0] - ends[1]) ** 2 - target) / np.where(target != 0, target, size)
+    sliders = _slider_columns(scene, at)
+    return np.concatenate([dimensions, np.stack(sliders, axis=-1)], axis=-1) if sliders else dimensions
 
 
 def placement_residuals(scene: Scene, at: dict[str, np.ndarray]) -> np.ndarray:
