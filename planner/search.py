@@ -490,7 +490,7 @@ def bilateration_plans(
     P5: Z6,4,5 (link L1, fixed sign)
     closure s2,5
     """
-    return _ranked_plans(_checked(chain), count, reference, parameters)
+    return _ranked_plans(chain, count, reference, parameters)
 
 
 #: How many (chain, count, constraints) searches the plan cache keeps: a solve of a
@@ -524,6 +524,7 @@ def _cached_plans(chain: KinematicChain, count: int, reference, parameters) -> t
 
 
 def _searched_plans(chain: KinematicChain, count: int, reference, parameters) -> tuple[Plan, ...]:
+    require_rigid_chain(chain)  # here, not before the cache: a cached chain was checked when searched
     if count < 1:
         raise ValueError(f"count={count}: ask for at least one plan")
     constraints = _constraints(chain, reference, parameters)
