@@ -490,7 +490,7 @@ def bilateration_plans(
     P5: Z6,4,5 (link L1, fixed sign)
     closure s2,5
     """
-    return _ranked_plans(chain, count, reference, parameters)
+    return _ranked_plans(_checked(chain), count, reference, parameters)
 
 
 #: How many (chain, count, constraints) searches the plan cache keeps: a solve of a
@@ -516,6 +516,7 @@ def _ranked_plans(chain: KinematicChain, count: int, reference, parameters) -> l
 def clear_plan_cache() -> None:
     """Forget every cached plan search (benchmarks of a topology's first solve; tests)."""
     _cached_plans.cache_clear()
+    _checked.cache_clear()
 
 
 @lru_cache(maxsize=PLAN_CACHE_SIZE)
@@ -524,7 +525,6 @@ def _cached_plans(chain: KinematicChain, count: int, reference, parameters) -> t
 
 
 def _searched_plans(chain: KinematicChain, count: int, reference, parameters) -> tuple[Plan, ...]:
-    require_rigid_chain(chain)  # here, not before the cache: a cached chain was checked when searched
     if count < 1:
         raise ValueError(f"count={count}: ask for at least one plan")
     constraints = _constraints(chain, reference, parameters)
@@ -578,6 +578,9 @@ def plan_avoiding(chain: KinematicChain, pairs: Iterable[frozenset[str]], count:
     return next(plans_avoiding(chain, pairs, count), None)
 
 
+@lru_cache(maxsize=PLAN_CACHE_SIZE)
 def _checked(chain: KinematicChain) -> KinematicChain:
+    """``chain``, checked rigid once (cached like the plans: a solve of a topology met
+    before repeats no check; a chain that fails raises every time)."""
     require_rigid_chain(chain)
     return chain
