@@ -110,8 +110,7 @@ def constraint_residuals(scene: Scene, at: dict[str, np.ndarray], instances: Seq
     pairs = [(index, link.name, pair) for index, link in enumerate(scene.links) for pair in link.squared_distances]
     if not pairs:
         return _stacked(_slider_columns(scene, at), at)
-    ends = [np.stack([at[scene.point_name(name, joint)] for _, name, pair in pairs for joint in sorted(pair)[n:n + 1]],
-                     axis=-1) for n in (0, 1)]
+    ends = [np.stack([at[scene.point_name(name, sorted(pair)[n])] for _, name, pair in pairs], axis=-1) for n in (0, 1)]
     targets, sizes = [], []
     for shape in instances or [scene]:  # each instance's dimensions, in the order of ``pairs``
         targets.append([shape.links[index].float_distances[pair] for index, _, pair in pairs])

@@ -25,12 +25,13 @@ def generate_pages(docs: Path) -> None:
     out.mkdir(exist_ok=True)
     _write(out / "cli.md", cli_reference())
     catalog = docs.parent / "catalog"
-    _write(out / "catalog.md", catalog_index(catalog))
-    for links in range(3, PAGE_LINKS + 1, 2):
-        entries = _entries(catalog / f"trusses-{links}.jsonl")
-        sliders = _slider_counts(catalog / f"slider-chains-{links}.jsonl")
-        _write(out / f"catalog-{links}.md", links_page(links, entries, sliders))
-    _write(out / "catalog-13.md", thirteen_table(_entries(catalog / "trusses-13.jsonl.gz")))
+    entries = {links: _entries(catalog / f"trusses-{links}.jsonl") for links in range(3, PAGE_LINKS + 1, 2)}
+    thirteen = _entries(catalog / "trusses-13.jsonl.gz")
+    _write(out / "catalog.md", catalog_index({**{links: len(found) for links, found in entries.items()},
+                                              13: len(thirteen)}))
+    for links, found in entries.items():
+        _write(out / f"catalog-{links}.md", links_page(links, found, _slider_counts(catalog / f"slider-chains-{links}.jsonl")))
+    _write(out / "catalog-13.md", thirteen_table(thirteen))
 
 
 def _write(path: Path, text: str) -> None:
@@ -80,8 +81,9 @@ def _modes(entry: dict) -> str:
     return "—" if modes is None else str(modes)
 
 
-def catalog_index(catalog: Path) -> str:
-    """The catalog's front page: what it holds, one line per link count."""
+def catalog_index(counts: dict[int, int]) -> str:
+    """The catalog's front page: what it holds, one line per link count (``counts``:
+    links → trusses)."""
     lines = ["# The catalog, browsable", "",
              "Every Baranov truss to 13 links, generated from the catalog files in `catalog/` "
              "(`make catalog` regenerates them; the catalog page of the user guide says how they are made and "
@@ -89,10 +91,8 @@ def catalog_index(catalog: Path) -> str:
              "coupling degree, number of assembly modes and slider chains; the 13-link class is one table to "
              "search and sort.", "", "| links | trusses | page |", "|---|---|---|"]
     for links in range(3, PAGE_LINKS + 1, 2):
-        count = len(_entries(catalog / f"trusses-{links}.jsonl"))
-        lines.append(f"| {links} | {count} | [{links}-link trusses](catalog-{links}.md) |")
-    count = len(_entries(catalog / "trusses-13.jsonl.gz"))
-    lines += [f"| 13 | {count} | [the 13-link table](catalog-13.md) |", "", "```{toctree}", ":hidden:", ""]
+        lines.append(f"| {links} | {counts[links]} | [{links}-link trusses](catalog-{links}.md) |")
+    lines += [f"| 13 | {counts[13]} | [the 13-link table](catalog-13.md) |", "", "```{toctree}", ":hidden:", ""]
     lines += [f"catalog-{links}" for links in range(3, PAGE_LINKS + 1, 2)] + ["catalog-13", "```", ""]
     return "\n".join(lines)
 

@@ -44,8 +44,8 @@ def solve_certified_many(scenes: Sequence[Scene], plan: Plan) -> list[Solution |
                                                  for scene, fixed in zip(scenes, signs, strict=True)],
                              [searched_domain(scene, plan) for scene in scenes], budget=evaluation_budget(len(branches)))
     decided = [n for n, roots in enumerate(pruned) if roots.complete]
-    modes = _verified_modes(scenes, template, branches, [pruned[n] for n in decided], [signs[n] for n in decided],
-                            decided)
+    modes = _verified_modes([scenes[n] for n in decided], template, branches, [pruned[n] for n in decided],
+                            [signs[n] for n in decided])
     solutions: list[Solution | None] = [None] * len(scenes)
     for n, found in zip(decided, modes, strict=True):
         if found is None:  # a root that did not verify at once: the single solve's read-back polishes it
@@ -57,29 +57,29 @@ def solve_certified_many(scenes: Sequence[Scene], plan: Plan) -> list[Solution |
     return solutions
 
 
-def _verified_modes(scenes: Sequence[Scene], template, branches: np.ndarray, pruned: list[PrunedRoots],
-                    signs: list[dict], members: list[int]) -> list[tuple | None]:
-    """The modes of the certified roots of the instances ``members`` (their ``pruned``
-    roots and link signs ``signs``): every root's configuration computed by one run of
+def _verified_modes(instances: Sequence[Scene], template, branches: np.ndarray, pruned: list[PrunedRoots],
+                    signs: list[dict]) -> list[tuple | None]:
+    """The modes of the certified roots of ``instances`` (their ``pruned`` roots and link
+    signs ``signs``): every root's configuration computed by one run of
     the plan's program (each row with its instance's dimensions), placed from the ground
     link (every instance's), and verified on its instance; None for an instance with a
     root that does not verify as it is (which :func:`modes_of_pruned` then polishes)."""
-    if not members:
+    if not instances:
         return []
-    program, scene = template.straight_line_program(), scenes[members[0]]
+    program, scene = template.straight_line_program(), instances[0]
     rows = np.concatenate([roots.roots for roots in pruned])
     owner = np.repeat(np.arange(len(pruned)), [len(roots.roots) for roots in pruned])
     values = 0.5 * (rows[:, :1] + rows[:, 1:2])
-    known = np.array([[float(scenes[n].known[pair]) for pair in program.known_pairs] for n in members])
-    fixed = np.array([[fixed[t] for t in program.fixed_triangles] for fixed in signs], float).reshape(len(members), -1)
+    known = np.array([[float(instance.known[pair]) for pair in program.known_pairs] for instance in instances])
+    fixed = np.array([[fixed[t] for t in program.fixed_triangles] for fixed in signs], float).reshape(len(instances), -1)
     *_, points = run_program(program, known[owner].reshape(len(rows), -1), fixed[owner], values,
                              branches[rows[:, 2].astype(int)].astype(float), paired=True, points=True)
     placed = placed_from_ground(scene, dict(zip(program.joints, points.T, strict=True)))  # the ground is every instance's
     joints = sorted(placed)
     configurations = np.stack([placed[j] for j in joints], axis=1)
-    residual = joint_residuals(scene, joints, configurations, [scenes[n] for n in members], owner)
+    residual = joint_residuals(scene, joints, configurations, instances, owner)
     found: list[tuple | None] = []
-    for index in range(len(members)):
+    for index in range(len(instances)):
         mine = np.flatnonzero(owner == index)
         if (residual[mine] >= RESIDUAL_TOLERANCE).any():
             found.append(None)
