@@ -17,6 +17,7 @@ from pathlib import Path
 
 from baranov.catalog.tasks import ClusterLost
 
+from .arguments import parameter_pair
 from .trace import add_trace_parser, run_trace
 
 # the library is imported inside each command, so that --help and --version start fast
@@ -144,7 +145,7 @@ def _parser() -> argparse.ArgumentParser:
     solve.add_argument("--format", choices=("table", "json", "csv"), default="table",
                        help="table (default: mode, parameters, signs, residual), json, or csv (with every joint)")
     solve.add_argument("--parameter", action="append", metavar="PAIR",
-                       help="solve in the best plan whose parameters are among these pairs (repeatable), e.g. P2,P3 "
+                       help="solve in the best plan whose parameters are among these pairs (repeatable), e.g. P2,P3 or s2,3 "
                             "as thesis §3.3 publishes 7/B1 (numeric and exact; default: the best plan)")
     solve.add_argument("--json", action="store_true", help="the same as --format json")
     solve.add_argument("--joints", action="store_true", help="table: each mode's joint coordinates below its row")
@@ -160,7 +161,8 @@ def _parser() -> argparse.ArgumentParser:
     solve.add_argument("--workers", type=int, default=1, help="--batch: solve the instances in this many "
                                                               "processes (default 1)")
     robot = commands.add_parser("robot", help="forward kinematics of a fully-parallel planar robot given as a file")
-    robot.add_argument("robot", type=Path, help="robot JSON file (legs, geometry, actuators; see baranov.robots.model)")
+    robot.add_argument("robot", type=Path, help="robot JSON file: three legs, their geometry and the actuators "
+                       "(format: docs/robots.md, Robot files)")
     robot.add_argument("--actuators", help="actuator values, e.g. 1,11,13 (default: the file's)")
     robot.add_argument("--method", default="numeric", choices=("numeric", "exact", "msolve"), help="solving backend")
     robot.add_argument("--parameter", help="solve in a plan with this parameter pair, e.g. P1,P6 (thesis §5.2.2); "
@@ -190,9 +192,7 @@ def run_robot(args: argparse.Namespace) -> int:
     check_picture(args.plot)
     parameter = None
     if args.parameter is not None:
-        parameter = tuple(name.strip() for name in args.parameter.split(","))
-        if len(parameter) != 2 or not all(parameter):
-            raise UsageError(f"--parameter {args.parameter}: two joints, e.g. P1,P6")
+        parameter = parameter_pair(args.parameter)
         if args.method == "msolve":
             raise UsageError("--parameter: msolve describes its modes in the best plan; use --method numeric or exact")
     solution, poses = robot_solution(robot, actuators, args.method, parameter)
@@ -326,12 +326,7 @@ def _plan_with_parameters(scene, texts: list[str], method: str):
     sliders, the best slider plan) whose parameters are among these pairs."""
     if method not in ("numeric", "exact"):
         raise UsageError(f"--parameter: the {method} method does not solve by a plan; use --method numeric or exact")
-    pairs = []
-    for text in texts:
-        pair = tuple(name.strip() for name in text.split(","))
-        if len(pair) != 2 or not all(pair):
-            raise UsageError(f"--parameter {text}: two joints, e.g. P2,P3")
-        pairs.append(pair)
+    pairs = [parameter_pair(text) for text in texts]
     if scene.sliders:
         from baranov.planner import slider_plan
 

@@ -32,6 +32,8 @@ from baranov.topology import (
     is_planar,
 )
 
+from .arguments import parameter_pair
+
 
 class ShowError(ValueError):
     """The chain to show could not be found or read."""
@@ -94,13 +96,6 @@ def _chain_from_text(text: str, source: str) -> KinematicChain:
     return chain_from_link_graph(edges)
 
 
-def _pair(text: str, option: str) -> tuple[str, str]:
-    parts = [p.strip() for p in text.split(",")]
-    if len(parts) != 2 or not all(parts):
-        raise ShowError(f"{option} {text}: expected two joint names such as P1,P6")
-    return parts[0], parts[1]
-
-
 def _sliders(chain: KinematicChain, text: str | None) -> list[str]:
     """The slider joints: ``--sliders`` (checked: joints of the chain, no loop of links
     closed by sliders only), else the chain's own (a scene file's)."""
@@ -126,8 +121,8 @@ def _plans(chain: KinematicChain, sliders: list[str], plans: int, reference: str
            parameters: list[str] | None) -> tuple[list, str | None]:
     """The ``plans`` best plans (with the given constraints) that the slider
     constructions run, and why none does where none does."""
-    constraints = {"reference": _pair(reference, "--reference") if reference else None,
-                   "parameters": [_pair(p, "--parameter") for p in parameters] if parameters else None}
+    constraints = {"reference": parameter_pair(reference, "--reference") if reference else None,
+                   "parameters": [parameter_pair(p) for p in parameters] if parameters else None}
     if not sliders:
         return bilateration_plans(chain, count=plans, **constraints), None
     candidates = bilateration_plans(chain, count=max(plans, ALTERNATIVE_PLANS), **constraints)

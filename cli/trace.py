@@ -7,6 +7,8 @@ import argparse
 import json
 from pathlib import Path
 
+from .arguments import parameter_pair
+
 
 def add_trace_parser(commands) -> None:
     trace = commands.add_parser("trace", help="trace the configuration space of a one-degree-of-freedom linkage")
@@ -67,9 +69,7 @@ def run_trace(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     parameters = None
     if args.parameter:
-        parameters = [tuple(name.strip() for name in pair.split(",")) for pair in args.parameter]
-        if any(len(pair) != 2 for pair in parameters):
-            raise UsageError(f"--parameter {args.parameter}: pairs of joints, e.g. P2,P4")
+        parameters = [parameter_pair(pair) for pair in args.parameter]
     system = one_dof_system(scene, parameters)
     triangles, tracers, driver = _checked_options(args, scene, system)
     degrees = _degrees(scene, tracers) if args.degree else {}

@@ -296,7 +296,7 @@ def test_show_finds_catalog_names_from_any_folder(tmp_path):
         (["B1"], "B1: several thesis trusses have this name: 3/B1, 5/B1, 7/B1, 9/B1"),
         (["zzz"], "graph6 'zzz': not a valid graph6 string"),
         (["5/B1", "--reference", "P1,P9"], "joint P9: no such joint in this chain"),
-        (["5/B1", "--reference", "P1"], "--reference P1: expected two joint names"),
+        (["5/B1", "--reference", "P1"], "--reference P1: two joints, e.g. P2,P3"),
         (["5/B1", "--parameter", "P1,P2"], "no bilateration plan meets"),
         (["5/B1", "--plans", "0"], "--plans 0: must be at least 1"),
         (["Cl"], "mobility F = 3(L-1) - 2J = 1"),  # graph6 of a four-bar linkage

@@ -209,7 +209,7 @@ def test_robot_command(capsys, tmp_path):
     assert "robot RpP-RpR-RpR, family II, 4 poses (msolve)" in capsys.readouterr().out
     assert main(["robot", str(REPO / "examples" / "robot-IV-RPP-RPP-RPR.json"), "--parameter", "P1,P6"]) == 0
     assert re.search(r"pose +x +y +angle \(degrees\) +t1,6\n", capsys.readouterr().out)
-    for bad, message in [("P1", "--parameter P1: two joints, e.g. P1,P6"), ("P1,P9", "joint P9: no such joint")]:
+    for bad, message in [("P1", "--parameter P1: two joints, e.g. P2,P3"), ("P1,P9", "joint P9: no such joint")]:
         assert main(["robot", example, "--parameter", bad]) == 2
         assert message in capsys.readouterr().err
     assert main(["robot", example, "--actuators", "1,1,1"]) == 0

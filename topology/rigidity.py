@@ -178,6 +178,8 @@ def require_one_dof_chain(chain: KinematicChain) -> None:
         raise TopologyError(
             f"mobility F = 3(L-1) - 2J = {f} with L = {chain.number_of_links} links and "
             f"J = {chain.number_of_joints} joints; a one-degree-of-freedom chain needs F = 1"
+            + ("; this chain is rigid: its assembly modes are found by baranov solve SCENE "
+               "(baranov.solve in Python)" if f == 0 else "")
         )
     require_not_over_constrained(chain)
 
