@@ -83,11 +83,13 @@ def modes_figure(scene: Scene, solution: Solution, columns: int | None = None) -
             if not modes:
                 axis.text(0.5, 0.5, "no assembly mode", ha="center", va="center", transform=axis.transAxes)
             continue
-        draw_mode(axis, scene, modes[index], extent)
         axis.set_title(titles[index], fontsize=9)
     legend = "ground hatched" + ("; (+-…): signs of the plan's free-sign triangles"
                                  if any(mode.signs for mode in modes) else "")
     figure.suptitle(f"{len(modes)} assembly mode{'s' if len(modes) != 1 else ''} ({legend})", fontsize=11)
+    figure.get_layout_engine().execute(figure)  # the panels' final size, for the labels' room
+    for axis, mode in zip(axes.flat, modes, strict=False):
+        draw_mode(axis, scene, mode, extent)
     return figure
 
 
@@ -128,7 +130,11 @@ def draw_mode(axis, scene: Scene, mode, extent: float) -> None:
     for slider in scene.sliders:
         segments.append(_draw_slider_axis(axis, scene, slider, mode, extent))
     groups = _label_groups(mode.joints, 1e-6 * extent)
-    directions = _label_directions(groups, segments, polygons, extent)
+    limits = (*axis.get_xlim(), *axis.get_ylim())
+    axis.apply_aspect()  # data units per typographic point, from the panel's drawn width
+    width_points = axis.get_position().width * axis.figure.get_figwidth() * 72
+    scale = (limits[1] - limits[0]) / width_points if width_points > 0 else LABEL_SCALE * extent
+    directions = _label_directions(groups, segments, polygons, extent, limits, scale)
     for (names, (x, y)), angle in zip(groups, directions, strict=True):
         marker = "s" if any(name in sliders for name in names) else "o"
         axis.plot(x, y, marker, markersize=6, markerfacecolor="white", markeredgecolor="0.1", zorder=3)
@@ -152,25 +158,32 @@ def _draw_slider_axis(axis, scene: Scene, slider, mode, extent: float):
     return (start.real, start.imag), (end.real, end.imag)
 
 
-#: Directions tried for a joint's label; the label's offset from its joint, and a
-#: character's width and height, relative to the drawing's extent (a 10-point offset and
-#: 8-point text in a 3.6-inch panel, whose width spans about 1.24 extents).
+#: Directions tried for a joint's label; the label's offset from its joint, a
+#: character's width and height (8-point text, measured: "P12" is 15 points wide) and the
+#: margin kept between labels, in points; LABEL_SCALE: points to the drawing's extent
+#: where no panel size is known (a 3.6-inch panel spanning about 1.24 extents).
 LABEL_DIRECTIONS = 16
-LABEL_OFFSET = 0.048
-CHARACTER = (0.021, 0.038)
-LABEL_MARGIN = 0.01
+LABEL_OFFSET = 10.0
+CHARACTER = (5.0, 8.0)
+LABEL_MARGIN = 2.0
+LABEL_SCALE = 1 / 209
 
 
 def _label_directions(groups: list[tuple[list[str], tuple[float, float]]], segments: list, polygons: list,
-                      extent: float) -> list[float]:
+                      extent: float, limits: tuple[float, float, float, float] | None = None,
+                      scale: float | None = None) -> list[float]:
     """For each joint (group), the direction of its label: of LABEL_DIRECTIONS around
     it, the one whose label box — its corners and centre, the box anchored as
     :func:`draw_mode` anchors the text — keeps farthest from every link edge, bar,
     slider axis, joint and label already placed (a point inside a filled link counts as
     touching it); a box that overlaps a placed label's box (grown by LABEL_MARGIN) loses to
     every box that does not (9-B28: 5 overlapping pairs of 168 labels when only corners
-    counted); ties go away from the drawing's centre. Greedy, O(J · D · (S + J)) for
-    J joints, D directions, S segments."""
+    counted), and one reaching out of the panel's ``limits`` (x0, x1, y0, y1) to every box
+    inside (it would be cut off or run into the next panel: 1 label of 9-B28's 168 and 10
+    of the 13-link Watt–Baranov example's 1368 before); ties go away from the drawing's
+    centre. ``scale``: data units per point (default LABEL_SCALE × ``extent``). Greedy,
+    O(J · D · (S + J)) for J joints, D directions, S segments."""
+    scale = scale or LABEL_SCALE * extent
     joints = [at for _, at in groups]
     centre = (sum(x for x, _ in joints) / len(joints), sum(y for _, y in joints) / len(joints))
     placed: list[tuple[float, float]] = []
@@ -178,29 +191,32 @@ def _label_directions(groups: list[tuple[list[str], tuple[float, float]]], segme
     chosen = []
     for names, (x, y) in groups:
         away = math.atan2(y - centre[1], x - centre[0])
-        width = CHARACTER[0] * extent * len("=".join(names))
+        width = CHARACTER[0] * scale * len("=".join(names))
         best, best_score, best_box = away, -math.inf, []
         for step in range(LABEL_DIRECTIONS):
             angle = away + 2 * math.pi * step / LABEL_DIRECTIONS
-            box = _label_box((x, y), angle, width, CHARACTER[1] * extent, LABEL_OFFSET * extent)
+            box = _label_box((x, y), angle, width, CHARACTER[1] * scale, LABEL_OFFSET * scale)
             clearance = min([_segment_distance(point, a, b) for point in box for a, b in segments]
                             + [math.dist(point, other) for point in box for other in joints + placed] + [extent])
             if any(_inside(point, polygon) for point in box for polygon in polygons):
                 clearance = 0.0
             score = clearance + 1e-3 * extent * math.cos(angle - away)
-            if any(_boxes_overlap(_rectangle(box, LABEL_MARGIN * extent), other) for other in rectangles):
+            if any(_boxes_overlap(_rectangle(box, LABEL_MARGIN * scale), other) for other in rectangles):
                 score -= 2 * extent
+            if limits is not None and not all(limits[0] <= px <= limits[1] and limits[2] <= py <= limits[3]
+                                              for px, py in box):
+                score -= extent
             if score > best_score:
                 best, best_score, best_box = angle, score, box
         chosen.append(best)
         placed += best_box
-        rectangles.append(_rectangle(best_box, LABEL_MARGIN * extent))
+        rectangles.append(_rectangle(best_box, LABEL_MARGIN * scale))
     return chosen
 
 
 def _rectangle(box: list[tuple[float, float]], margin: float) -> tuple[float, float, float, float]:
     """(left, bottom, right, top) of a label box (:func:`_label_box`), grown by ``margin``."""
-    (_, (left, bottom), _, _, (right, top)) = box
+    (left, bottom), (right, top) = box[1], box[4]
     return left - margin, bottom - margin, right + margin, top + margin
 
 
@@ -209,14 +225,15 @@ def _boxes_overlap(first: tuple[float, float, float, float], second: tuple[float
 
 
 def _label_box(joint, angle: float, width: float, height: float, offset: float) -> list[tuple[float, float]]:
-    """Centre and corners of a label anchored ``offset`` from ``joint`` in direction
-    ``angle`` (left/right/centre and bottom/top/centre as :func:`draw_mode` aligns it)."""
+    """Centre, corners and sides' midpoints of a label anchored ``offset`` from ``joint``
+    in direction ``angle`` (left/right/centre and bottom/top/centre as :func:`draw_mode` aligns it)."""
     dx, dy = math.cos(angle), math.sin(angle)
     x, y = joint[0] + offset * dx, joint[1] + offset * dy
     left = x if dx > 0.3 else x - width if dx < -0.3 else x - width / 2
     bottom = y if dy > 0.3 else y - height if dy < -0.3 else y - height / 2
-    return [(left + width / 2, bottom + height / 2), (left, bottom), (left + width, bottom),
-            (left, bottom + height), (left + width, bottom + height)]
+    right, top, middle, centre = left + width, bottom + height, left + width / 2, bottom + height / 2
+    return [(middle, centre), (left, bottom), (right, bottom), (left, top), (right, top),
+            (middle, bottom), (middle, top), (left, centre), (right, centre)]
 
 
 def _segment_distance(point, start, end) -> float:

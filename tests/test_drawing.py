@@ -57,8 +57,8 @@ def test_titles_and_labels_do_not_collide(example):
         assert not _overlap(title, heading), f"title {n + 1} runs into the heading"
         assert not any(_overlap(title, frame) for frame in frames), f"title {n + 1} runs into a panel"
         assert not any(_overlap(title, other) for m, other in enumerate(titles) if m != n)
-    labels = crossing = 0
-    for axis in panels:
+    labels = crossing = outside = 0
+    for axis, frame in zip(panels, frames, strict=True):
         segments = _segments(axis)
         boxes = [text.get_window_extent(renderer) for text in axis.texts]
         assert not any(_overlap(a, b) for n, a in enumerate(boxes) for b in boxes[n + 1:]), "two joint labels overlap"
@@ -68,8 +68,11 @@ def test_titles_and_labels_do_not_collide(example):
             assert not _overlap(box, heading)
             labels += 1
             crossing += any(_crosses(start, end, box) for start, end in segments)
+            outside += not (frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1)
     bound = CROWDED if example.startswith("13-") else CROSSING
     assert crossing <= bound * labels, f"{crossing} of {labels} joint labels cross a link"
+    # a label out of its panel runs into the next one (13-watt-baranov: 2 of 1368, measured)
+    assert outside <= (0.002 * labels if example.startswith("13-") else 0), f"{outside} labels leave their panel"
 
 
 def _segments(axis) -> list:
