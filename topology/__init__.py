@@ -27,6 +27,7 @@ from .chain import (
     natural_sort_key,
     thesis_subscript,
 )
+from .diagram import diagram_layout, diagram_svg
 from .errors import TopologyError
 from .fusion import fuse_links
 from .graphs import degree_sequence, is_planar, joint_graph, joints_of_links, link_graph
@@ -60,6 +61,8 @@ __all__ = [
     "chain_from_link_graph",
     "chain_from_links",
     "degree_sequence",
+    "diagram_layout",
+    "diagram_svg",
     "fuse_links",
     "is_baranov_link_graph",
     "is_baranov_truss",

@@ -8,6 +8,7 @@ by hand.
 from __future__ import annotations
 
 import gzip
+import hashlib
 import html
 import json
 import sys
@@ -17,6 +18,8 @@ from pathlib import Path
 GENERATED = "generated"
 #: Trusses up to this many links get a page each; the 13-link class a table.
 PAGE_LINKS = 11
+#: The trusses' structural diagrams, under GENERATED.
+DRAWINGS = "catalog-drawings"
 
 
 def generate_pages(docs: Path) -> None:
@@ -30,7 +33,9 @@ def generate_pages(docs: Path) -> None:
     _write(out / "catalog.md", catalog_index({**{links: len(found) for links, found in entries.items()},
                                               13: len(thirteen)}))
     for links, found in entries.items():
-        _write(out / f"catalog-{links}.md", links_page(links, found, _slider_counts(catalog / f"slider-chains-{links}.jsonl")))
+        drawings = {entry["id"]: truss_drawing(entry, out / DRAWINGS) for entry in found}
+        _write(out / f"catalog-{links}.md", links_page(links, found, _slider_counts(catalog / f"slider-chains-{links}.jsonl"),
+                                                       drawings))
     _write(out / "catalog-13.md", thirteen_table(thirteen))
 
 
@@ -55,6 +60,24 @@ def cli_reference() -> str:
         command.prog = f"baranov {name}"
         lines += [f"## baranov {name}", "", "```text", command.format_help().rstrip(), "```", ""]
     return "\n".join(lines)
+
+
+def truss_drawing(entry: dict, folder: Path) -> str:
+    """The path, relative to the catalog pages, of the structural diagram of a catalog
+    truss (:func:`baranov.topology.diagram_svg`), drawn unless a drawing of the same joints
+    exists: its name holds a hash of the truss's joints (about 25 ms a drawing, 15 s for
+    the 595 trusses to 11 links)."""
+    from baranov.topology import chain_from_links, diagram_svg
+
+    digest = hashlib.sha1(json.dumps(entry["joints"], sort_keys=True).encode()).hexdigest()[:10]
+    path = folder / f"{_slug(entry['id'])}-{digest}.svg"
+    if not path.exists():
+        links: dict[int, list[str]] = {}
+        for joint, pair in entry["joints"].items():
+            for link in pair:
+                links.setdefault(link, []).append(joint)
+        _write(path, diagram_svg(chain_from_links([links[link] for link in sorted(links)])))
+    return f"{folder.name}/{path.name}"
 
 
 def _entries(path: Path) -> list[dict]:
@@ -97,8 +120,10 @@ def catalog_index(counts: dict[int, int]) -> str:
     return "\n".join(lines)
 
 
-def links_page(links: int, entries: list[dict], sliders: dict[str, list[dict]]) -> str:
-    """One link count: a table of its trusses, each linked to its page."""
+def links_page(links: int, entries: list[dict], sliders: dict[str, list[dict]],
+               drawings: dict[str, str] | None = None) -> str:
+    """One link count: a table of its trusses, each linked to its section (with its
+    drawing, ``drawings``: truss id → image path)."""
     lines = [f"# {links}-link Baranov trusses", "", f"{len(entries)} trusses (catalog/trusses-{links}.jsonl).", "",
              "| truss | thesis name | link degrees | coupling degree | automorphisms | assembly modes | "
              "slider chains |", "|---|---|---|---|---|---|---|"]
@@ -109,17 +134,20 @@ def links_page(links: int, entries: list[dict], sliders: dict[str, list[dict]]) 
                      f"{entry.get('automorphism_group_order', '—')} | {_modes(entry)} | "
                      f"{len(sliders.get(entry['id'], []))} |")
     for entry in entries:
-        lines += ["", f"({_slug(entry['id']).lower()})=", truss_section(entry, sliders.get(entry["id"], []))]
+        lines += ["", f"({_slug(entry['id']).lower()})=",
+                  truss_section(entry, sliders.get(entry["id"], []), (drawings or {}).get(entry["id"]))]
     return "\n".join(lines) + "\n"
 
 
-def truss_section(entry: dict, sliders: list[dict]) -> str:
+def truss_section(entry: dict, sliders: list[dict], drawing: str | None = None) -> str:
     """One truss: its joints, plan, closure conditions and counts, as the catalog holds them
     (under a rubric, not a section: hundreds of sections would each enter the site's
     navigation, which every page copies)."""
     title = entry["id"] + (f" ({entry['name']})" if entry.get("name") and entry["name"] != entry["id"] else "")
     lines = ["```{rubric} " + title, "```", "",
              f"`baranov show {entry['id']}` prints this truss; `baranov.truss(\"{entry['id']}\")` returns it.", "",
+             *([f"![structural diagram of {entry['id']}: k-ary links grey, binary links bars]({drawing})", ""]
+               if drawing else []),
              f"- links: {entry['links'] if 'links' in entry else len(entry['link_degrees'])}, link degrees "
              f"{' '.join(map(str, entry['link_degrees']))} (graph6 of the link graph: `{entry['link_graph6']}`)",
              f"- automorphism group order: {entry.get('automorphism_group_order', '—')}",
