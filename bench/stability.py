@@ -280,7 +280,7 @@ backend lost or doubled a mode, in six ways (five numeric, one exact), each caus
 flat triangle or coincident joints in a mode; one instance of each is saved in
 tests/regressions/ (`9-B28-joints-in-line-fold.json`, `9-joints-in-line-*.json`) with
 what was lost and why, and all are fixed (docs/exact.md, "What the exact backend
-guarantees"; docs/numeric.md, "Flat triangles").
+guarantees"; docs/numeric-log.md, "Flat triangles").
 
 {collinear}
 
@@ -308,7 +308,7 @@ that missed the modes where base joints of its plan coincide and no other plan i
 linkage that in fact moves (7/N2 drawn with P1 = P6 = P8); the numeric backend missing
 modes at double roots and at coincidences, and running over 300 s on five instances
 (rounding noise where a triangle is flat along a branch or the linkage moves). Each cause
-is explained in docs/exact.md (step 9) and docs/numeric.md ("Adversarial instances"), one
+is explained in docs/exact.md (step 9) and docs/numeric-log.md ("Adversarial instances"), one
 instance of each saved in tests/regressions/ (tests/test_adversarial.py checks them
 against msolve).
 
@@ -319,7 +319,7 @@ minute, and 9/N17 (two joints of one link at one point) refused by both backends
 run at commit cf3048e (3022 of 3100 instances, 20 per truss and kind; report
 `adversarial-cf3048e` below) found four more, each fixed since with its instance saved:
 a tangential root beside a simple one and a root below the first sample (numeric,
-9/N6 and 9/N7: docs/numeric.md), a genuine factor left undecided by flint's branch cut
+9/N6 and 9/N7: docs/numeric-log.md), a genuine factor left undecided by flint's branch cut
 (exact, not certified, 9/N13: docs/exact.md step 4), and 9/N17 drawn with two joints of
 one link at one point, which no plan can solve — both backends now say it moves (msolve:
 positive-dimensional) instead of only refusing it. The fixes before that run: noise roots
@@ -336,7 +336,7 @@ configuration took the numeric backend 198 s (p99/median 409 on that truss), whe
 closure condition is noise over long stretches and every noise sign change was bracketed
 (profile: 16 470 Brent brackets, 500 773 plan evaluations; 32 s once the re-sampling
 beside roots and of local minima was capped, 1.4 s since sign changes and minima that
-rounding decides are one stretch — docs/numeric.md, `tests/regressions/9-N10-noise-brackets.json`); and
+rounding decides are one stretch — docs/numeric-log.md, `tests/regressions/9-N10-noise-brackets.json`); and
 the exact backend ran over its 300 s limit on 8 of the 14 coupling-2 eleven-link instances
 (issue 24: the coupling-2 lifting is 100× slower than msolve there). On 11/N561 (coupling
 2, double-root) the numeric backend placed a singular mode 2e-4 from msolve's (1 missed,
@@ -358,7 +358,7 @@ bound fails on four nine-link trusses: p99/median 34.4 (9/N18) and 28.0 (9/N28),
 coupling 2, where one movable 9/N18 instance (four joints at one point) ran past 300 s
 (fixed since, below), and 18.5 (9/N17) and 17.4 (9/N8), coupling 1, whose slowest
 instances spent their time on shallow minima and crowded noise (11.4 → 3.1 s and
-14.1 → 1.9 s alone since: docs/numeric.md).
+14.1 → 1.9 s alone since: docs/numeric-log.md).
 
 The fifth run (`adversarial-1174e5b` below: at the solving code of commit 1174e5b, 4500
 seven-link and 2790 nine-link instances, then stopped) found no missed mode in 7265
@@ -393,7 +393,7 @@ tests/regressions/) and one open:
 Its numeric time bound failed on 9/N28 (p99/median 41: one small-box instance took
 133 s, where the two conditions' zero curves run within a cell of each other along a long
 arc and every suspect cell started Newton; 16 s with Newton started only at local minima,
-docs/numeric.md) and on 9/N18 (the movable instance). A check of the changed coupling-2
+docs/numeric-log.md) and on 9/N18 (the movable instance). A check of the changed coupling-2
 search against msolve (90 instances of 9/N18, 9/N27 and 9/N28, seed 77): 0 missed,
 0 spurious, numeric median 2.8 s, max 18.4 s, p99/median per truss at most 6.1.
 Because the fixes changed the solving code, the 10⁴-instance count restarted with a
@@ -401,7 +401,7 @@ sixth run on fresh instances (seed 27; rows in bench/results/adversarial.jsonl).
 solving code of commit d8991b4 its 4500 seven-link instances gave one failure, a numeric
 miss: 7/N1 drawn at a double root, a mode where the branch's domain begins with one
 triangle flat and another nearly so, whose fold candidate took both flat
-(`7-N1-fold-one-of-two-flat.json`; docs/numeric.md). Fixed, and the sixth run began again
+(`7-N1-fold-one-of-two-flat.json`; docs/numeric-log.md). Fixed, and the sixth run began again
 at the fixing commit (0277a59): 4500 seven-link instances without a failure, then 692
 nine-link ones without a miss, until one solve ran the machine out of memory: 9/N9 drawn at
 a double root, movable (msolve: positive-dimensional; the exact backend says so at once),
@@ -437,13 +437,13 @@ nine-link and 1254 seven-link instances with the exact backend 0 / 0 and one num
 9/N27 drawn at a double root, where link L5 has its joints in line and the mode sits in a
 valley of the link dimensions flat to rounding 1.4e-2 wide, whose representative was
 2.4e-4 from msolve's mode (`9-N27-double-root-25.json`; fixed by refining valleys on the
-rigid-link model, docs/numeric.md). The count restarted at that fix (6a629ab, seed 34; 149
+rigid-link model, docs/numeric-log.md). The count restarted at that fix (6a629ab, seed 34; 149
 nine-link instances, 0 / 0 in both backends) and, once the notation change of issue 26 had
 renamed the parameters, at 88e104a (seed 35): 3919 nine-link instances, the exact
 backend 0 / 0, the numeric one three misses, all coupling 2 and singular: 9/N2 drawn at a
 double root where one condition touches 0 inside the domain (`9-N2-touching-inside.json`),
 and 9/N27 and 9/N28 with modes on an edge line along which one condition vanishes
-(`9-N27-edge-double-root.json`, `9-N28-modes-on-edge-line.json`); fixed (docs/numeric.md),
+(`9-N27-edge-double-root.json`, `9-N28-modes-on-edge-line.json`); fixed (docs/numeric-log.md),
 and the count restarted at that fix (d4f5a64, seed 36, `adversarial-d4f5a64` below): all
 4200 nine-link instances, 0 missed and 0 spurious in both backends; then, in the first 2374
 seven-link instances, **the exact backend certified 4 of 8 modes, twice, on 7/N2**
@@ -467,13 +467,13 @@ tries other parameters where the norm vanishes (ffd6819, docs/exact.md;
 certified every list on all 10 163 finite instances of 7 and 9 links (6000 and 4200
 drawn, 37 movable, said so), 0 missed and 0 spurious: issue 25's target for the exact
 backend.** The numeric backend missed 3 modes there (2 spurious): 9/N19 collinear 15, a
-tangential root two sampling cells from a crossing one (fixed at 5bc4a33, docs/numeric.md;
+tangential root two sampling cells from a crossing one (fixed at 5bc4a33, docs/numeric-log.md;
 `9-N19-collinear-15-seed40.json`), and two coupling-2 singular modes (9/N18 double-root 9
 and 9/N28 domain-edge 21, each with two joints at one point) reported as a valley of
 verified configurations whose representative lies 1e-3 and 2e-3 from msolve's mode (open:
 `tests/regressions/open/*-seed40.json`). Earlier runs found numeric misses of the same
 kinds, a tangential root beside a crossing one or a shallow root (seed 37, 7/N2; seed 38,
-7/N1; a random robot), each fixed with its instance saved (docs/numeric.md). Solve times
+7/N1; a random robot), each fixed with its instance saved (docs/numeric-log.md). Solve times
 were measured beside other jobs on both cores. On 11 links (every 56th truss, 53 of 55
 instances) the exact backend was 0 / 0 too, but ran over the run's 300 s limit on three
 coupling-2 instances (11/N393, 11/N561), where the numeric backend took 3-4 s; the
@@ -485,7 +485,7 @@ to 134.3 s on 9/N28, where msolve takes under 1 s).
 **Seed 41** (solving code 6d0004611ed8, commit 9445ea6, `adversarial-9445ea6` below)
 restarted the count after the three open numeric cases of seed 40 were fixed (9445ea6:
 singular valleys refined by pseudo-inverse Gauss–Newton steps on the rigid-link model, one
-root per stretch where f's sign is rounding noise; docs/numeric.md). On all 6000
+root per stretch where f's sign is rounding noise; docs/numeric-log.md). On all 6000
 seven-link and 4200 nine-link instances (10 157 finite, 43 movable and said so by both
 backends) the exact backend again listed every mode and certified every list, 0 missed
 and 0 spurious. The numeric backend missed 2 modes, both at a domain edge on 9 links:
@@ -494,7 +494,7 @@ its mode at the gap's far edge; fixed at fad5713, `9-N7-domain-edge-3-seed41.jso
 9/N27 domain-edge 8 (coupling 2: both conditions dip to 0 and back within less than a
 grid cell next to the domain's edge where a radicand nearly vanishes; fixed by samples
 between the boundary and the grid spaced uniformly in √ of the distance, and a polish on
-the rigid-link model, `9-N27-domain-edge-8-seed41.json`, docs/numeric.md). **The numeric time bound holds
+the rigid-link model, `9-N27-domain-edge-8-seed41.json`, docs/numeric-log.md). **The numeric time bound holds
 in this run: p99/median per truss at most 7.7 (target 10), max 33.8 s.** On 11 links
 (every 56th truss, one instance per kind) 50 of 55 instances ran before the session's end
 (11/N561's five did not): both backends 0 / 0 on all 50, every exact list certified, but
@@ -508,7 +508,7 @@ on the rigid-link model). On all 6000 seven-link and 4200 nine-link instances (1
 finite, 32 movable and said so by both backends) the exact backend again listed every mode
 and certified every list of a rigid linkage, 0 missed and 0 spurious. The numeric backend
 missed 3 modes and listed 2 spurious ones, on 3 instances, all fixed since (90f80bd, dcc3ae2,
-9b7aa8f: docs/numeric.md): 9/N27 small-box 14 (coupling 2: a valley of 1447
+9b7aa8f: docs/numeric-log.md): 9/N27 small-box 14 (coupling 2: a valley of 1447
 configurations from a regular mode to msolve's mode with P1 = P11; a float member 1.5e-3
 away stood for it, and merging the valley took 40 s of a 51 s solve),
 9/N18 double-root 27 (coupling 2: a simple root 3.9e-3 from a double root merged into its
@@ -536,7 +536,7 @@ than 1e-4 of the linkage's size. **The numeric time bound holds on every truss: 
 at most 9.6 (target 10).** One nine-link solve exceeded 60 s: 9/N2 domain-edge 13 (coupling
 2) took 118 s, 96 s of it 60 full Gauss–Newton steps on 97 204 stalled boundary samples.
 They now go in rounds that keep only configurations near a mode or still converging, and
-the same solve took 40 s (dd77a65, docs/numeric.md). So this count is not the clean one
+the same solve took 40 s (dd77a65, docs/numeric-log.md). So this count is not the clean one
 either. The next count runs at the solving code with these fixes.
 
 **Seed 44** (solving code 7d1e088ab793, commit 692a323, `adversarial-692a323` below) ran

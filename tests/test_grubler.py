@@ -31,6 +31,28 @@ def test_grubler_chain_counts():
         assert all(rigid_subset_masks(masks).size == 0 for masks in graphs)
 
 
+#: The published counts of one-degree-of-freedom planar simple-jointed chains without a
+#: rigid sub-chain with 12 and 14 links (Sunkari and Schmidt, "Structural synthesis of
+#: planar kinematic chains by adapting a McKay-type algorithm", Mech. Mach. Theory 41
+#: (2006) 1021-1030; OEIS A233288).
+PUBLISHED = {12: 6856, 14: 318_162}
+
+
+@needs_geng
+def test_twelve_link_chains():
+    """6856 twelve-link chains, as published; distinct classes (15 s alone, 2026-11-28)."""
+    graphs = grubler_link_graphs(12)
+    assert len(graphs) == PUBLISHED[12]
+    assert len({link_graph_certificate(masks) for masks in graphs}) == len(graphs)
+
+
+@pytest.mark.slow
+@needs_geng
+def test_fourteen_link_chains():
+    """318 162 fourteen-link chains, as published (about 12 min in one process)."""
+    assert len(grubler_link_graphs(14)) == PUBLISHED[14]
+
+
 @needs_geng
 def test_table_6_2_distances_and_oriented_areas():
     """Thesis §6.4: the four-bar's configuration space is ranges of one distance per sign

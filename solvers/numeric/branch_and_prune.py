@@ -114,12 +114,18 @@ class PrunedRoots:
         interval evaluations of the program made.
     domain
         the parameter's range searched, (lower, upper).
+    boxes
+        with ``record``: (E, 7), each box evaluated: lower end, upper end, branch
+        index, work (SEARCH, CERTIFY, CONTRACT), decision (FEASIBLE, EDGE, EXCLUDED),
+        whether f was monotone on it, and the program's status (FEASIBLE, EDGE,
+        INFEASIBLE: a triangle that cannot exist).
     """
 
     roots: np.ndarray
     unresolved: np.ndarray
     evaluations: int
     domain: tuple[float, float]
+    boxes: np.ndarray | None = None
 
     @property
     def complete(self) -> bool:
@@ -206,13 +212,14 @@ def _split(stack, unresolved, a, b, k, status, z0, z1, minimum_width):  # pragma
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def _prune(instructions, values, instance_c, instance_e, starts, instance_outputs, parameter, sign_registers, branches,
-           residual, derivative, low, high, minimum_width, budget, columns):  # pragma: no cover - compiled
+           residual, derivative, low, high, minimum_width, budget, columns, record):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_instances` over every branch of every
     instance (the first ``values`` instructions compute the values, the rest the
     derivatives; instance i's registers ``instance_c[i]``, ``instance_e[i]``, its status
     ``starts[i]``, its domain [low[i], high[i]]): rounds of up to ``columns`` boxes of any
     instances, each round one evaluation of the program side by side. A box's branch
-    index k stands for branch k mod B of instance k // B."""
+    index k stands for branch k mod B of instance k // B. With ``record``, every box
+    evaluated is logged: (low, high, branch index, work kind, decision, f monotone, status)."""
     registers = new_registers(instance_c[0], instance_e[0], 1, columns)
     c, g, e, radius, _ = registers
     feasible, status, out = np.empty((2, columns)), np.empty(columns, dtype=np.int64), np.empty((columns, 8))
@@ -232,6 +239,8 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
     unresolved = [(0.0, 0.0, 0, 0)]
     unresolved.pop()
     evaluations = np.zeros(low.shape[0], dtype=np.int64)
+    log = [(0.0, 0.0, 0, 0, 0.0, False, 0)]
+    log.pop()
     while len(stack) > 0:
         batch.clear()
         while len(stack) > 0 and len(batch) < columns:
@@ -260,6 +269,8 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
             a, b, k, kind, u0, u1, z0, z1, steps = batch[j]
             decision, center, slope, rest, g0, g1 = out[j, 0], out[j, 1], out[j, 2], out[j, 3], out[j, 4], out[j, 5]
             monotone = decision == FEASIBLE and (g0 > 0.0 or g1 < 0.0)  # one root at most
+            if record:
+                log.append((a, b, k, kind, decision, monotone, status[j]))
             if kind == CONTRACT:
                 _contract(stack, roots, a, b, k, u0, u1, steps, monotone, center, rest, g0, g1, out[j, 6], out[j, 7])
             elif kind == CERTIFY:
@@ -274,7 +285,12 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
     left = np.empty((len(unresolved), 4))
     for n in range(len(unresolved)):
         left[n, 0], left[n, 1], left[n, 2], left[n, 3] = unresolved[n]
-    return found, left, evaluations
+    boxes = np.empty((len(log), 7))
+    for n in range(len(log)):
+        a, b, k, kind, decision, monotone, state = log[n]
+        boxes[n, 0], boxes[n, 1], boxes[n, 2], boxes[n, 3] = a, b, k, kind
+        boxes[n, 4], boxes[n, 5], boxes[n, 6] = decision, monotone, state
+    return found, left, evaluations, boxes
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -359,33 +375,37 @@ def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: 
 
 
 def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: Sequence[tuple], domains: Sequence,
-                    minimum_width: float = MINIMUM_WIDTH, budget: int = EVALUATION_BUDGET) -> list[PrunedRoots]:
+                    minimum_width: float = MINIMUM_WIDTH, budget: int = EVALUATION_BUDGET,
+                    record: bool = False) -> list[PrunedRoots]:
     """:func:`prune_one_parameter` for many instances of one coupling-1 plan at once
     (``inputs``: each instance's :func:`instance_inputs`; ``domains``: its searched
     interval), their boxes side by side in the same rounds (a sweep fills every column,
     where one instance of a 7-link truss fills a few). The same boxes, decisions and
     roots as one instance at a time; ``budget`` is per instance. Cost
-    O(instances × boxes × instructions), without Python work per box."""
+    O(instances × boxes × instructions), without Python work per box. ``record``: each
+    result's ``boxes`` lists the boxes evaluated (a diagnostic: where the boxes go)."""
     reduced = interval_program(program)
     registers = [instance_registers(reduced, *arguments) for arguments in inputs]
     low, high = (np.array([float(domain[end]) for domain in domains]) for end in (0, 1))
     count = len(branches)
     columns = min(COLUMNS if len(inputs) == 1 else MANY_COLUMNS, max(8, 4 * count * len(inputs)))
-    found, left, evaluations = _prune(reduced.instructions, reduced.values,
+    found, left, evaluations, boxes = _prune(reduced.instructions, reduced.values,
                                       np.array([center for center, _, _ in registers]),
                                       np.array([remainder for _, remainder, _ in registers]),
                                       np.array([status for _, _, status in registers], dtype=np.int64),
                                       reduced.instance_outputs, int(program.parameter_registers[0]),
                                       program.sign_registers, np.ascontiguousarray(branches, dtype=float),
                                       int(program.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
-                                      low, high, minimum_width * high, budget, columns)
+                                      low, high, minimum_width * high, budget, columns, record)
     owner_found, owner_left = found[:, 2] // count, left[:, 2] // count
     pruned = []
     for i in range(len(inputs)):
         roots, unresolved = found[owner_found == i], left[owner_left == i]
         roots[:, 2] -= i * count
         unresolved[:, 2] -= i * count
-        pruned.append(PrunedRoots(_distinct(roots), _merged(unresolved), int(evaluations[i]), (low[i], high[i])))
+        mine = boxes[boxes[:, 2] // count == i]
+        mine[:, 2] -= i * count
+        pruned.append(PrunedRoots(_distinct(roots), _merged(unresolved), int(evaluations[i]), (low[i], high[i]), mine))
     return pruned
 
 
