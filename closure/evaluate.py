@@ -25,6 +25,7 @@ from .bilateration import dehomogenised, place_joints, signed_root
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
 from .sliders import SearchedParameter, SliderGeometry, SliderPlacement
 from .straight_line import StraightLineProgram, compiled_kernel_in_use, count_numpy_seconds, run_program, trace_plan
+from .traced_sliders import slider_constant_values
 
 Triangle = tuple[str, str, str]
 Pair = frozenset[str]
@@ -108,9 +109,10 @@ class CompiledSystem:
         return bound if mapping is None else mapping.scale**2
 
     def straight_line_program(self) -> StraightLineProgram:
-        """The plan's straight-line program (:mod:`.straight_line`), traced once per plan
-        and its link pairs and link steps. Not for plans with slider joints."""
-        return _straight_line_program(self.plan, tuple(self.known), tuple(self.fixed_signs))
+        """The plan's straight-line program (:mod:`.straight_line`), traced once per plan,
+        its link pairs and link steps, and its sliders' layout (their numbers are inputs)."""
+        return _straight_line_program(self.plan, tuple(self.known), tuple(self.fixed_signs), _slider_layout(self.sliders),
+                                      self.sliders)
 
     def program_profile(self, parameter_values: np.ndarray, signs: np.ndarray, paired: bool = False) -> Profile:
         """:meth:`profile` (with ``paired``, before its first axis is dropped) by the
@@ -132,7 +134,8 @@ class CompiledSystem:
                                   if frozenset(pair) in self.searched else values[:, n]
                                   for n, pair in enumerate(self.parameters)]) if self.searched else values
         return run_program(program, [self.known[pair] for pair in program.known_pairs],
-                           [self.fixed_signs[t] for t in program.fixed_triangles], mapped, signs, paired, points)
+                           [self.fixed_signs[t] for t in program.fixed_triangles], mapped, signs, paired, points,
+                           slider_constant_values(program.slider_constants, self.sliders) if self.sliders else ())
 
     def matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
         """M_k for every joint, and s_ref, broadcast over branches and parameter values.
@@ -203,7 +206,7 @@ class CompiledSystem:
         no ``points`` are asked for, its residuals and failure profile by the plan's
         compiled program (:meth:`program_profile`: the same values). Time spent in numpy
         counts towards the switch (:func:`~.straight_line.count_numpy_seconds`)."""
-        if not points and not self.sliders and compiled_kernel_in_use():
+        if not points and compiled_kernel_in_use():
             return _ProgramPlacement(*self.program_profile(parameter_values, signs, paired))
         started = time.perf_counter()
         try:
@@ -325,10 +328,31 @@ class CompiledSystem:
         return value.real / size
 
 
-@functools.lru_cache(maxsize=256)
-def _straight_line_program(plan, known_pairs: tuple, fixed_triangles: tuple) -> StraightLineProgram:
-    """A plan's program, traced once per plan (and its link pairs and link steps)."""
-    return trace_plan(plan, known_pairs, fixed_triangles)
+def _slider_layout(sliders: Mapping[str, SliderGeometry]) -> tuple:
+    """What a slider program's instructions depend on besides the plan: each slider's
+    links, the joints and sliders in its frames, the other sliders it turns to, and
+    whether its unit is 1 (a hashable key; the numbers themselves are inputs)."""
+    return tuple((name, geometry.links, tuple((link, tuple(sorted(frame))) for link, frame in geometry.offsets.items()),
+                  tuple(sorted(geometry.turns)),
+                  tuple((link, tuple(sorted(frame))) for link, frame in geometry.slider_offsets.items()),
+                  type(geometry.unit) is int and geometry.unit == 1)
+                 for name, geometry in sorted(sliders.items()))
+
+
+_programs: dict = {}
+
+
+def _straight_line_program(plan, known_pairs: tuple, fixed_triangles: tuple, layout: tuple,
+                           sliders: Mapping[str, SliderGeometry]) -> StraightLineProgram:
+    """A plan's program, traced once per plan (and its link pairs, link steps and slider
+    layout: ``sliders`` is read for its layout only, so one program serves all its
+    instances). At most 256 kept."""
+    key = (plan, known_pairs, fixed_triangles, layout)
+    if key not in _programs:
+        if len(_programs) >= 256:
+            _programs.pop(next(iter(_programs)))
+        _programs[key] = trace_plan(plan, known_pairs, fixed_triangles, sliders or None)
+    return _programs[key]
 
 
 class Profile(NamedTuple):

@@ -16,17 +16,22 @@ It is the kernel's fifth arithmetic, not a second copy of its formulas: the form
 those of :mod:`.bilateration`, run once on :class:`Traced` values. The two primitives a
 float arithmetic supplies itself — the signed square root of a radicand with its rounding
 guard (:func:`~.bilateration.signed_root`) and the first failing step — are instructions.
-Plans with slider joints (complex arithmetic, ``closure/sliders.py``) are not traced.
+Plans with slider joints are traced too: their constructions (``closure/sliders.py``)
+run on traced complex numbers (:mod:`.traced_sliders`), each slider's geometry an input.
 """
 
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .bilateration import RADICAND_NOISE, dehomogenised, place_joints
+
+#: NaN as one object, so that the recorder keeps one register for it (NaN ≠ NaN).
+NOT_A_NUMBER = float("nan")
 
 # Opcodes. Binary: registers[d] = registers[a] (op) registers[b].
 ADD, SUBTRACT, MULTIPLY, DIVIDE, MAXIMUM, NEGATE, GUARDED_ROOT, FLAT_ZERO, FIRST_FAILURE = range(9)
@@ -149,6 +154,9 @@ class StraightLineProgram:
     steps: int
     joints: tuple[str, ...] = ()
     point_registers: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), dtype=np.int64))
+    #: With slider joints: each input of their geometry (:mod:`.traced_sliders`), and its register.
+    slider_constants: tuple = ()
+    slider_constant_registers: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
     #: The layouts of :func:`program_layout` made so far, by branch set (None: paired).
     layouts: dict = field(default_factory=dict, compare=False, repr=False)
     #: Forms derived from the program once (the interval program of
@@ -156,11 +164,15 @@ class StraightLineProgram:
     derived: dict = field(default_factory=dict, compare=False, repr=False)
 
 
-def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple) -> StraightLineProgram:
+def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
+               sliders: Mapping | None = None) -> StraightLineProgram:
     """The straight-line program of :meth:`CompiledSystem.profile <.evaluate.CompiledSystem.profile>`
-    for ``plan`` (no slider joints), with the squared distances of ``known_pairs`` and the
-    orientation signs of the link steps ``fixed_triangles`` as inputs, so that one program
-    serves every instance of the plan. O(steps) instructions."""
+    for ``plan``, with the squared distances of ``known_pairs``, the orientation signs of
+    the link steps ``fixed_triangles`` and, with slider joints (``sliders``: joint →
+    :class:`~.sliders.SliderGeometry`, whose numbers are read only for their layout), each
+    slider's geometry as inputs, so that one program serves every instance of the plan
+    (with the parameters as :class:`~.evaluate.CompiledSystem` maps them: a slider's t,
+    not its searched value). O(steps) instructions."""
     recorder = Recorder()
     inputs = {pair: recorder.input() for pair in known_pairs}
     parameters = [recorder.input() for _ in plan.parameters]
@@ -192,13 +204,29 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple)
         return recorder.emit(FLAT_ZERO, sign.register, signed.register)
 
     def after_step(index, step, point):
-        recorder.emit(FIRST_FAILURE, recorder.operand(point[0] + point[1]), recorder.operand(relative[0]), index)
+        # a slider's link step takes no root (no radicand), and a free sign that a slider
+        # construction does not use (two lines meet once) has margin 1, as in numpy's kernel
+        radicand = relative[0] if relative else NOT_A_NUMBER
+        recorder.emit(FIRST_FAILURE, recorder.operand(point[0] + point[1]), recorder.operand(radicand), index)
+        if step.free_sign and len(margins) == free_steps.index(index):
+            margins.append(recorder.constant(1.0))
         relative.clear()
         return True
 
-    points, _, distance = place_joints(plan, known, root, reduced_point=dehomogenised, after_step=after_step)
+    hooks = None
+    if sliders:
+        from .traced_sliders import traced_slider_placement
+
+        hooks = traced_slider_placement(recorder, plan, sliders, lambda u, v: known(u, v)[0]
+                                        if frozenset((u, v)) in parameter_index else None, root)
+    points, (reference, _), distance = place_joints(
+        plan, known, root, reduced_point=dehomogenised, after_step=after_step,
+        slider_step=hooks.slider_step if hooks else None, slider_frame=hooks.slider_frame if hooks else None)
     residuals = []
     for u, v in plan.closure_pairs:
+        if hooks and (u in sliders or v in sliders):
+            residuals.append(recorder.operand(hooks.closure(u, v, points, reference)))
+            continue
         target = inputs[frozenset((u, v))]
         residuals.append(recorder.operand((distance(u, v, computed=True)[0] - target) / target))
     joints = tuple(sorted(points))  # before the constants are listed: a reference joint's are constants
@@ -216,7 +244,9 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple)
         sign_registers=np.array([signs[i].register for i in free_steps], dtype=np.int64),
         residual_registers=np.array(residuals, dtype=np.int64),
         margin_registers=np.array([m.register for m in margins], dtype=np.int64),
-        steps=len(plan.steps), joints=joints, point_registers=np.array(point_registers, dtype=np.int64).reshape(-1, 2))
+        steps=len(plan.steps), joints=joints, point_registers=np.array(point_registers, dtype=np.int64).reshape(-1, 2),
+        slider_constants=tuple(path for path, _ in hooks.inputs) if hooks else (),
+        slider_constant_registers=np.array([r.register for _, r in hooks.inputs] if hooks else [], dtype=np.int64))
 
 
 #: Values per block of the compiled loop, at most: the slots of a block stay in cache.
@@ -264,7 +294,8 @@ def program_layout(program: StraightLineProgram, signs: np.ndarray | None) -> La
 
 
 def _instance_registers(program: StraightLineProgram) -> np.ndarray:
-    return np.concatenate([program.constant_registers, program.known_registers, program.fixed_sign_registers])
+    return np.concatenate([program.constant_registers, program.known_registers, program.fixed_sign_registers,
+                           program.slider_constant_registers])
 
 
 def _outputs(program: StraightLineProgram) -> np.ndarray:
@@ -412,7 +443,8 @@ class KernelChoiceError(ValueError):
 
 
 def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np.ndarray, parameters: np.ndarray,
-                signs: np.ndarray, paired: bool = False, points: bool = False) -> tuple[np.ndarray, ...]:
+                signs: np.ndarray, paired: bool = False, points: bool = False,
+                slider_values=()) -> tuple[np.ndarray, ...]:
     """Run ``program`` on one instance (``known``: the squared distances of
     ``program.known_pairs``; ``fixed_signs``: the signs of ``program.fixed_triangles``)
     at ``parameters`` (N, p) on the branches ``signs`` (B, m): every branch at every
@@ -422,7 +454,9 @@ def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np
     (points,) and the free-sign steps' relative radicands (points, free); with ``points``
     also each joint's position M_k = x + i y in the plan's frame (points, J: complex, in
     ``program.joints`` order). With ``paired``, ``known`` (N, k) and ``fixed_signs``
-    (N, f) may give each point its own instance (many instances of one plan at once).
+    (N, f) may give each point its own instance (many instances of one plan at once; not
+    for slider chains). ``slider_values``: the instance's slider geometry in the order of
+    ``program.slider_constants`` (:func:`~.traced_sliders.slider_constant_values`).
     O(points × instructions), compiled (numba, on first use; cached on disk)."""
     global _compiled_loop
     if _compiled_loop is None:
@@ -436,12 +470,14 @@ def run_program(program: StraightLineProgram, known: np.ndarray, fixed_signs: np
     known, fixed_signs = np.asarray(known, dtype=float), np.asarray(fixed_signs, dtype=float)
     instance_slots, row_slots = layout.instance_slots, layout.row_slots
     if paired and known.ndim == 2:  # each row its own instance: its known distances and link signs are row inputs
+        if len(program.slider_constants):
+            raise ValueError("run_program: instances row by row are not available for slider chains")
         constants = len(program.constant_values)
         rows = np.concatenate([rows, known, fixed_signs.reshape(len(rows), -1)], axis=1)
         instance_slots, row_slots = instance_slots[:constants], np.concatenate([row_slots, instance_slots[constants:]])
         instance = program.constant_values
     else:
-        instance = np.concatenate([program.constant_values, known, fixed_signs])
+        instance = np.concatenate([program.constant_values, known, fixed_signs, np.asarray(slider_values, float)])
     values, failures, radicands = _compiled_loop(
         layout.operations, layout.slots, np.concatenate([instance_slots, layout.constant_slots]),
         np.concatenate([instance, layout.constant_values]), row_slots, np.ascontiguousarray(rows), layout.output_slots,

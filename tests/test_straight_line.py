@@ -186,3 +186,49 @@ def test_rows_of_many_instances_run_as_each_instance_alone(truss, seed):
         for part, mine, expected in zip(("residuals", "failures", "radicands", "margins", "points"), together, alone,
                                         strict=True):
             assert _bits(mine[row:row + 1]) == _bits(expected), part
+
+
+def _slider_scene(seed: int):
+    """A random slider chain of a random 7- or 9-link truss (a random admissible slider
+    set, random axes; rational or float dimensions), with its plan, or None where no plan
+    with parameters suits it."""
+    from baranov.scene import scene_from_dict
+    from baranov.scene.slider_instances import random_slider_set, slider_instance_dict
+    from baranov.solvers.coincidence import NoPlanError
+
+    rng = np.random.default_rng(seed)
+    trusses = baranov_trusses(7 if seed % 2 else 9)
+    truss = trusses[rng.integers(len(trusses))]
+    scene = scene_from_dict(slider_instance_dict(truss, random_slider_set(truss, rng), rng, rational=bool(seed % 3)))
+    try:
+        plan = solvable_plan(scene)
+    except NoPlanError:
+        return None
+    return (scene, plan, rng) if plan.number_of_parameters else None
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(0, 10**6))
+def test_slider_plans_traced_give_the_numpy_kernels_values(seed):
+    """A plan with slider joints traced into a program (closure/traced_sliders.py: its
+    constructions on traced complex numbers, each slider's geometry an input) gives the
+    numpy evaluation's residuals, first failing steps, radicands and margins: the failing
+    steps and NaNs alike, the values to rounding (a complex quotient is formed as a product
+    by the conjugate, where numpy scales it). One program serves every instance of the
+    plan's slider layout."""
+    case = _slider_scene(seed)
+    if case is None:
+        return
+    scene, plan, rng = case
+    compiled = compile_scene(scene, plan)
+    branches = sign_branches(len(plan.free_sign_triangles))
+    values = rng.uniform(0.0, 1.0, (40, plan.number_of_parameters)) ** 2 * 4 * max(scene.known.values(), default=1)
+    traced = compiled.program_profile(values, branches)
+    expected = _numpy_profile(compiled, values, branches, False)
+    for part, mine, numpy_value in zip(traced._fields, traced, expected, strict=True):
+        mine, numpy_value = np.asarray(mine, float), np.asarray(numpy_value, float)
+        assert mine.shape == numpy_value.shape, part
+        assert (np.isnan(mine) == np.isnan(numpy_value)).all(), f"{part}: NaNs differ"
+        defined = ~np.isnan(mine)
+        np.testing.assert_allclose(mine[defined], numpy_value[defined], rtol=1e-9, atol=1e-9, err_msg=part)
+    assert compiled.straight_line_program().slider_constants

@@ -1,0 +1,222 @@
+"""Slider steps traced into a plan's straight-line program (issue 56, item 7).
+
+The slider constructions of :mod:`.sliders` run on "anything with the operators of a
+complex number"; the numeric backend runs them on numpy complex arrays. Here they run on
+:class:`TracedComplex` values — a pair of traced reals (:class:`~.straight_line.Traced`)
+whose sums, products, quotients and conjugates record the real instructions numpy's
+complex arithmetic performs — so that a plan with slider joints becomes a
+:class:`~.straight_line.StraightLineProgram` like any other and runs compiled.
+
+A slider's geometry (its links' joints in its axis frame, the turns to the other sliders'
+axes, the scale of its closure residual) depends on the instance, so each of its numbers
+is an *input* of the program (:func:`traced_geometry`): one program serves every instance
+of the plan with the same slider joints, and :func:`slider_constant_values` lists an
+instance's numbers in the program's order. Mixed operations promote a real to a complex
+number with imaginary part 0, as numpy does, so a product is the same four products and
+two sums numpy forms; a quotient by a complex number is formed as a product by the
+conjugate over the squared modulus (numpy's division scales differently: the values
+agree to rounding, not bit for bit).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from typing import Any, NamedTuple
+
+from .sliders import SliderGeometry, SliderPlacement
+from .straight_line import GUARDED_ROOT, Recorder, Traced
+
+
+def _parts(value) -> tuple[Any, Any]:
+    """(real, imaginary) of a traced or plain number, the imaginary part of a real 0.0."""
+    if isinstance(value, TracedComplex):
+        return value.real, value.imag
+    if isinstance(value, complex):
+        return value.real, value.imag
+    return value, 0.0
+
+
+class TracedComplex:
+    """A complex number of the traced arithmetic: real and imaginary parts, each a traced
+    real or a Python float."""
+
+    __slots__ = ("real", "imag")
+
+    def __init__(self, real, imag):
+        self.real, self.imag = real, imag
+
+    def conjugate(self) -> TracedComplex:
+        return TracedComplex(self.real, -self.imag)
+
+    def __neg__(self) -> TracedComplex:
+        return TracedComplex(-self.real, -self.imag)
+
+    def __add__(self, other) -> TracedComplex:
+        (a, b), (c, d) = _parts(self), _parts(other)
+        return TracedComplex(a + c, b + d)
+
+    def __radd__(self, other) -> TracedComplex:
+        (a, b), (c, d) = _parts(other), _parts(self)
+        return TracedComplex(a + c, b + d)
+
+    def __sub__(self, other) -> TracedComplex:
+        (a, b), (c, d) = _parts(self), _parts(other)
+        return TracedComplex(a - c, b - d)
+
+    def __rsub__(self, other) -> TracedComplex:
+        (a, b), (c, d) = _parts(other), _parts(self)
+        return TracedComplex(a - c, b - d)
+
+    def __mul__(self, other) -> TracedComplex:
+        return _product(_parts(self), _parts(other))
+
+    def __rmul__(self, other) -> TracedComplex:
+        return _product(_parts(other), _parts(self))
+
+    def __truediv__(self, other) -> TracedComplex:
+        return _quotient(_parts(self), other)
+
+    def __rtruediv__(self, other) -> TracedComplex:
+        return _quotient(_parts(other), self)
+
+
+def _product(first, second) -> TracedComplex:
+    (a, b), (c, d) = first, second
+    return TracedComplex(a * c - b * d, a * d + b * c)
+
+
+def _quotient(numerator, denominator) -> TracedComplex:
+    """(a + ib)/(c + id) = (a + ib)(c − id)/(c² + d²); by a real, each part divided."""
+    a, b = numerator
+    if not isinstance(denominator, TracedComplex | complex):
+        return TracedComplex(a / denominator, b / denominator)
+    c, d = _parts(denominator)
+    modulus = c * c + d * d
+    return TracedComplex((a * c + b * d) / modulus, (b * c - a * d) / modulus)
+
+
+def complex_aware(traced: type[Traced]) -> None:
+    """Let :class:`~.straight_line.Traced` reals meet complex operands (Python complex or
+    :class:`TracedComplex`): the real is promoted, as numpy promotes a float array, and
+    gets the complex number's ``conjugate``, ``real`` and ``imag``."""
+    def lifted(name: str, method: Callable) -> Callable:
+        def operation(self, other):
+            if isinstance(other, TracedComplex | complex):
+                return getattr(TracedComplex(self, 0.0), name)(other)
+            return method(self, other)
+        return operation
+
+    for name in ("__add__", "__radd__", "__sub__", "__rsub__", "__mul__", "__rmul__", "__truediv__", "__rtruediv__"):
+        setattr(traced, name, lifted(name, getattr(traced, name)))
+    traced.conjugate = lambda self: self
+    traced.real = property(lambda self: self)
+    traced.imag = property(lambda self: 0.0)
+
+
+complex_aware(Traced)
+
+
+#: An input of a slider's geometry: (slider, field, key, part), field "offsets" (key:
+#: (link, joint)), "turns" (key: other slider), "slider_offsets" (key: (link, slider)),
+#: "unit" or "scale" (key None); part 0 the real part, 1 the imaginary one.
+ConstantPath = tuple[str, str, Any, int]
+
+
+def traced_geometry(recorder: Recorder, sliders: Mapping[str, SliderGeometry]
+                    ) -> tuple[dict[str, SliderGeometry], dict[str, Traced], list[tuple[ConstantPath, Traced]]]:
+    """The slider geometries with every number an input register of ``recorder``
+    (a unit of 1 stays the number 1: the constructions branch on it), each slider's
+    closure scale (:func:`closure_scale`) as an input too, and the inputs in order with
+    their paths (for :func:`slider_constant_values`)."""
+    inputs: list[tuple[ConstantPath, Traced]] = []
+
+    def number(path: tuple[str, str, Any], value, is_complex: bool = True):
+        real = recorder.input()
+        inputs.append(((*path, 0), real))
+        if not is_complex:
+            return real
+        imaginary = recorder.input()
+        inputs.append(((*path, 1), imaginary))
+        return TracedComplex(real, imaginary)
+
+    traced, scales = {}, {}
+    for name in sorted(sliders):
+        geometry = sliders[name]
+        offsets = {link: {joint: number((name, "offsets", (link, joint)), z) for joint, z in sorted(frame.items())}
+                   for link, frame in geometry.offsets.items()}
+        turns = {other: number((name, "turns", other), z) for other, z in sorted(geometry.turns.items())}
+        slider_offsets = {link: {other: number((name, "slider_offsets", (link, other)), z)
+                                 for other, z in sorted(frame.items())}
+                          for link, frame in geometry.slider_offsets.items()}
+        unit = 1 if _is_one(geometry.unit) else number((name, "unit", None), geometry.unit, is_complex=False)
+        traced[name] = SliderGeometry(geometry.links, offsets, turns, slider_offsets, unit)
+        scales[name] = number((name, "scale", None), None, is_complex=False)
+    return traced, scales, inputs
+
+
+def _is_one(unit) -> bool:
+    return type(unit) is int and unit == 1
+
+
+def closure_scale(geometry: SliderGeometry) -> float:
+    """What a closure residual with this slider (P_v's computed height against the
+    link's) is divided by: the largest |a + i h| of its links' joints, the link's size."""
+    return max((abs(complex(z)) for frame in geometry.offsets.values() for z in frame.values()), default=1.0)
+
+
+def slider_constant_values(paths: tuple[ConstantPath, ...], sliders: Mapping[str, SliderGeometry]) -> list[float]:
+    """An instance's numbers for a program's slider inputs (``paths``, in order)."""
+    values = []
+    for name, field, key, part in paths:
+        geometry = sliders[name]
+        if field == "scale":
+            value: Any = closure_scale(geometry)
+        elif field == "unit":
+            value = geometry.unit
+        elif field == "turns":
+            value = geometry.turns[key]
+        else:
+            value = getattr(geometry, field)[key[0]][key[1]]
+        value = complex(value)
+        values.append(value.imag if part else value.real)
+    return values
+
+
+class TracedSliderHooks(NamedTuple):
+    """What :func:`~.straight_line.trace_plan` needs of a plan's sliders: the kernel's
+    ``slider_step`` and ``slider_frame`` hooks, the closure residual of a pair with a
+    slider, and the program's slider inputs (path, register)."""
+
+    slider_step: Callable
+    slider_frame: Callable
+    closure: Callable
+    inputs: list
+
+
+def traced_slider_placement(recorder: Recorder, plan, sliders: Mapping[str, SliderGeometry],
+                            parameter: Callable[[str, str], Any], root: Callable) -> TracedSliderHooks:
+    """The slider constructions of ``plan`` on traced numbers, as the numeric kernel runs
+    them in numpy (``closure/evaluate.py``): ``parameter(u, v)`` the traced parameter of a
+    pair (a slider's t), ``root`` the trace's signed root of a step."""
+    geometry, scales, inputs = traced_geometry(recorder, sliders)
+
+    def along_root(index, step, squared, radicand):
+        # as the numpy kernel: scaled to a triangle radicand's form, then divided back
+        length = recorder.emit(GUARDED_ROOT, recorder.operand(squared), recorder.operand(-math.inf))
+        return root(index, step, (squared, 0.0, 0.0), radicand * squared) / length
+
+    placement = SliderPlacement(geometry, parameter, along_root)
+    slider_step, slider_frame = placement.kernel_hooks(plan.reference, lambda point: TracedComplex(point[0], point[1]),
+                                                       lambda number: (number.real, number.imag, 1))
+
+    def closure(u: str, v: str, points: Mapping, reference) -> Traced:
+        """The residual of the closure pair (u, v) with a slider, as
+        ``CompiledSystem._slider_closure`` computes it."""
+        slider, joint = (u, v) if u in sliders else (v, u)
+        point = points.get(joint)
+        at = {joint: TracedComplex(point[0], point[1])} if point is not None else {}
+        value = placement.closure(slider, joint, at, reference)
+        return value.imag if joint in sliders else value.real / scales[slider]
+
+    return TracedSliderHooks(slider_step, slider_frame, closure, inputs)
