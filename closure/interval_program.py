@@ -592,7 +592,8 @@ def instance_registers(program: IntervalProgram, known_lo: np.ndarray, known_hi:
                        fixed_signs: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     """The registers' centers and remainders with one instance's inputs filled in: the
     program's constants and the differentiation's (exact), the known squared distances
-    (their intervals ``known_lo``..``known_hi``, in ``known_pairs`` order), the link
+    (their intervals ``known_lo``..``known_hi``, in ``known_pairs`` order, then those of
+    the slider geometry's numbers in ``slider_constants`` order), the link
     steps' signs and the models of the rows that depend on them alone
     (``instance_instructions``); NaN elsewhere. And the status those rows leave (FEASIBLE,
     EDGE or INFEASIBLE: a triangle of known sides alone), every box's status to start from."""
@@ -603,8 +604,9 @@ def instance_registers(program: IntervalProgram, known_lo: np.ndarray, known_hi:
     center[extra], remainder[extra] = program.extra_constants[:, 1], 0.0
     known_lo, known_hi = np.asarray(known_lo, float), np.asarray(known_hi, float)
     middle = 0.5 * (known_lo + known_hi)
-    center[source.known_registers] = middle
-    remainder[source.known_registers] = np.maximum(known_hi - middle, middle - known_lo) * (1 + 2.0**-49)
+    inputs = np.concatenate([source.known_registers, source.slider_constant_registers])
+    center[inputs] = middle
+    remainder[inputs] = np.maximum(known_hi - middle, middle - known_lo) * (1 + 2.0**-49)
     center[source.fixed_sign_registers], remainder[source.fixed_sign_registers] = fixed_signs, 0.0
     status = _instance_models(program.instance_instructions, center, remainder)
     return center[:-1], remainder[:-1], status

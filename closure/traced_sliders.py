@@ -24,6 +24,8 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any, NamedTuple
 
+import numpy as np
+
 from .sliders import SliderGeometry, SliderPlacement
 from .straight_line import GUARDED_ROOT, Recorder, Traced
 
@@ -220,3 +222,45 @@ def traced_slider_placement(recorder: Recorder, plan, sliders: Mapping[str, Slid
         return value.imag if joint in sliders else value.real / scales[slider]
 
     return TracedSliderHooks(slider_step, slider_frame, closure, inputs)
+
+
+def exact_slider_constants(paths: tuple[ConstantPath, ...], exact: Mapping[str, SliderGeometry],
+                           sliders: Mapping[str, SliderGeometry]) -> list | None:
+    """The exact numbers of a program's slider inputs (``paths``), for interval
+    evaluation: from ``exact``, the geometry with each number a pair (re, im) of exact
+    numbers where the scene makes it rational (Fractions; a float where it is not); None
+    where one is not. A closure scale is any positive number (it does not move a
+    residual's zeros): the float one of ``sliders``."""
+    values: list = []
+    for name, field, key, part in paths:
+        if field == "scale":
+            values.append(closure_scale(sliders[name]))
+            continue
+        geometry = exact[name]
+        if field == "unit":
+            number: Any = (geometry.unit, 0)
+        elif field == "turns":
+            number = geometry.turns[key]
+        else:
+            number = getattr(geometry, field)[key[0]][key[1]]
+        component = number[part]
+        if isinstance(component, float):
+            return None
+        values.append(component)
+    return values
+
+
+def used_signs(program) -> np.ndarray:
+    """Which of a program's free signs an instruction reads: a slider construction takes
+    no root at some free-sign steps (two lines meet once), and there both signs place the
+    same configuration."""
+    read = set(program.instructions[:, 2].tolist()) | set(program.instructions[:, 3].tolist())
+    return np.array([register in read for register in program.sign_registers.tolist()], dtype=bool)
+
+
+def distinct_branches(program, branches: np.ndarray) -> np.ndarray:
+    """``branches`` with every free sign the program does not read set to +1, repeats
+    dropped (in their first order)."""
+    reduced = np.where(used_signs(program)[None, :], branches, 1.0)
+    _, first = np.unique(reduced, axis=0, return_index=True)
+    return reduced[np.sort(first)]

@@ -22,6 +22,7 @@ import numpy as np
 
 from baranov.closure import CompiledSystem, sign_branches
 from baranov.closure.interval_program import EDGE, FEASIBLE, evaluate_boxes, interval_program
+from baranov.closure.traced_sliders import distinct_branches, exact_slider_constants
 from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
@@ -34,10 +35,18 @@ from ..coincidence import (
 )
 from ..mode_clusters import merged_clusters
 from ..modes import AssemblyMode, Certificate, MovableLinkageError, Solution, SolverError, signs_text
-from ..placement import NEARLY_FLAT, compile_scene, placed_from_ground, polished_mode, read_back
+from ..placement import NEARLY_FLAT, compile_scene, placed_from_ground, polished_mode, read_back, slider_geometry
 from ..polish import polish_configurations, polish_on_constraints
 from ..verification import RESIDUAL_TOLERANCE, distance_bound, placement_residuals
-from .branch_and_prune import REASONS, PrunedRoots, evaluation_budget, instance_inputs, prune_one_parameter, searched_domain
+from .branch_and_prune import (
+    REASONS,
+    PrunedRoots,
+    evaluation_budget,
+    instance_inputs,
+    prune_one_parameter,
+    searched_domain,
+    slider_searched_domain,
+)
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
 from .two_parameter import ridge_roots, shared_curve, two_parameter_roots
 
@@ -120,15 +129,38 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     was decided and every certified root verified as a distinct mode. Where it is not,
     its gaps say which boxes are left to the searches (slider chains: not yet, none).
     Before ``deadline`` (time.monotonic()), in as many evaluations as fit."""
+    slider_values: list = []
     if scene.sliders:
-        return (), Certificate(False, None, ("slider chains are not yet run through the interval branch-and-prune",))
+        domain, slider_values, reason = _slider_inputs(scene, plan, compiled)
+        if reason:
+            return (), Certificate(False, None, (reason,))
+        branches = distinct_branches(compiled.straight_line_program(), branches)
+    else:
+        domain = searched_domain(scene, plan)
     remaining = deadline - time.monotonic()
     if remaining <= 0:
         return (), Certificate(False, None, ("the time limit passed before the branch-and-prune ran",))
-    domain = searched_domain(scene, plan)
     pruned = prune_one_parameter(compiled, branches, domain, scene.known,
-                                 budget=int(min(evaluation_budget(len(branches)), remaining / SECONDS_PER_BOX)))
+                                 budget=int(min(evaluation_budget(len(branches)), remaining / SECONDS_PER_BOX)),
+                                 slider_values=slider_values)
     return modes_of_pruned(scene, compiled, branches, pruned)
+
+
+def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem) -> tuple[tuple[float, float] | None, list, str]:
+    """For a slider chain's branch-and-prune: the searched domain of its parameter, the
+    exact numbers of its slider geometry, and why it cannot run (else \"\"): a parameter
+    no path of link dimensions bounds, or a slider frame that is irrational in world units
+    (its numbers then have no exact enclosure here)."""
+    domain = slider_searched_domain(scene, plan, compiled.searched)
+    if domain is None:
+        return None, [], (f"{compiled.parameter_names[0]} is bounded by no path of link dimensions: the "
+                          "branch-and-prune searches bounded domains only")
+    exact = exact_slider_constants(compiled.straight_line_program().slider_constants,
+                                   slider_geometry(scene, number=lambda pair: pair), compiled.sliders)
+    if exact is None:
+        return None, [], ("a slider frame is irrational in world units: its numbers are not enclosed exactly, so the "
+                          "interval branch-and-prune does not run")
+    return domain, exact, ""
 
 
 def modes_of_pruned(scene: Scene, compiled: CompiledSystem, branches: np.ndarray,
@@ -143,7 +175,9 @@ def modes_of_pruned(scene: Scene, compiled: CompiledSystem, branches: np.ndarray
     if gaps:
         return (), Certificate(False, None, (*gaps, "these boxes are not decided by the branch-and-prune: the modes "
                                              "listed come from the sampling searches"))
-    candidates = [(np.array([0.5 * (low + high)]), branches[int(k)]) for low, high, k in pruned.roots]
+    mapping = compiled.searched.get(frozenset(compiled.parameters[0]))  # a slider's t: back to its searched value
+    candidates = [(np.array([0.5 * (low + high) if mapping is None else float(mapping.searched(0.5 * (low + high)))]),
+                   branches[int(k)]) for low, high, k in pruned.roots]
     modes = assembly_modes(scene, compiled, candidates, distinct=True)
     return modes, certificate_of_pruned(compiled, branches, pruned, modes)
 

@@ -360,17 +360,20 @@ def _contract(stack, roots, n0, n1, k, u0, u1, steps, monotone, center, rest, g0
 
 def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: tuple[float, float],
                         exact_known=None, minimum_width: float = MINIMUM_WIDTH,
-                        budget: int = EVALUATION_BUDGET) -> PrunedRoots:
+                        budget: int = EVALUATION_BUDGET, slider_values=()) -> PrunedRoots:
     """Every real root of a coupling-1 plan's closure condition in ``domain`` (an
     interval of the parameter holding every mode: :func:`parameter_domain`) on each of
     ``branches`` (B, m), certified or left in a named undecided box (module
     docstring). ``exact_known``: the known squared distances as exact numbers (a pair →
-    int, Fraction, …), so that the boxes are decided for them and not for their floats.
-    Not for plans with slider joints. Cost: O(boxes × instructions); the boxes are about
-    the roots' and edges' number times the bisections to isolate them.
+    int, Fraction, …), so that the boxes are decided for them and not for their floats;
+    with slider joints, ``slider_values`` the exact numbers of their geometry
+    (:func:`~baranov.closure.traced_sliders.exact_slider_constants`), and the domain is
+    that of the parameter the program takes (a slider's t, not its searched value). Cost:
+    O(boxes × instructions); the boxes are about the roots' and edges' number times the
+    bisections to isolate them.
     """
     inputs = instance_inputs(compiled.straight_line_program(), {**compiled.known, **(exact_known or {})},
-                             compiled.fixed_signs)
+                             compiled.fixed_signs, slider_values)
     return prune_instances(compiled.straight_line_program(), branches, [inputs], [domain], minimum_width, budget)[0]
 
 
@@ -409,13 +412,14 @@ def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: 
     return pruned
 
 
-def instance_inputs(program: StraightLineProgram, known: Mapping, fixed_signs: Mapping
+def instance_inputs(program: StraightLineProgram, known: Mapping, fixed_signs: Mapping, slider_values=()
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The inputs of the plan's program for one instance: the float intervals around the
     squared distances ``known`` (pair → number: exact ones, int, Fraction, …, enclosed
-    exactly; floats as they are) and the link steps' orientation signs ``fixed_signs``
-    (triangle → ±1)."""
-    return (*enclosing([known[pair] for pair in program.known_pairs]),
+    exactly; floats as they are) and around the numbers of its slider geometry
+    (``slider_values``, :func:`~baranov.closure.traced_sliders.exact_slider_constants`),
+    and the link steps' orientation signs ``fixed_signs`` (triangle → ±1)."""
+    return (*enclosing([known[pair] for pair in program.known_pairs] + list(slider_values)),
             np.array([fixed_signs[t] for t in program.fixed_triangles], float))
 
 
@@ -456,7 +460,9 @@ def parameter_domain(scene, plan, upper: float, index: int = 0) -> tuple[float, 
     (S, :func:`domain_upper_bound`) cut by every step whose triangle has s as one side and
     two known squared sides a, b, which exists only for (√a − √b)² ≤ s ≤ (√a + √b)²
     (the critical values of :func:`~.one_parameter.critical_values`), with the roots
-    rounded outward. O(steps).
+    rounded outward; not a step with a slider joint, whose known distances are to the
+    slider's points on two different links (a 7-link slider chain lost two of its ten
+    modes when they cut it). O(steps).
 
     >>> from baranov.scene import load_scene
     >>> from baranov.solvers.coincidence import solvable_plan
@@ -466,7 +472,10 @@ def parameter_domain(scene, plan, upper: float, index: int = 0) -> tuple[float, 
     """
     parameter = frozenset(plan.parameters[index])
     low, high = 0.0, upper
+    sliders = {slider.joint for slider in scene.sliders}
     for step in plan.steps:
+        if sliders.intersection(step.triangle):
+            continue  # a slider's distances are to its two points, on different links: no triangle
         sides = [frozenset(pair) for pair in combinations(step.triangle, 2)]
         known = [scene.known.get(side) for side in sides if side != parameter]
         if parameter not in sides or any(value is None for value in known):
@@ -498,6 +507,29 @@ def searched_domain(scene, plan) -> tuple[float, float]:
     [25.501244, 104.159745]
     """
     return parameter_domain(scene, plan, _diameters_bound(scene))
+
+
+#: Relative widening of a bound computed in floats from exact dimensions (a shortest
+#: path's sum of square roots: each step's rounding is below 2^-52 relative).
+FLOAT_BOUND_SLACK = 1e-12
+
+
+def slider_searched_domain(scene, plan, searched) -> tuple[float, float] | None:
+    """With slider joints, the range of a coupling-1 plan's parameter, as the plan's
+    program takes it, that holds every mode: for a slider's oriented distance t, |t| at
+    most the shortest path of link dimensions to the nearer of the slider's points
+    (:meth:`~baranov.scene.Scene.largest_distance`: the distance to the axis is at most
+    that to a point of it); for a squared distance, :func:`parameter_domain` below the
+    square of that path. Rounded outward. None where no path bounds it (``searched``:
+    the compiled system's :class:`~baranov.closure.sliders.SearchedParameter` maps)."""
+    pair = tuple(plan.parameters[0])
+    bound = scene.largest_distance(*pair) * (1 + FLOAT_BOUND_SLACK)
+    if not math.isfinite(bound):
+        return None
+    mapping = searched.get(frozenset(pair))
+    if mapping is not None:
+        return (-bound, bound) if mapping.signed else None
+    return parameter_domain(scene, plan, math.nextafter(bound * bound, math.inf))
 
 
 def searched_box(scene, plan) -> tuple[tuple[float, float], ...]:
