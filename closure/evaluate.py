@@ -23,7 +23,7 @@ from baranov.topology.graphs import joints_of_links
 
 from .bilateration import dehomogenised, place_joints, signed_root
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
-from .sliders import SearchedParameter, SliderGeometry, SliderPlacement
+from .sliders import SearchedParameter, SliderGeometry, SliderPlacement, turn_residual
 from .straight_line import StraightLineProgram, compiled_kernel_in_use, count_numpy_seconds, run_program, trace_plan
 from .traced_sliders import slider_constant_values
 
@@ -314,15 +314,15 @@ class CompiledSystem:
         """The closure s_{i,v} of a slider P_i as δ → ∞
         (:meth:`~.sliders.SliderPlacement.closure`): P_v's oriented distance to the axis,
         computed, minus the link's, relative to the link's size; for two sliders of one
-        link, sin θ of the error θ of the turn between their axes (θ = π, a reversed axis,
-        is a root too: the verification drops it)."""
+        link, sin θ of the error θ of the turn between their axes where cos θ ≥ 0
+        (:func:`~.sliders.turn_residual`: θ = π, a reversed axis, is no root)."""
         slider, joint = (u, v) if u in self.sliders else (v, u)
         point = placement.points.get(joint)
         at = {joint: point[0] + 1j * point[1]} if point is not None else {}
         with np.errstate(invalid="ignore"):
             value = placement.sliders.closure(slider, joint, at, placement.s_ref)
-        if joint in self.sliders:
-            return value.imag
+            if joint in self.sliders:
+                return turn_residual(value, lambda x: np.sqrt(np.where(x >= 0, x, np.nan)))
         geometry = self.sliders[slider]
         size = max(abs(z) for frame in geometry.offsets.values() for z in frame.values())
         return value.real / size

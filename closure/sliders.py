@@ -178,6 +178,15 @@ def turn_mismatch(first: Axis, second: Axis, turn) -> Any:
     return second.direction * turned.conjugate() / (turned.conjugate() * turned).real - 1
 
 
+def turn_residual(mismatch, root: Callable[[Any], Any]) -> Any:
+    """The residual of a two-slider closure from its :func:`turn_mismatch` r − 1:
+    Im r = sin θ, defined only where Re r ≥ 0 (``root``: √x in the arithmetic, NaN where
+    x < 0). sin θ vanishes at θ = π too, where the second axis is reversed — another
+    linkage, never a mode of this one (Re r = −1); undefined there, such a root is neither
+    searched nor certified. O(1)."""
+    return mismatch.imag + 0 * root(1 + mismatch.real)
+
+
 def slider_point(axis: Axis, p_x, offset) -> Any:
     """The slider's point on a link (P_i' or P_i''), from a placed joint P_x of that link
     whose place in the axis frame of the link is ``offset`` = a_x + i h_x

@@ -26,7 +26,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from .sliders import SliderGeometry, SliderPlacement
+from .sliders import SliderGeometry, SliderPlacement, turn_residual
 from .straight_line import GUARDED_ROOT, Recorder, Traced
 
 
@@ -219,7 +219,9 @@ def traced_slider_placement(recorder: Recorder, plan, sliders: Mapping[str, Slid
         point = points.get(joint)
         at = {joint: TracedComplex(point[0], point[1])} if point is not None else {}
         value = placement.closure(slider, joint, at, reference)
-        return value.imag if joint in sliders else value.real / scales[slider]
+        if joint in sliders:
+            return turn_residual(value, lambda x: recorder.emit(GUARDED_ROOT, recorder.operand(x), recorder.operand(0.0)))
+        return value.real / scales[slider]
 
     return TracedSliderHooks(slider_step, slider_frame, closure, inputs)
 
