@@ -29,6 +29,7 @@ from baranov.scene import Scene
 from ..candidates import assembly_modes
 from ..coincidence import (
     NoPlanError,
+    bounded_slider_plan,
     modes_without_plan,
     solvable_plan,
     with_modes_where_plan_divides_by_zero,
@@ -60,7 +61,7 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     of the parameter plane (coupling 2) not yet searched are left, and the solution's
     ``undecided`` names them; the modes found are verified as always."""
     try:
-        plan = plan or solvable_plan(scene)
+        plan = plan or bounded_slider_plan(scene, solvable_plan(scene))
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
         described, modes, certificate = modes_without_plan(scene, error)
         return Solution.of_plan("numeric", scene, described, modes, certificate=certificate)
