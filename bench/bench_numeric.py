@@ -6,7 +6,8 @@ instances and, with ``--before REV``, the numeric backend of an earlier revision
 Targets (issue 56, 2-core machine, one process, plan cached): 7-link instance ≤ 2 ms;
 9-link coupling-1 instance ≤ 10 ms; coupling-2 instance ≤ 100 ms; 13-link Watt–Baranov
 example ≤ 50 ms; instances of 7/B1 in a batch ≤ 0.5 ms each (issue 21's were 5 ms, 30 ms,
-300 ms, 200 ms and 1 ms).
+300 ms, 200 ms and 1 ms); slider chains (random, rational axes) of 7 links ≤ 5 ms, of 9
+links coupling 1 ≤ 30 ms, coupling 2 ≤ 200 ms.
 
     python bench/bench_numeric.py [--repeats 3] [--instances 20] [--before REV] [--out FILE]
 
@@ -48,7 +49,8 @@ from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import solve
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGETS = {"7-ex": 0.002, "7-random": 0.002, "9-c1": 0.01, "9-c2": 0.1, "9-B28": 0.1, "13-WB": 0.05, "batch": 0.0005}
+TARGETS = {"7-ex": 0.002, "7-random": 0.002, "9-c1": 0.01, "9-c2": 0.1, "9-B28": 0.1, "13-WB": 0.05, "batch": 0.0005,
+           "7-sliders": 0.005, "9-sliders-c1": 0.03, "9-sliders-c2": 0.2}
 BATCH = 100  # instances of 7/B1 in the batch case
 
 
@@ -75,6 +77,29 @@ def random_scenes(links: int, degree: int, count: int, seed: int = 1):
                                                                           for _ in range(count))]
 
 
+def random_slider_scenes(links: int, degree: int, count: int, seed: int = 1):
+    """Random slider chains of random ``links``-link trusses (a random admissible slider
+    set, random axes of rational length on a random integer configuration:
+    scene/slider_instances.py) whose plan has coupling degree ``degree``."""
+    from baranov.scene import scene_from_dict
+    from baranov.scene.slider_instances import random_slider_set, slider_instance_dict
+    from baranov.solvers.coincidence import NoPlanError, solvable_plan
+
+    rng = np.random.default_rng(seed)
+    trusses, scenes = baranov_trusses(links), []
+    for _ in range(50 * count):
+        if len(scenes) == count:
+            break
+        truss = trusses[int(rng.integers(len(trusses)))]
+        scene = scene_from_dict(slider_instance_dict(truss, random_slider_set(truss, rng), rng, rational=True))
+        try:
+            if solvable_plan(scene).number_of_parameters == degree:
+                scenes.append(scene)
+        except NoPlanError:
+            continue
+    return scenes
+
+
 def cases(instances: int) -> dict[str, tuple[str, list]]:
     """Case key → (description, scenes)."""
     examples = ROOT / "examples"
@@ -87,6 +112,11 @@ def cases(instances: int) -> dict[str, tuple[str, list]]:
         "9-B28": ("9/B28 example (§3.4.1.4, coupling 2)", [load_scene(examples / "9-B28.json")]),
         "11-WB": ("11-link Watt–Baranov example (§3.6.2.1)", [load_scene(examples / "11-watt-baranov.json")]),
         "13-WB": ("13-link Watt–Baranov example (§3.6.2.2)", [load_scene(examples / "13-watt-baranov.json")]),
+        "7-sliders": (f"7-link slider chains, random ({instances // 2})", random_slider_scenes(7, 1, instances // 2)),
+        "9-sliders-c1": (f"9-link slider chains, coupling 1, random ({instances // 2})",
+                         random_slider_scenes(9, 1, instances // 2)),
+        "9-sliders-c2": (f"9-link slider chains, coupling 2, random ({instances // 4})",
+                         random_slider_scenes(9, 2, instances // 4)),
     }
 
 
