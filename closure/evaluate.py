@@ -130,9 +130,10 @@ class CompiledSystem:
         """:func:`~.straight_line.run_program` of the plan's program on this instance at
         parameter ``values`` (N, p)."""
         program = self.straight_line_program()
-        mapped = np.column_stack([self.searched[frozenset(pair)].value(values[:, n])
-                                  if frozenset(pair) in self.searched else values[:, n]
-                                  for n, pair in enumerate(self.parameters)]) if self.searched else values
+        with np.errstate(invalid="ignore"):  # a searched value below 0 maps to NaN, as in the numpy kernel
+            mapped = np.column_stack([self.searched[frozenset(pair)].value(values[:, n])
+                                      if frozenset(pair) in self.searched else values[:, n]
+                                      for n, pair in enumerate(self.parameters)]) if self.searched else values
         return run_program(program, [self.known[pair] for pair in program.known_pairs],
                            [self.fixed_signs[t] for t in program.fixed_triangles], mapped, signs, paired, points,
                            slider_constant_values(program.slider_constants, self.sliders) if self.sliders else ())
