@@ -36,7 +36,7 @@ from .entries import (
 from .files import gzipped, legacy_path, write_atomically
 from .progress import progress_bar
 from .slider_chains import SLIDER_MODES_MAX_LINKS, load_slider_chains, slider_chain_entries
-from .summary import render_summary
+from .summary import GRUBLER_FILE, read_grubler_counts, render_summary
 from .tasks import ClusterLost, dask_client, run_in_shards, shard_folder
 
 Progress = Callable[[str], None]
@@ -201,6 +201,22 @@ def build_catalog(
                 raise
             log(f"{error}; restarting the embedded cluster ({attempt} of {EMBEDDED_RESTARTS})")
             force = False  # what this run wrote is fresh; the rest resumes from its shards
+    _grubler_census(out, max(link_counts) + 1, geng or find_geng(), log)
     summary = render_summary(out, checks)
     write_atomically(out / "summary.md", summary)
     return summary
+
+
+def _grubler_census(out: Path, max_links: int, geng: str | None, log: Callable[[str], None]) -> None:
+    """The Grübler chains (one degree of freedom) counted up to ``max_links`` links (even
+    counts, at most :data:`~baranov.enumerate.grubler.CENSUS_LINKS`) into ``out``/grubler-chains.json,
+    where geng is installed and the file does not already count as far."""
+    from baranov.enumerate.grubler import CENSUS_LINKS, grubler_counts
+
+    wanted = min(max_links, CENSUS_LINKS)
+    if geng is None or wanted < 4 or max(read_grubler_counts(out), default=0) >= wanted:
+        return
+    counts = grubler_counts(wanted, geng)
+    write_atomically(out / GRUBLER_FILE, json.dumps({"counts": {str(k): v for k, v in counts.items()}}, indent=1) + "\n")
+    log(f"Grübler chains counted to {wanted} links")
+

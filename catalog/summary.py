@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import json
 from collections import Counter
 from pathlib import Path
 from statistics import median
@@ -19,6 +20,34 @@ from .census import load_census
 from .entries import ASSEMBLY_MODES_MAX_LINKS, COMPACT_FIELDS, load_entries
 from .files import load_complete_objects
 from .slider_chains import load_slider_chains
+
+#: The file of the Grübler chain counts, in the catalog folder (written by the catalog job).
+GRUBLER_FILE = "grubler-chains.json"
+
+
+def read_grubler_counts(out: Path) -> dict[int, int]:
+    """The Grübler chain counts saved in ``out`` (links → chains), empty if none."""
+    try:
+        counts = json.loads((out / GRUBLER_FILE).read_text(encoding="utf-8"))["counts"]
+        return {int(links): int(chains) for links, chains in counts.items()}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return {}
+
+
+def _grubler(out: Path) -> list[str]:
+    """The Grübler chains (one degree of freedom) per link count, beside the published counts."""
+    from baranov.enumerate.grubler import PUBLISHED_COUNTS
+
+    counts = read_grubler_counts(out)
+    if not counts:
+        return []
+    lines = ["", "## Grübler chains (one degree of freedom)", "",
+             "Planar chains of revolute joints with mobility 1 and no rigid sub-chain (thesis ch. 6), one per",
+             "isomorphism class (`baranov.enumerate.grubler`). Literature: 4–10 links the classical counts",
+             "(Mruthyunjaya 2003), 12 and 14 links Sunkari and Schmidt 2006 (OEIS A233288); 14 links is",
+             "checked by `make test-slow`.", "", "| links | chains | chains (literature) |", "|---|---|---|"]
+    lines += [f"| {links} | {counts[links]} | {_cell(PUBLISHED_COUNTS.get(links))} |" for links in sorted(counts)]
+    return lines
 
 
 def _cell(value) -> str:
@@ -50,7 +79,7 @@ def render_summary(out: Path, checks: dict[int, dict]) -> str:
     known = {**compact, **catalogs}
     lines += _counts(known, checks, censuses) + _invariants(known, censuses)
     lines += _coupling(known, censuses) + _assembly_modes(known)
-    lines += _slider_chains(out)
+    lines += _slider_chains(out) + _grubler(out)
     lines += ["", "## Where this differs from the literature", "", *DISCREPANCY_NOTE, ""]
     return "\n".join(lines)
 

@@ -55,3 +55,19 @@ def grubler_link_graphs(links: int, geng: str | None = None) -> list[tuple[int, 
 def grubler_chains(links: int) -> list[KinematicChain]:
     """:func:`grubler_link_graphs` as kinematic chains (joints named as for the trusses)."""
     return chains_from_masks(grubler_link_graphs(links))
+
+
+#: The published counts of Grübler chains (one degree of freedom, revolute joints, no
+#: rigid sub-chain): 4–10 links the classical ones (Mruthyunjaya 2003), 12 and 14 links
+#: Sunkari and Schmidt, Mech. Mach. Theory 41 (2006) 1021–1030 (OEIS A233288).
+PUBLISHED_COUNTS = {4: 1, 6: 2, 8: 16, 10: 230, 12: 6856, 14: 318_162}
+#: The catalog job counts the Grübler chains up to this many links (12: 15 s; 14 takes
+#: about 36 min, a slow test).
+CENSUS_LINKS = 12
+
+
+def grubler_counts(max_links: int, geng: str | None = None) -> dict[int, int]:
+    """The number of Grübler chains of each even link count from 4 to ``max_links`` (at
+    most CENSUS_LINKS), one per isomorphism class. Cost: that of :func:`grubler_link_graphs`
+    for the largest count (15 s at 12 links)."""
+    return {links: len(grubler_link_graphs(links, geng)) for links in range(4, min(max_links, CENSUS_LINKS) + 1, 2)}
