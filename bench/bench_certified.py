@@ -38,55 +38,34 @@ def _row(links: int, instances: int, every: int, seed: int, with_msolve: bool) -
     """Certified share, gap reasons and medians over the coupling-1 trusses of ``links``
     (every ``every``-th from 11 links)."""
     rng = np.random.default_rng(seed)
-    certified, total, reasons, times, msolve_times = 0, 0, collections.Counter(), [], []
     trusses = [truss for truss in baranov_trusses(links) if coupling_degree(truss) == 1]
-    for truss in trusses[::every if links >= 11 else 1]:
-        for _ in range(instances):
-            scene = scene_of(truss, generic_integer_configuration(truss, rng))
-            solve(scene)  # the plan searched and cached
-            start = time.perf_counter()
-            solution = solve(scene)
-            times.append(time.perf_counter() - start)
-            total += 1
-            certificate = solution.certificate
-            if certificate is not None and certificate.complete:
-                certified += 1
-            else:
-                reasons.update(_reason(gap) for gap in (certificate.gaps if certificate else ("no certificate",)))
-            if with_msolve:
-                start = time.perf_counter()
-                solve(scene, method="msolve")
-                msolve_times.append(time.perf_counter() - start)
-    return {"links": links, "instances": total, "certified": certified, "reasons": reasons,
-            "median": statistics.median(times), "msolve": statistics.median(msolve_times) if msolve_times else None}
+    scenes = [scene_of(truss, generic_integer_configuration(truss, rng))
+              for truss in trusses[::every if links >= 11 else 1] for _ in range(instances)]
+    return {"links": links, **_measured(scenes, with_msolve, compare=False)}
 
 
 def _slider_row(links: int, chains: int, seed: int, with_msolve: bool) -> dict:
-    """The same over ``chains`` random slider chains of ``links``-link trusses (a random
-    admissible slider set, random axes of rational length: scene/slider_instances.py)
-    whose plan has coupling degree 1; with msolve, each answer is also compared with
-    msolve's mode for mode (a difference is counted among the reasons)."""
-    from baranov.scene import scene_from_dict
-    from baranov.scene.slider_instances import random_slider_set, slider_instance_dict
-    from baranov.solvers.coincidence import NoPlanError, solvable_plan
+    """The same over ``chains`` random slider chains of ``links``-link trusses whose plan
+    has coupling degree 1 (bench_numeric.py's: rational axes); with msolve, each answer is
+    also compared with msolve's mode for mode (a difference is counted among the reasons)."""
+    from bench_numeric import random_slider_scenes
+
+    return {"links": f"{links}, slider chains",
+            **_measured(random_slider_scenes(links, 1, chains, seed), with_msolve, compare=True)}
+
+
+def _measured(scenes: list, with_msolve: bool, compare: bool) -> dict:
+    """Over ``scenes``: how many are certified complete, the gaps' reasons, the median
+    plan-cached solve and msolve's median; with ``compare``, answers that differ from
+    msolve's counted among the reasons."""
     from baranov.solvers.msolve import compare_modes
 
-    rng = np.random.default_rng(seed)
-    trusses = baranov_trusses(links)
-    certified, total, reasons, times, msolve_times = 0, 0, collections.Counter(), [], []
-    while total < chains:
-        truss = trusses[int(rng.integers(len(trusses)))]
-        scene = scene_from_dict(slider_instance_dict(truss, random_slider_set(truss, rng), rng, rational=True))
-        try:
-            if solvable_plan(scene).number_of_parameters != 1:
-                continue
-        except NoPlanError:
-            continue
-        solve(scene)
+    certified, reasons, times, msolve_times = 0, collections.Counter(), [], []
+    for scene in scenes:
+        solve(scene)  # the plan searched and cached
         start = time.perf_counter()
         solution = solve(scene)
         times.append(time.perf_counter() - start)
-        total += 1
         certificate = solution.certificate
         if certificate is not None and certificate.complete:
             certified += 1
@@ -98,10 +77,10 @@ def _slider_row(links: int, chains: int, seed: int, with_msolve: bool) -> dict:
             msolve_times.append(time.perf_counter() - start)
             missed, spurious, _ = compare_modes([mode.joints for mode in solution.assembly_modes],
                                                 [mode.joints for mode in expected.assembly_modes])
-            if missed or spurious:
+            if compare and (missed or spurious):
                 reasons[f"differs from msolve ({missed} missed, {spurious} spurious)"] += 1
-    return {"links": f"{links}, slider chains", "instances": total, "certified": certified, "reasons": reasons,
-            "median": statistics.median(times), "msolve": statistics.median(msolve_times) if msolve_times else None}
+    return {"instances": len(scenes), "certified": certified, "reasons": reasons, "median": statistics.median(times),
+            "msolve": statistics.median(msolve_times) if msolve_times else None}
 
 
 def _reason(gap: str) -> str:

@@ -111,8 +111,17 @@ class CompiledSystem:
     def straight_line_program(self) -> StraightLineProgram:
         """The plan's straight-line program (:mod:`.straight_line`), traced once per plan,
         its link pairs and link steps, and its sliders' layout (their numbers are inputs)."""
+        return self._program
+
+    @functools.cached_property
+    def _program(self) -> StraightLineProgram:
         return _straight_line_program(self.plan, tuple(self.known), tuple(self.fixed_signs), _slider_layout(self.sliders),
                                       self.sliders)
+
+    @functools.cached_property
+    def _slider_values(self) -> list[float]:
+        """This instance's numbers for the program's slider inputs (once: every evaluation reads them)."""
+        return slider_constant_values(self._program.slider_constants, self.sliders)
 
     def program_profile(self, parameter_values: np.ndarray, signs: np.ndarray, paired: bool = False) -> Profile:
         """:meth:`profile` (with ``paired``, before its first axis is dropped) by the
@@ -136,7 +145,7 @@ class CompiledSystem:
                                       for n, pair in enumerate(self.parameters)]) if self.searched else values
         return run_program(program, [self.known[pair] for pair in program.known_pairs],
                            [self.fixed_signs[t] for t in program.fixed_triangles], mapped, signs, paired, points,
-                           slider_constant_values(program.slider_constants, self.sliders) if self.sliders else ())
+                           self._slider_values)
 
     def matrices(self, parameter_values: np.ndarray, signs: np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
         """M_k for every joint, and s_ref, broadcast over branches and parameter values.

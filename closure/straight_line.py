@@ -22,9 +22,11 @@ run on traced complex numbers (:mod:`.traced_sliders`), each slider's geometry a
 
 from __future__ import annotations
 
+import operator
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -82,8 +84,23 @@ class Traced:
     def __init__(self, recorder: Recorder, register: int):
         self.recorder, self.register = recorder, register
 
-    def _binary(self, opcode: int, first, second) -> Traced:
+    def _binary(self, opcode: int, first, second):
+        if isinstance(first, complex | TracedComplex) or isinstance(second, complex | TracedComplex):
+            # a complex operand (a slider's construction): the real promoted, as numpy promotes a float array
+            return _COMPLEX_OPERATIONS[opcode](_promoted(first), _promoted(second))
         return self.recorder.emit(opcode, self.recorder.operand(first), self.recorder.operand(second))
+
+    # a real as a complex number, for the slider constructions (closure/sliders.py)
+    def conjugate(self) -> Traced:
+        return self
+
+    @property
+    def real(self) -> Traced:
+        return self
+
+    @property
+    def imag(self) -> float:
+        return 0.0
 
     def __add__(self, other):
         return self._binary(ADD, self, other)
@@ -116,6 +133,83 @@ class Traced:
         if exponent != 2:
             raise ValueError(f"traced power {exponent}: only squares occur in the kernel")
         return self * self  # numpy's square of a float array is x·x
+
+
+def _parts(value) -> tuple[Any, Any]:
+    """(real, imaginary) of a traced or plain number, the imaginary part of a real 0.0."""
+    if isinstance(value, TracedComplex):
+        return value.real, value.imag
+    if isinstance(value, complex):
+        return value.real, value.imag
+    return value, 0.0
+
+
+class TracedComplex:
+    """A complex number of the traced arithmetic: real and imaginary parts, each a traced
+    real or a Python float."""
+
+    __slots__ = ("real", "imag")
+
+    def __init__(self, real, imag):
+        self.real, self.imag = real, imag
+
+    def conjugate(self) -> TracedComplex:
+        return TracedComplex(self.real, -self.imag)
+
+    def __neg__(self) -> TracedComplex:
+        return TracedComplex(-self.real, -self.imag)
+
+    def __add__(self, other) -> TracedComplex:
+        (a, b), (c, d) = _parts(self), _parts(other)
+        return TracedComplex(a + c, b + d)
+
+    def __radd__(self, other) -> TracedComplex:
+        (a, b), (c, d) = _parts(other), _parts(self)
+        return TracedComplex(a + c, b + d)
+
+    def __sub__(self, other) -> TracedComplex:
+        (a, b), (c, d) = _parts(self), _parts(other)
+        return TracedComplex(a - c, b - d)
+
+    def __rsub__(self, other) -> TracedComplex:
+        (a, b), (c, d) = _parts(other), _parts(self)
+        return TracedComplex(a - c, b - d)
+
+    def __mul__(self, other) -> TracedComplex:
+        return _product(_parts(self), _parts(other))
+
+    def __rmul__(self, other) -> TracedComplex:
+        return _product(_parts(other), _parts(self))
+
+    def __truediv__(self, other) -> TracedComplex:
+        return _quotient(_parts(self), other)
+
+    def __rtruediv__(self, other) -> TracedComplex:
+        return _quotient(_parts(other), self)
+
+
+def _product(first, second) -> TracedComplex:
+    (a, b), (c, d) = first, second
+    return TracedComplex(a * c - b * d, a * d + b * c)
+
+
+def _quotient(numerator, denominator) -> TracedComplex:
+    """(a + ib)/(c + id) = (a + ib)(c − id)/(c² + d²); by a real, each part divided."""
+    a, b = numerator
+    if not isinstance(denominator, TracedComplex | complex):
+        return TracedComplex(a / denominator, b / denominator)
+    c, d = _parts(denominator)
+    modulus = c * c + d * d
+    return TracedComplex((a * c + b * d) / modulus, (b * c - a * d) / modulus)
+
+
+def _promoted(value):
+    """A traced real as a traced complex number with imaginary part 0.0; others as they are."""
+    return TracedComplex(value, 0.0) if isinstance(value, Traced) else value
+
+
+#: The traced complex arithmetic of each binary opcode.
+_COMPLEX_OPERATIONS = {ADD: operator.add, SUBTRACT: operator.sub, MULTIPLY: operator.mul, DIVIDE: operator.truediv}
 
 
 def traced_maximum(first, second):

@@ -2,7 +2,7 @@
 
 The slider constructions of :mod:`.sliders` run on "anything with the operators of a
 complex number"; the numeric backend runs them on numpy complex arrays. Here they run on
-:class:`TracedComplex` values — a pair of traced reals (:class:`~.straight_line.Traced`)
+:class:`~.straight_line.TracedComplex` values — a pair of traced reals (:class:`~.straight_line.Traced`)
 whose sums, products, quotients and conjugates record the real instructions numpy's
 complex arithmetic performs — so that a plan with slider joints becomes a
 :class:`~.straight_line.StraightLineProgram` like any other and runs compiled.
@@ -27,97 +27,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .sliders import SliderGeometry, SliderPlacement, turn_residual
-from .straight_line import GUARDED_ROOT, Recorder, Traced
-
-
-def _parts(value) -> tuple[Any, Any]:
-    """(real, imaginary) of a traced or plain number, the imaginary part of a real 0.0."""
-    if isinstance(value, TracedComplex):
-        return value.real, value.imag
-    if isinstance(value, complex):
-        return value.real, value.imag
-    return value, 0.0
-
-
-class TracedComplex:
-    """A complex number of the traced arithmetic: real and imaginary parts, each a traced
-    real or a Python float."""
-
-    __slots__ = ("real", "imag")
-
-    def __init__(self, real, imag):
-        self.real, self.imag = real, imag
-
-    def conjugate(self) -> TracedComplex:
-        return TracedComplex(self.real, -self.imag)
-
-    def __neg__(self) -> TracedComplex:
-        return TracedComplex(-self.real, -self.imag)
-
-    def __add__(self, other) -> TracedComplex:
-        (a, b), (c, d) = _parts(self), _parts(other)
-        return TracedComplex(a + c, b + d)
-
-    def __radd__(self, other) -> TracedComplex:
-        (a, b), (c, d) = _parts(other), _parts(self)
-        return TracedComplex(a + c, b + d)
-
-    def __sub__(self, other) -> TracedComplex:
-        (a, b), (c, d) = _parts(self), _parts(other)
-        return TracedComplex(a - c, b - d)
-
-    def __rsub__(self, other) -> TracedComplex:
-        (a, b), (c, d) = _parts(other), _parts(self)
-        return TracedComplex(a - c, b - d)
-
-    def __mul__(self, other) -> TracedComplex:
-        return _product(_parts(self), _parts(other))
-
-    def __rmul__(self, other) -> TracedComplex:
-        return _product(_parts(other), _parts(self))
-
-    def __truediv__(self, other) -> TracedComplex:
-        return _quotient(_parts(self), other)
-
-    def __rtruediv__(self, other) -> TracedComplex:
-        return _quotient(_parts(other), self)
-
-
-def _product(first, second) -> TracedComplex:
-    (a, b), (c, d) = first, second
-    return TracedComplex(a * c - b * d, a * d + b * c)
-
-
-def _quotient(numerator, denominator) -> TracedComplex:
-    """(a + ib)/(c + id) = (a + ib)(c − id)/(c² + d²); by a real, each part divided."""
-    a, b = numerator
-    if not isinstance(denominator, TracedComplex | complex):
-        return TracedComplex(a / denominator, b / denominator)
-    c, d = _parts(denominator)
-    modulus = c * c + d * d
-    return TracedComplex((a * c + b * d) / modulus, (b * c - a * d) / modulus)
-
-
-def complex_aware(traced: type[Traced]) -> None:
-    """Let :class:`~.straight_line.Traced` reals meet complex operands (Python complex or
-    :class:`TracedComplex`): the real is promoted, as numpy promotes a float array, and
-    gets the complex number's ``conjugate``, ``real`` and ``imag``."""
-    def lifted(name: str, method: Callable) -> Callable:
-        def operation(self, other):
-            if isinstance(other, TracedComplex | complex):
-                return getattr(TracedComplex(self, 0.0), name)(other)
-            return method(self, other)
-        return operation
-
-    for name in ("__add__", "__radd__", "__sub__", "__rsub__", "__mul__", "__rmul__", "__truediv__", "__rtruediv__"):
-        setattr(traced, name, lifted(name, getattr(traced, name)))
-    traced.conjugate = lambda self: self
-    traced.real = property(lambda self: self)
-    traced.imag = property(lambda self: 0.0)
-
-
-complex_aware(Traced)
-
+from .straight_line import GUARDED_ROOT, Recorder, Traced, TracedComplex
 
 #: An input of a slider's geometry: (slider, field, key, part), field "offsets" (key:
 #: (link, joint)), "turns" (key: other slider), "slider_offsets" (key: (link, slider)),
@@ -167,20 +77,20 @@ def closure_scale(geometry: SliderGeometry) -> float:
     return max((abs(complex(z)) for frame in geometry.offsets.values() for z in frame.values()), default=1.0)
 
 
+def _geometry_number(geometry: SliderGeometry, field: str, key) -> Any:
+    """The number of a slider input's path in ``geometry`` (a closure scale: none)."""
+    if field == "unit":
+        return geometry.unit
+    if field == "turns":
+        return geometry.turns[key]
+    return getattr(geometry, field)[key[0]][key[1]]
+
+
 def slider_constant_values(paths: tuple[ConstantPath, ...], sliders: Mapping[str, SliderGeometry]) -> list[float]:
     """An instance's numbers for a program's slider inputs (``paths``, in order)."""
     values = []
     for name, field, key, part in paths:
-        geometry = sliders[name]
-        if field == "scale":
-            value: Any = closure_scale(geometry)
-        elif field == "unit":
-            value = geometry.unit
-        elif field == "turns":
-            value = geometry.turns[key]
-        else:
-            value = getattr(geometry, field)[key[0]][key[1]]
-        value = complex(value)
+        value = complex(closure_scale(sliders[name]) if field == "scale" else _geometry_number(sliders[name], field, key))
         values.append(value.imag if part else value.real)
     return values
 
@@ -238,14 +148,8 @@ def exact_slider_constants(paths: tuple[ConstantPath, ...], exact: Mapping[str, 
         if field == "scale":
             values.append(closure_scale(sliders[name]))
             continue
-        geometry = exact[name]
-        if field == "unit":
-            number: Any = (geometry.unit, 0)
-        elif field == "turns":
-            number = geometry.turns[key]
-        else:
-            number = getattr(geometry, field)[key[0]][key[1]]
-        component = number[part]
+        number = _geometry_number(exact[name], field, key)
+        component = (number, 0)[part] if field == "unit" else number[part]
         if isinstance(component, float):
             return None
         values.append(component)

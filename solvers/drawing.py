@@ -12,30 +12,10 @@ from matplotlib.figure import Figure  # a bare Figure draws to files without pyp
 from matplotlib.patches import Polygon
 
 from baranov.scene import Scene
+from baranov.topology.diagram import convex_hull
 
 from .modes import Solution
 from .verification import slider_axis
-
-
-def _hull(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
-    """Convex hull (monotone chain), counter-clockwise."""
-    points = sorted(set(points))
-    if len(points) <= 2:
-        return points
-
-    def cross(o, a, b):
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-
-    lower, upper = [], []
-    for p in points:
-        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
-            lower.pop()
-        lower.append(p)
-    for p in reversed(points):
-        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
-            upper.pop()
-        upper.append(p)
-    return lower[:-1] + upper[:-1]
 
 
 def png_bytes(figure: Figure, tight: bool = False) -> bytes:
@@ -121,7 +101,7 @@ def draw_mode(axis, scene: Scene, mode, extent: float) -> None:
                       solid_capstyle="round", zorder=2)
             segments.append((points[0], points[1]))
         else:
-            hull = _hull(points)
+            hull = convex_hull(points)
             axis.add_patch(Polygon(hull, closed=True, facecolor="0.82" if not ground else "0.95",
                                    edgecolor="0.15", linewidth=1.5, hatch="////" if ground else None, zorder=1))
             segments += [(hull[n], hull[(n + 1) % len(hull)]) for n in range(len(hull))]

@@ -53,15 +53,21 @@ def diagram_layout(chain: KinematicChain) -> dict[str, tuple[float, float]]:
     best, fewest = None, math.inf
     for start in starts:
         layout = nx.kamada_kawai_layout(graph, pos=start)
-        outlines = [_outline([layout[name] for name in names]) for names in links]
+        outlines = [convex_hull([layout[name] for name in names]) for names in links]
         crossings = _crossings(outlines)
         if crossings < fewest:
             best, fewest = layout, crossings
     return _normalised(best)
 
 
-def _outline(points: list) -> list[tuple[float, float]]:
-    """A link's outline: its joints' convex hull (counter-clockwise), or its bar."""
+def convex_hull(points) -> list[tuple[float, float]]:
+    """The convex hull of planar ``points`` ((x, y) pairs), counter-clockwise from the
+    lowest-leftmost (Andrew's monotone chain, O(n log n)); the points themselves, sorted,
+    where there are at most two: a link's outline, or its bar.
+
+    >>> convex_hull([(0, 0), (2, 0), (1.5, 1.5), (1, 0.2), (0, 2)])  # (1, 0.2) inside
+    [(0.0, 0.0), (2.0, 0.0), (1.5, 1.5), (0.0, 2.0)]
+    """
     points = sorted({(float(x), float(y)) for x, y in points})
     if len(points) <= 2:
         return points
@@ -137,7 +143,7 @@ def diagram_svg(chain: KinematicChain, layout: dict[str, tuple[float, float]] | 
     links = joints_of_links(chain)
     for names in sorted(links, key=len, reverse=True):  # polygons under bars
         if len(names) >= 3:
-            outline = _outline([at(name) for name in names])
+            outline = convex_hull([at(name) for name in names])
             points = " ".join(f"{x:.1f},{y:.1f}" for x, y in outline)
             parts.append(f'<polygon points="{points}" fill="#d0d0d0" stroke="#262626" stroke-width="1.5"/>')
         else:

@@ -15,6 +15,7 @@ from matplotlib.patches import Polygon
 
 import baranov
 from baranov.topology import diagram_layout, joints_of_links
+from baranov.topology.diagram import convex_hull
 
 chain = baranov.truss("9/B28")
 plan = baranov.best_plan(chain)
@@ -24,7 +25,7 @@ figure, axis = plt.subplots(figsize=(7, 7))
 for names in joints_of_links(chain):
     points = [at[name] for name in names]
     if len(points) > 2:
-        axis.add_patch(Polygon(points, closed=True, facecolor="0.82", edgecolor="0.15", linewidth=1.5))
+        axis.add_patch(Polygon(convex_hull(points), closed=True, facecolor="0.82", edgecolor="0.15", linewidth=1.5))
     else:
         axis.plot(*zip(*points, strict=True), color="0.15", linewidth=4, solid_capstyle="round")
 for pairs, style, label in ((plan.parameters, "--", "parameter"), (plan.closure_pairs, ":", "closure pair")):
