@@ -21,8 +21,10 @@ derivative's models computed only where the values leave the box undecided:
   Thm. 5.1.7): exactly one root lies in it, and the box is contracted by the same operator
   and the linear model. Where f is monotone but N(X) is not inside X (the root near an end
   of X, or rounding keeping f(m) too wide), the same test runs on a box three times as wide
-  as the linear model's zero set, centred on it; such a box may reach past X, so a root
-  certified twice is merged by its uniqueness boxes;
+  as the linear model's zero set, centred on it, with f(m) evaluated at the midpoint alone
+  (a thin box: wide by rounding only, where the model's value at m carries the remainder
+  of the whole box); such a box may reach past X, so a root certified twice is merged by
+  its uniqueness boxes;
 * otherwise bisected, down to a width of ``minimum_width`` × S; a box that small and not
   decided is *unresolved* and named with its reason: a domain edge inside it (a radicand's
   range holds 0: a root on a flat triangle, or only the edge itself), or a derivative that
@@ -78,10 +80,12 @@ MINIMUM_WIDTH = 1e-12
 #: Box evaluations allowed per solve, over all branches (a complete 9-link solve takes a few
 #: thousand; a linkage that moves, its condition 0 along a range, would take them all).
 EVALUATION_BUDGET = 20_000
-#: ... and at least this many per branch: 13/B1 (Watt–Baranov, 64 branches) needs 22 834
-#: boxes to certify its 76 modes (0.25 s), and stopped at 20 000 it left them to the
-#: searches, at twice c64bf01's time (docs/bench/numeric-speed.md).
-BOXES_PER_BRANCH = 400
+#: ... and at least this many per branch: random 11-link instances (32 branches) need up to
+#: 124 000 boxes to be decided (every coupling-1 truss, seed 5: median 10 000, 99th
+#: percentile 68 000), and at 400 a branch 116 of the 409 fell back to the searches
+#: (docs/numeric.md, "Budget"). A linkage that moves spends it all, about 4 µs a box,
+#: before the searches take over.
+BOXES_PER_BRANCH = 4000
 
 
 #: Boxes side by side in a round over many instances, which fill every column: a round's
@@ -241,9 +245,11 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
     evaluations = np.zeros(low.shape[0], dtype=np.int64)
     log = [(0.0, 0.0, 0, 0, 0.0, False, 0)]
     log.pop()
+    slots = np.empty(columns, dtype=np.int64)  # each batch item's first column
     while len(stack) > 0:
         batch.clear()
-        while len(stack) > 0 and len(batch) < columns:
+        used = 0
+        while len(stack) > 0 and used < columns - 1:
             item = stack.pop()
             a, b, k, kind, u0, u1 = item[0], item[1], item[2], item[3], item[4], item[5]
             i = k // count
@@ -254,27 +260,35 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
                     unresolved.append((a, b, k, OVER_BUDGET) if kind == SEARCH else (u0, u1, k, OVER_BUDGET))
                 continue
             evaluations[i] += 1
-            box_low[0], box_high[0] = a, b
-            j = len(batch)
-            lows[j], highs[j], column_starts[j] = a, b, starts[i]
-            for r in instance_outputs:
-                c[r, j], e[r, j] = instance_c[i, r], instance_e[i, r]
-            load_box(parameters, sign_registers, box_low, box_high, branches[k - i * count], c, g, e, radius, j)
+            slots[len(batch)] = used
+            # a certification or contraction also evaluates f at the box's midpoint alone (a
+            # thin box): the Newton operator's f(m) is then wide by rounding only, not by the
+            # box's remainder
+            for thin in range(1 if kind == SEARCH else 2):
+                low_end, high_end = (0.5 * (a + b), 0.5 * (a + b)) if thin else (a, b)
+                box_low[0], box_high[0] = low_end, high_end
+                lows[used], highs[used], column_starts[used] = low_end, high_end, starts[i]
+                for r in instance_outputs:
+                    c[r, used], e[r, used] = instance_c[i, r], instance_e[i, r]
+                load_box(parameters, sign_registers, box_low, box_high, branches[k - i * count], c, g, e, radius, used)
+                used += 1
             batch.append(item)
         if len(batch) == 0:
             continue
         _evaluated(instructions, values, registers, feasible, status, column_starts, residual, derivative, lows, highs,
-                   len(batch), out)
-        for j in range(len(batch)):
-            a, b, k, kind, u0, u1, z0, z1, steps = batch[j]
+                   used, out)
+        for n in range(len(batch)):
+            j = slots[n]
+            a, b, k, kind, u0, u1, z0, z1, steps = batch[n]
             decision, center, slope, rest, g0, g1 = out[j, 0], out[j, 1], out[j, 2], out[j, 3], out[j, 4], out[j, 5]
             monotone = decision == FEASIBLE and (g0 > 0.0 or g1 < 0.0)  # one root at most
             if record:
                 log.append((a, b, k, kind, decision, monotone, status[j]))
             if kind == CONTRACT:
-                _contract(stack, roots, a, b, k, u0, u1, steps, monotone, center, rest, g0, g1, out[j, 6], out[j, 7])
+                _contract(stack, roots, a, b, k, u0, u1, steps, monotone, out[j + 1, 1], out[j + 1, 3], g0, g1,
+                          out[j, 6], out[j, 7])
             elif kind == CERTIFY:
-                _certify(stack, unresolved, a, b, k, u0, u1, z0, z1, decision, monotone, center, rest,
+                _certify(stack, unresolved, a, b, k, u0, u1, z0, z1, decision, monotone, out[j + 1, 1], out[j + 1, 3],
                          g0, g1, minimum_width[k // count])
             elif decision != EXCLUDED:
                 _search(stack, unresolved, a, b, k, decision, monotone, center, slope, rest, g0, g1,
@@ -325,7 +339,8 @@ def _certify(stack, unresolved, y0, y1, k, a, b, z0, z1, decision, monotone, cen
              minimum_width):  # pragma: no cover - compiled
     """The box [y0, y1] about the linear model's root of a box [a, b] on which f is
     monotone, its root in [z0, z1] ⊆ [y0, y1]: no root in it (then none in [a, b]),
-    exactly one (contracted, unless it lies outside [a, b]), or undecided ([a, b] split)."""
+    exactly one (contracted, unless it lies outside [a, b]), or undecided ([a, b] split).
+    ``center`` ± ``rest``: f at the box's midpoint, evaluated alone."""
     if decision == EXCLUDED:
         return
     if monotone:
@@ -344,7 +359,9 @@ def _contract(stack, roots, n0, n1, k, u0, u1, steps, monotone, center, rest, g0
               ):  # pragma: no cover - compiled
     """A box [n0, n1] known to hold exactly one root (alone in [u0, u1]), shrunk to where
     f's linear model can vanish and to its Newton image while that takes off a tenth, at
-    most CONTRACTIONS times; then a root."""
+    most CONTRACTIONS times; then a root. ``center`` ± ``rest``: f at the box's midpoint,
+    evaluated alone (with the box's own model a certified box 1.4 wide stayed so, and its
+    midpoint did not verify as a mode)."""
     if monotone:
         m0, m1 = _newton_image(n0, n1, g0, g1, center, rest)
         c0, c1 = max(z0, m0), min(z1, m1)
