@@ -610,18 +610,19 @@ once. Then each eight-bar Grübler chain, one random integer configuration (seed
 
 - Nearly coincident joints (a leg much shorter than the other sides of its bilateration
   triangle): the area radicand 4 s_ij s_ik − (s_ij + s_ik − s_jk)², evaluated in floats,
-  cancels. At a leg of 1e-4 the numeric backend's candidates miss the 1e-8 verification
-  by ~1e-6 and are polished on the link constraints (Gauss–Newton, as next to the domain
-  boundary); from a leg of 1e-6 on it finds no candidate at all (rows "nearly coincident
-  joints" above; pinned as an expected failure at 1e-6). At 1e-5 the interval
-  branch-and-prune certifies both modes, 1.7e-6 apart in the parameter, each alone in its
-  box. The exact backend maps its
-  certified roots to branches and places the joints in ball arithmetic from the exact
+  cancels. The numeric backend takes the radicand of a triangle with the plan's parameter
+  s as a side and two fixed sides a, b in the factored form (s − (√a − √b)²)((√a + √b)² −
+  s) (`closure/bilateration.py: factored_radicand`), exact to a few ulps of itself; it
+  certifies both modes down to a leg of 1e-8 (rows "nearly coincident joints" above),
+  where with the Cayley–Menger form it found no candidate from a leg of 1e-6 on (and
+  polished candidates that missed the 1e-8 verification at 1e-4). The exact backend maps
+  its certified roots to branches and places the joints in ball arithmetic from the exact
   dimensions, raising the precision while a branch is undecided or a configuration misses
-  the verification, and finds both modes down to a leg of 1e-8. Kahan's stable form of
-  Heron's formula, tried for the numeric backend, fixed the 1e-4 row but lost a mode of
-  3-RPR II at its exactly flat triangles, lost the branch-boundary mode when combined with
-  the expanded form, and made the backend about 18 % slower; it was not kept.
+  the verification, and finds both modes down to a leg of 1e-8 too. Kahan's stable form of
+  Heron's formula, tried for every triangle of the numeric backend, fixed the 1e-4 row but
+  lost a mode of 3-RPR II at its exactly flat triangles, lost the branch-boundary mode
+  when combined with the expanded form, and made the backend about 18 % slower; it was
+  not kept.
 - A link 1e-8 of its size from collinear: rounding the dimensions to floats moves the
   roots of the float closure condition by ~4e-6 (relative); the numeric backend reports
   configurations that hold every dimension to 1e-8 at those shifted parameter values. The

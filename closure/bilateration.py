@@ -55,6 +55,43 @@ def triangle_radicand(s_ij, s_ik, s_jk, multiply: Callable[[Any, Any], Any] = op
             - 2 * (multiply(s_ij, s_ij) + multiply(s_ik, s_ik) + multiply(s_jk, s_jk)))
 
 
+def factored_radicand(sides, position: int, root: Callable[[Any], Any]):
+    """:func:`triangle_radicand` of ``sides`` as (x − (√a − √b)²)((√a + √b)² − x), x the
+    side at ``position`` and a, b the other two, ``root`` their square root: the same
+    number, 4ab − (a + b − x)², in the form that rounds well where x varies and a, b are
+    fixed. Near a flat triangle the Cayley–Menger form cancels terms of size (a + b + x)²
+    to a value near 0 (on an 11-link truss, rounding of about 1e-6 against a radicand of
+    1e-5 at the end of the parameter's domain); here x − (√a ± √b)² is exact to a few
+    ulps of x, so the radicand to a few ulps of itself. O(1) operations.
+
+    >>> import math
+    >>> factored_radicand((25, 9, 16), 0, math.sqrt)  # 3-4-5: 16 · 6²
+    576.0
+    """
+    x = sides[position]
+    a, b = (side for n, side in enumerate(sides) if n != position)
+    root_a, root_b = root(a), root(b)
+    difference, total = root_a - root_b, root_a + root_b
+    return (x - difference * difference) * (total * total - x)
+
+
+def parameter_triangles(plan, known_pairs) -> dict[int, int]:
+    """The steps of ``plan`` whose triangle has one of its parameters as a side and its
+    two other sides among ``known_pairs`` (the triangles that bound the parameter's
+    domain): step index → the parameter's position among the sides (s_ij, s_ik, s_jk) as
+    :func:`place_joints` forms them. Their radicands are taken in
+    :func:`factored_radicand`'s form by the float kernels. O(steps)."""
+    parameters = {frozenset(pair) for pair in plan.parameters}
+    found = {}
+    for index, step in enumerate(plan.steps):
+        (i, j), k = step.base, step.joint
+        sides = (frozenset((i, j)), frozenset((i, k)), frozenset((j, k)))
+        at = [n for n, side in enumerate(sides) if side in parameters]
+        if len(at) == 1 and all(side in known_pairs for n, side in enumerate(sides) if n != at[0]):
+            found[index] = at[0]
+    return found
+
+
 #: A point in homogeneous coordinates (x, y, w), the point (x/w, y/w); a squared distance
 #: as (numerator, denominator). Python's ints 0 and 1 stand for themselves in every
 #: arithmetic (a product by 1 is not formed).

@@ -21,7 +21,7 @@ from baranov.planner import parameter_name
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
-from .bilateration import dehomogenised, place_joints, signed_root
+from .bilateration import dehomogenised, factored_radicand, parameter_triangles, place_joints, signed_root
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
 from .sliders import SearchedParameter, SliderGeometry, SliderPlacement, turn_residual
 from .straight_line import StraightLineProgram, compiled_kernel_in_use, count_numpy_seconds, run_program, trace_plan
@@ -76,6 +76,9 @@ class CompiledSystem:
         self._parameter_index = {frozenset(p): n for n, p in enumerate(self.parameters)}
         free_steps = [index for index, step in enumerate(self.plan.steps) if step.free_sign]
         self._free_index = {index: n for n, index in enumerate(free_steps)}
+        # the triangles bounding a parameter's domain, their radicands in the form that rounds
+        # well near flat (as the traced program takes them: the two kernels agree bit for bit)
+        self._factored = {} if self.sliders else parameter_triangles(self.plan, self.known)
         for step in self.plan.steps:
             if not step.free_sign and step.triangle not in self.fixed_signs:
                 raise ValueError(f"triangle {step.triangle}: orientation sign of a link step missing")
@@ -249,6 +252,8 @@ class CompiledSystem:
             return None
 
         def root(index, step, sides, radicand):
+            if index in self._factored:
+                radicand = factored_radicand(sides, self._factored[index], np.sqrt)
             if step.free_sign:
                 column = signs[:, self._free_index[index]]
                 sign = column[None, :] if paired else column[:, None]

@@ -140,7 +140,7 @@ def interval_program(program: StraightLineProgram) -> IntervalProgram:
     >>> program = compile_scene(scene, solvable_plan(scene)).straight_line_program()
     >>> reduced = interval_program(program)
     >>> len(program.instructions), len(reduced.instance_instructions), reduced.values, len(reduced.instructions)
-    (276, 90, 133, 293)
+    (294, 100, 123, 273)
     """
     if "interval" not in program.derived:
         program.derived["interval"] = _differentiated(program)

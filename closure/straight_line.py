@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from .bilateration import RADICAND_NOISE, dehomogenised, place_joints
+from .bilateration import RADICAND_NOISE, dehomogenised, factored_radicand, parameter_triangles, place_joints
 
 #: NaN as one object, so that the recorder keeps one register for it (NaN ≠ NaN).
 NOT_A_NUMBER = float("nan")
@@ -276,6 +276,11 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
     parameter_index = {frozenset(pair): n for n, pair in enumerate(plan.parameters)}
     margins: list[Traced] = []
     relative: list = []
+    # a slider's steps take no triangle, and its parameter may be a t, not a distance
+    factored = {} if sliders else parameter_triangles(plan, inputs)
+
+    def input_root(value):
+        return recorder.emit(GUARDED_ROOT, recorder.operand(value), recorder.operand(0.0))
 
     def known(u: str, v: str):
         pair = frozenset((u, v))
@@ -286,6 +291,8 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
         return None
 
     def root(index, step, sides, radicand):
+        if index in factored:
+            radicand = factored_radicand(sides, factored[index], input_root)
         largest = traced_maximum(traced_maximum(sides[0], sides[1]), sides[2])
         relative[:] = [radicand / largest ** 2]
         noise = -RADICAND_NOISE * largest ** 2

@@ -77,6 +77,7 @@ REASONS = {AT_EDGE: "a domain edge of the branch (a triangle flat) lies in it",
            OVER_BUDGET: "not examined within the evaluation budget"}
 #: Boxes narrower than this fraction of the domain are not bisected further.
 MINIMUM_WIDTH = 1e-12
+END_WIDTH = 1e-3
 #: Box evaluations allowed per solve, over all branches (a complete 9-link solve takes a few
 #: thousand; a linkage that moves, its condition 0 along a range, would take them all).
 EVALUATION_BUDGET = 20_000
@@ -201,6 +202,20 @@ def _evaluated(instructions, values, registers, feasible, status, starts, residu
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
+def _smallest_width(a, b, low, high, minimum_width):  # pragma: no cover - compiled
+    """How narrow the box [a, b] of the domain [low, high] may be bisected: END_WIDTH ×
+    ``minimum_width`` within two widths of an end of the domain, else ``minimum_width``.
+    The domain ends where a triangle with the parameter as a side flattens; the root of
+    that triangle's radicand R varies there like √(hi − s), so f varies by about
+    |∂f/∂√R| √(R's range) across a box at the end: excluding it when f is 1e-2 and that
+    derivative 3 takes R below 1e-5, a box 1e-14 of the domain's end wide (every
+    coupling-1 truss of 11 links, seed 5: four instances decided that were not at 1e-12).
+    Boxes at an end are few at each width, so the deeper bisection costs little."""
+    near = 2.0 * (b - a)
+    return END_WIDTH * minimum_width if a - low <= near or high - b <= near else minimum_width
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def _split(stack, unresolved, a, b, k, status, z0, z1, minimum_width):  # pragma: no cover - compiled
     """An undecided box [a, b] of branch k: searched again as [z0, z1] where that is less
     than half of it, else bisected, or left unresolved below ``minimum_width``."""
@@ -289,10 +304,11 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
                           out[j, 6], out[j, 7])
             elif kind == CERTIFY:
                 _certify(stack, unresolved, a, b, k, u0, u1, z0, z1, decision, monotone, out[j + 1, 1], out[j + 1, 3],
-                         g0, g1, minimum_width[k // count])
+                         g0, g1, _smallest_width(u0, u1, low[k // count], high[k // count], minimum_width[k // count]))
             elif decision != EXCLUDED:
                 _search(stack, unresolved, a, b, k, decision, monotone, center, slope, rest, g0, g1,
-                        out[j, 6], out[j, 7], minimum_width[k // count])
+                        out[j, 6], out[j, 7], _smallest_width(a, b, low[k // count], high[k // count],
+                                                              minimum_width[k // count]))
     found = np.empty((len(roots), 5))
     for n in range(len(roots)):
         found[n, 0], found[n, 1], found[n, 2], found[n, 3], found[n, 4] = roots[n]
