@@ -6,7 +6,7 @@ branch-and-prune decided every box), what the undecided boxes were, and the solv
 instances with ``--msolve``.
 
     python bench/bench_certified.py [--links 7 9 11] [--instances 10] [--every 10] [--seed 1] [--msolve]
-        [--sliders N] [--out FILE]
+        [--msolve-up-to LINKS] [--sliders N] [--out FILE]
 
 ``--every K``: every K-th coupling-1 truss of 11 links or more (409 at 11 links).
 
@@ -112,14 +112,19 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--every", type=int, default=10, help="every K-th truss from 11 links")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--msolve", action="store_true", help="time msolve on the same instances")
+    parser.add_argument("--msolve-up-to", type=int, default=99, metavar="LINKS",
+                        help="with --msolve, only on rows of at most LINKS links (msolve takes 20-35 s an 11-link "
+                             "instance)")
     parser.add_argument("--sliders", type=int, default=0, help="also this many random slider chains per link count")
     parser.add_argument("--out", type=Path)
     args = parser.parse_args(argv)
     if args.msolve and find_msolve() is None:
         parser.error("--msolve: no msolve binary (make setup installs it)")
     compile_kernels()
-    rows = [_row(links, args.instances, args.every, args.seed, args.msolve) for links in args.links]
-    rows += [_slider_row(links, args.sliders, args.seed, args.msolve) for links in args.links if args.sliders and links <= 9]
+    timed = [args.msolve and links <= args.msolve_up_to for links in args.links]
+    rows = [_row(links, args.instances, args.every, args.seed, msolve) for links, msolve in zip(args.links, timed, strict=True)]
+    rows += [_slider_row(links, args.sliders, args.seed, msolve) for links, msolve in zip(args.links, timed, strict=True)
+             if args.sliders and links <= 9]
     command = "python bench/bench_certified.py " + " ".join(sys.argv[1:] if argv is None else argv)
     table = _table(rows, command.strip())
     print(table, end="")
