@@ -75,6 +75,13 @@ def factored_radicand(sides, position: int, root: Callable[[Any], Any]):
     return (x - difference * difference) * (total * total - x)
 
 
+def step_sides(step) -> tuple[frozenset, frozenset, frozenset]:
+    """The pairs of a step's three sides in the order :func:`place_joints` forms them:
+    (P_i P_j, P_i P_k, P_j P_k) for base (P_i, P_j) and new joint P_k."""
+    (i, j), k = step.base, step.joint
+    return frozenset((i, j)), frozenset((i, k)), frozenset((j, k))
+
+
 def parameter_triangles(plan, known_pairs) -> dict[int, int]:
     """The steps of ``plan`` whose triangle has one of its parameters as a side and its
     two other sides among ``known_pairs`` (the triangles that bound the parameter's
@@ -84,8 +91,7 @@ def parameter_triangles(plan, known_pairs) -> dict[int, int]:
     parameters = {frozenset(pair) for pair in plan.parameters}
     found = {}
     for index, step in enumerate(plan.steps):
-        (i, j), k = step.base, step.joint
-        sides = (frozenset((i, j)), frozenset((i, k)), frozenset((j, k)))
+        sides = step_sides(step)
         at = [n for n, side in enumerate(sides) if side in parameters]
         if len(at) == 1 and all(side in known_pairs for n, side in enumerate(sides) if n != at[0]):
             found[index] = at[0]

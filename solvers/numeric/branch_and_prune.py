@@ -44,12 +44,12 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from itertools import combinations
 
 import numba
 import numpy as np
 
 from baranov.closure import CompiledSystem
+from baranov.closure.bilateration import parameter_triangles, step_sides
 from baranov.closure.interval_program import (
     COLUMNS,
     EDGE,
@@ -77,6 +77,7 @@ REASONS = {AT_EDGE: "a domain edge of the branch (a triangle flat) lies in it",
            OVER_BUDGET: "not examined within the evaluation budget"}
 #: Boxes narrower than this fraction of the domain are not bisected further.
 MINIMUM_WIDTH = 1e-12
+#: ... times this within two widths of the domain's ends (:func:`_smallest_width`).
 END_WIDTH = 1e-3
 #: Box evaluations allowed per solve, over all branches (a complete 9-link solve takes a few
 #: thousand; a linkage that moves, its condition 0 along a range, would take them all).
@@ -506,14 +507,12 @@ def parameter_domain(scene, plan, upper: float, index: int = 0) -> tuple[float, 
     parameter = frozenset(plan.parameters[index])
     low, high = 0.0, upper
     sliders = {slider.joint for slider in scene.sliders}
-    for step in plan.steps:
-        if sliders.intersection(step.triangle):
-            continue  # a slider's distances are to its two points, on different links: no triangle
-        sides = [frozenset(pair) for pair in combinations(step.triangle, 2)]
-        known = [scene.known.get(side) for side in sides if side != parameter]
-        if parameter not in sides or any(value is None for value in known):
-            continue
-        (a_lo, a_hi), (b_lo, b_hi) = (_root_enclosure(value) for value in known)
+    for step_index, position in parameter_triangles(plan, scene.known).items():
+        step = plan.steps[step_index]
+        sides = step_sides(step)
+        if sides[position] != parameter or sliders.intersection(step.triangle):
+            continue  # another parameter's; or a slider's distances, to its two points on different links
+        (a_lo, a_hi), (b_lo, b_hi) = (_root_enclosure(scene.known[side]) for side in sides if side != parameter)
         difference = max(a_lo - b_hi, b_lo - a_hi, 0.0)
         low = max(low, math.nextafter(difference * difference, -math.inf) if difference > 0 else 0.0)
         total = math.nextafter(a_hi + b_hi, math.inf)
