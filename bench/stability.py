@@ -624,7 +624,7 @@ once. Then each eight-bar Grübler chain, one random integer configuration (seed
 ## Known failures of the project's backends (pinned in tests/test_stability.py)
 
 - Nearly coincident joints (a leg much shorter than the other sides of its bilateration
-  triangle): the area radicand 4 s_ij s_ik − (s_ij + s_ik − s_jk)², evaluated in floats,
+  triangle): the area radicand (s_ij + s_ik + s_jk)² − 2 (s_ij² + s_ik² + s_jk²), evaluated in floats,
   cancels. The numeric backend takes the radicand of a triangle with the plan's parameter
   s as a side and two fixed sides a, b in the factored form (s − (√a − √b)²)((√a + √b)² −
   s) (`closure/bilateration.py: factored_radicand`), exact to a few ulps of itself; it

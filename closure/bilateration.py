@@ -55,6 +55,26 @@ def triangle_radicand(s_ij, s_ik, s_jk, multiply: Callable[[Any, Any], Any] = op
             - 2 * (multiply(s_ij, s_ij) + multiply(s_ik, s_ik) + multiply(s_jk, s_jk)))
 
 
+def small_term_radicand(s_ij, s_ik, s_jk, multiply: Callable[[Any, Any], Any] = operator.mul):
+    """:func:`triangle_radicand` as 4 s_ik s_jk − (s_ik + s_jk − s_ij)²: the same number,
+    in the form in which s_ij, the side between the joints a step starts from (the side a
+    plan computes), enters one term, s_ik + s_jk − s_ij = 2 √(s_ik s_jk) cos θ_k, no larger
+    than the others. An enclosure of s_ij of width w then widens the radicand's by about
+    2 (s_ik + s_jk − s_ij) w, where the symmetric form's (s_ij + s_ik + s_jk)² and 2 s_ij²
+    widen it by about 4 (s_ij + s_ik + s_jk) w each, and they cancel only in the exact
+    value: on 9/B28 a box's radicand enclosure was 100 times its range. The interval
+    program takes this form (closure/interval_program.py); the float kernels keep the
+    symmetric one, whose rounding the searches of degenerate instances were tuned on
+    (with this form four saved double-root and flat-valley instances were answered
+    differently, 2026-11-29). O(1) operations.
+
+    >>> small_term_radicand(25, 9, 16)  # 3-4-5 right triangle: 16 · 6²
+    576
+    """
+    cosine = s_ik + s_jk - s_ij
+    return 4 * multiply(s_ik, s_jk) - multiply(cosine, cosine)
+
+
 def factored_radicand(sides, position: int, root: Callable[[Any], Any]):
     """:func:`triangle_radicand` of ``sides`` as (x − (√a − √b)²)((√a + √b)² − x), x the
     side at ``position`` and a, b the other two, ``root`` their square root: the same

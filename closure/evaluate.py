@@ -21,7 +21,14 @@ from baranov.planner import parameter_name
 from baranov.topology import KinematicChain
 from baranov.topology.graphs import joints_of_links
 
-from .bilateration import dehomogenised, factored_radicand, parameter_triangles, place_joints, signed_root
+from .bilateration import (
+    dehomogenised,
+    factored_radicand,
+    parameter_triangles,
+    place_joints,
+    signed_root,
+    small_term_radicand,
+)
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
 from .sliders import SearchedParameter, SliderGeometry, SliderPlacement, turn_residual
 from .straight_line import StraightLineProgram, compiled_kernel_in_use, count_numpy_seconds, run_program, trace_plan
@@ -366,7 +373,11 @@ def _straight_line_program(plan, known_pairs: tuple, fixed_triangles: tuple, lay
     if key not in _programs:
         if len(_programs) >= 256:
             _programs.pop(next(iter(_programs)))
-        _programs[key] = trace_plan(plan, known_pairs, fixed_triangles, sliders or None)
+        program = _programs[key] = trace_plan(plan, known_pairs, fixed_triangles, sliders or None)
+        # what the interval program is made from: the same program with the radicands in
+        # the form whose enclosures stay tight (closure/interval_program.py), traced on use
+        program.derived["interval source"] = functools.partial(trace_plan, plan, known_pairs, fixed_triangles,
+                                                               sliders or None, small_term_radicand)
     return _programs[key]
 
 

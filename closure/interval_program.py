@@ -1,5 +1,5 @@
 """A plan's straight-line program run over a box of parameter values, with its
-derivatives, in first-order Taylor models (issue 56).
+derivatives, in Taylor models of the first or second order (issue 56).
 
 The bilateration kernel, traced once per plan into a :class:`~.straight_line.StraightLineProgram`
 (its fifth arithmetic), is run here on a *box* — one closed interval per parameter,
@@ -32,6 +32,28 @@ model's deviation from c):
 * a rounding slack of 2^-50 times the magnitudes of every term computed is added to each
   remainder (each c and g_k is a sum of at most three correctly rounded terms), and the
   remainders themselves are rounded up.
+
+Second order. A model may also carry the quadratic terms exactly,
+
+    v = c + Σ_k g_k u_k + Σ_{k≤l} h_kl u_k u_l + ε,
+
+so that only third-order terms and rounding go to the remainder (Q = Σ|h_kl| ρ_k ρ_l, a
+model's deviation R = L + Q + e with L = Σ|g_k| ρ_k):
+
+* a × b: h = c_a h_b + c_b h_a + (g_a u)(g_b u); e = |c_a| e_b + |c_b| e_a + L_a (Q_b + e_b)
+  + (Q_a + e_a)(L_b + Q_b + e_b);
+* 1/b = 1/c − δ/c² + δ²/c³ − δ³/(c³ b) (δ = b − c): the linear part of δ² kept in h, the
+  rest of it and R³/(|c|³ min(|L|, |U|)) in e;
+* √a = √c + δ/(2√c) − δ²/(8 c√c) + δ³/(16 ξ^{5/2}), ξ ≥ L: R³/(16 L^{5/2}) in e, where
+  that is smaller than the first-order form's remainder (away from an edge); else the
+  first-order form, h_a/(2√c) kept.
+
+A range c + Σ h_kk ρ_k²/2 ± (L + Σ_k |h_kk| ρ_k²/2 + Σ_{k<l} |h_kl| ρ_k ρ_l + e) (a
+square's term lies in [0, h_kk ρ_k²]); what decides a box reads the first-order model
+that is (:func:`linear_model`). On 9/B28 about a mode, a box of half-width 1 gives the
+residuals' ranges 5 % wider than their sampled ranges and the derivatives' 12-22 %
+(first order: 3.4 and 7-12 times); `tests/test_interval_program.py`. A product costs
+about twice as much.
 
 Square roots of a step. A radicand whose range is certainly negative makes the box
 *infeasible* on that branch (:data:`INFEASIBLE`). A range that holds 0 is a domain edge in
@@ -106,7 +128,10 @@ class IntervalProgram:
     as a transformation of the program, :func:`interval_program`; the first ``values``
     rows compute the values, so that a box their models decide needs no more), over
     ``registers`` registers: the program's, then the derivatives' and the constants
-    1 and 2 (``extra_constants``). ``residual_derivatives`` (c, p): the register of each
+    1 and 2 (``extra_constants``). ``program``: the program it is made from, with its own
+    registers: a plan's float program traced again with its radicands in
+    :func:`~.bilateration.small_term_radicand`'s form (its ``derived["interval source"]``),
+    else the program itself. ``residual_derivatives`` (c, p): the register of each
     residual's derivative by each parameter, −1 where it is 0.
 
     The rows that depend on neither a parameter nor a free sign (a third of 7/B1's values,
@@ -140,10 +165,11 @@ def interval_program(program: StraightLineProgram) -> IntervalProgram:
     >>> program = compile_scene(scene, solvable_plan(scene)).straight_line_program()
     >>> reduced = interval_program(program)
     >>> len(program.instructions), len(reduced.instance_instructions), reduced.values, len(reduced.instructions)
-    (294, 100, 123, 273)
+    (294, 85, 118, 265)
     """
     if "interval" not in program.derived:
-        program.derived["interval"] = _differentiated(program)
+        source = program.derived.get("interval source")
+        program.derived["interval"] = _differentiated(source() if source is not None else program)
     return program.derived["interval"]
 
 
@@ -282,6 +308,9 @@ _COMPILE = dict(cache=True, nogil=True, error_model="numpy")
 #: at most two correctly rounded terms: within 2^-51.4 of the magnitudes of its terms)
 #: and of the remainders' own rounding.
 _SLACK = 2.0**-50
+#: The first row of the scratch array that holds, for second-order models, the bounds
+#: ρ_k ρ_l of the terms u_k u_l (rows before it: a product's and a sum's work).
+_PRODUCTS = 5
 #: An absolute slack covering underflow (at most 2^-1074 per operation).
 _TINY = 1e-300
 
@@ -311,80 +340,170 @@ def rounded_up(x):  # pragma: no cover - compiled
 
 
 @numba.njit(inline="always", **_COMPILE)
-def _deviation(g, e, r, radius, j):  # pragma: no cover - compiled
-    """R = Σ|g_k| ρ_k + e of register ``r`` in column ``j``, rounded up: how far its
-    values lie from its center."""
-    total = e[r, j]
+def _linear_bound(g, r, radius, j):  # pragma: no cover - compiled
+    """L = Σ|g_k| ρ_k of register ``r`` in column ``j`` (not rounded)."""
+    total = 0.0
     for k in range(g.shape[0]):
         total += abs(g[k, r, j]) * radius[k, j]
-    return _up(total)
+    return total
 
 
 @numba.njit(inline="always", **_COMPILE)
-def _unbounded(c, g, e, d, j):  # pragma: no cover - compiled
+def _quadratic_bound(h, r, radius, j):  # pragma: no cover - compiled
+    """Q = Σ|h_kl| ρ_k ρ_l of register ``r`` in column ``j`` (0 for first-order models;
+    not rounded)."""
+    total, q = 0.0, 0
+    if h.shape[0] == 0:
+        return total
+    for k in range(radius.shape[0]):
+        for m in range(k, radius.shape[0]):
+            total += abs(h[q, r, j]) * radius[k, j] * radius[m, j]
+            q += 1
+    return total
+
+
+@numba.njit(inline="always", **_COMPILE)
+def _deviation(g, h, e, r, radius, j):  # pragma: no cover - compiled
+    """R = L + Q + e of register ``r`` in column ``j``, rounded up: how far its values
+    lie from its center."""
+    return _up(_linear_bound(g, r, radius, j) + _quadratic_bound(h, r, radius, j) + e[r, j])
+
+
+@numba.njit(inline="always", **_COMPILE)
+def linear_model(c, g, h, e, radius, r, j):  # pragma: no cover - compiled
+    """(center, remainder) of the first-order model that register ``r``'s model is over
+    the box of column ``j`` (its slopes unchanged): a square's term h_kk u_k², in
+    [0, h_kk ρ_k²], moves the center by half its range and adds the other half to the
+    remainder, a product's term h_kl u_k u_l adds its bound. The model itself for
+    first-order models."""
+    if h.shape[0] == 0:
+        return c[r, j], e[r, j]
+    center, rest, q = c[r, j], e[r, j], 0
+    for k in range(radius.shape[0]):
+        for m in range(k, radius.shape[0]):
+            bound = abs(h[q, r, j]) * radius[k, j] * radius[m, j]
+            if k == m:
+                center += 0.5 * h[q, r, j] * radius[k, j] * radius[k, j]
+                rest += 0.5 * bound
+            else:
+                rest += bound
+            q += 1
+    return center, _up(rest + _SLACK * (abs(c[r, j]) + abs(center) + rest))
+
+
+@numba.njit(inline="always", **_COMPILE)
+def _unbounded(c, g, h, e, d, j):  # pragma: no cover - compiled
     """Register ``d`` of column ``j``: the whole line."""
     c[d, j], e[d, j] = 0.0, np.inf
     for k in range(g.shape[0]):
         g[k, d, j] = 0.0
+    for q in range(h.shape[0]):
+        h[q, d, j] = 0.0
 
 
 @numba.njit(inline="always", **_COMPILE)
-def _copy(c, g, e, d, a, sign, n):  # pragma: no cover - compiled
+def _copy(c, g, h, e, d, a, sign, n):  # pragma: no cover - compiled
     """Register ``d`` = ``sign`` × register ``a`` (sign ±1: exact)."""
     for j in range(n):
         c[d, j], e[d, j] = sign * c[a, j], e[a, j]
     for k in range(g.shape[0]):
         for j in range(n):
             g[k, d, j] = sign * g[k, a, j]
+    for q in range(h.shape[0]):
+        for j in range(n):
+            h[q, d, j] = sign * h[q, a, j]
 
 
 @numba.njit(inline="always", **_COMPILE)
-def _sum(c, g, e, d, a, b, sign, radius, magnitude, n):  # pragma: no cover - compiled
+def _sum(c, g, h, e, d, a, b, sign, radius, scratch, n):  # pragma: no cover - compiled
     """Model d = a + sign × b."""
+    magnitude = scratch[2]
     for j in range(n):
         magnitude[j] = abs(c[a, j]) + abs(c[b, j])
     for k in range(g.shape[0]):
         for j in range(n):
             magnitude[j] += (abs(g[k, a, j]) + abs(g[k, b, j])) * radius[k, j]
             g[k, d, j] = g[k, a, j] + sign * g[k, b, j]
+    for q in range(h.shape[0]):
+        for j in range(n):
+            h[q, d, j] = h[q, a, j] + sign * h[q, b, j]
+            magnitude[j] += (abs(h[q, a, j]) + abs(h[q, b, j])) * scratch[_PRODUCTS + q, j]
     for j in range(n):
         c[d, j], e[d, j] = c[a, j] + sign * c[b, j], _up(e[a, j] + e[b, j] + _SLACK * magnitude[j])
 
 
 @numba.njit(inline="always", **_COMPILE)
-def _product(c, g, e, d, a, b, radius, scratch, n):  # pragma: no cover - compiled
-    """Model d = a × b."""
-    deviation_a, deviation_b, magnitude = scratch[0], scratch[1], scratch[2]
+def _square_terms(h, g, d, a, b, factor, j):  # pragma: no cover - compiled
+    """h_d += factor × (g_a u)(g_b u), as coefficients of u_k u_l (k ≤ l)."""
+    q = 0
+    for k in range(g.shape[0]):
+        for m in range(k, g.shape[0]):
+            term = g[k, a, j] * g[k, b, j] if k == m else g[k, a, j] * g[m, b, j] + g[m, a, j] * g[k, b, j]
+            h[q, d, j] += factor * term
+            q += 1
+
+
+@numba.njit(inline="always", **_COMPILE)
+def _product(c, g, h, e, d, a, b, radius, scratch, n):  # pragma: no cover - compiled
+    """Model d = a × b. With a = c_a + L_a + R_a (L_a the linear part, |L_a| ≤ Σ|g_k|ρ_k;
+    R_a = Q_a + ε_a the quadratic part and the remainder): the model keeps c_a c_b +
+    c_a (L_b + Q_b) + c_b (L_a + Q_a), and L_a L_b in h for second order; the remainder
+    bounds c_a ε_b + c_b ε_a + L_a R_b + R_a (L_b + R_b), and L_a L_b for first order."""
+    linear_a, linear_b, magnitude = scratch[0], scratch[1], scratch[2]
     for j in range(n):
-        deviation_a[j], deviation_b[j], magnitude[j] = e[a, j], e[b, j], abs(c[a, j] * c[b, j])
+        linear_a[j], linear_b[j], magnitude[j] = 0.0, 0.0, abs(c[a, j] * c[b, j])
     for k in range(g.shape[0]):
         for j in range(n):
             slope_a, slope_b = g[k, a, j], g[k, b, j]
-            deviation_a[j] += abs(slope_a) * radius[k, j]
-            deviation_b[j] += abs(slope_b) * radius[k, j]
+            linear_a[j] += abs(slope_a) * radius[k, j]
+            linear_b[j] += abs(slope_b) * radius[k, j]
             x, y = c[a, j] * slope_b, c[b, j] * slope_a
             magnitude[j] += (abs(x) + abs(y)) * radius[k, j]
             g[k, d, j] = x + y
-    for j in range(n):
-        ca, cb = c[a, j], c[b, j]
-        c[d, j] = ca * cb
-        e[d, j] = _up(abs(ca) * e[b, j] + abs(cb) * e[a, j] + _up(deviation_a[j]) * _up(deviation_b[j])
-                      + _SLACK * magnitude[j])
+    if h.shape[0] == 0:
+        for j in range(n):
+            ca, cb = c[a, j], c[b, j]
+            c[d, j] = ca * cb
+            e[d, j] = _up(abs(ca) * e[b, j] + abs(cb) * e[a, j] + _up(linear_a[j] + e[a, j]) * _up(linear_b[j] + e[b, j])
+                          + _SLACK * magnitude[j])
+    else:
+        quadratic_a, quadratic_b = scratch[3], scratch[4]
+        for j in range(n):
+            quadratic_a[j], quadratic_b[j] = 0.0, 0.0
+        q = 0
+        for k in range(g.shape[0]):
+            for m in range(k, g.shape[0]):
+                for j in range(n):
+                    cross = g[k, a, j] * g[k, b, j] if k == m else g[k, a, j] * g[m, b, j] + g[m, a, j] * g[k, b, j]
+                    h[q, d, j] = c[a, j] * h[q, b, j] + c[b, j] * h[q, a, j] + cross
+                    quadratic_a[j] += abs(h[q, a, j]) * scratch[_PRODUCTS + q, j]
+                    quadratic_b[j] += abs(h[q, b, j]) * scratch[_PRODUCTS + q, j]
+                    magnitude[j] += (abs(c[a, j] * h[q, b, j]) + abs(c[b, j] * h[q, a, j]) + abs(cross)
+                                     ) * scratch[_PRODUCTS + q, j]
+                q += 1
+        for j in range(n):
+            ca, cb = c[a, j], c[b, j]
+            c[d, j] = ca * cb
+            rest_a, rest_b = _up(quadratic_a[j] + e[a, j]), _up(quadratic_b[j] + e[b, j])
+            e[d, j] = _up(abs(ca) * e[b, j] + abs(cb) * e[a, j] + _up(linear_a[j]) * rest_b
+                          + rest_a * _up(linear_b[j] + rest_b) + _SLACK * magnitude[j])
     # an unbounded factor (e = ∞) gives ∞ or 0 × ∞ = NaN: checked after the arithmetic,
     # in a loop of its own, so that the arithmetic's loops stay free of branches
     for j in range(n):
         if not e[d, j] < np.inf:
-            _unbounded(c, g, e, d, j)
+            _unbounded(c, g, h, e, d, j)
 
 
 @numba.njit(**_COMPILE)
-def _reciprocal(c, g, e, d, b, radius, n):  # pragma: no cover - compiled
-    """Model d = 1/b; the whole line where b's range holds 0."""
+def _reciprocal(c, g, h, e, d, b, radius, n):  # pragma: no cover - compiled
+    """Model d = 1/b; the whole line where b's range holds 0. With δ = b − c_b:
+    1/b = 1/c − δ/c² + δ²/c³ − δ³/(c³ b), the last term bounded (second order; first
+    order: δ²/(c² b) bounded)."""
     for j in range(n):
-        deviation = _deviation(g, e, b, radius, j)
+        deviation = _deviation(g, h, e, b, radius, j)
         low, high = rounded_down(c[b, j] - deviation), rounded_up(c[b, j] + deviation)
         if e[b, j] == np.inf or (low <= 0.0 <= high):
-            _unbounded(c, g, e, d, j)
+            _unbounded(c, g, h, e, d, j)
             continue
         nearest = min(abs(low), abs(high))
         center = 1.0 / c[b, j]
@@ -394,37 +513,41 @@ def _reciprocal(c, g, e, d, b, radius, n):  # pragma: no cover - compiled
             g[k, d, j] = -g[k, b, j] * square
             magnitude += abs(g[k, d, j]) * radius[k, j]
         c[d, j] = center
-        e[d, j] = _up(_up(e[b, j] * square + deviation * deviation * square / nearest + _SLACK * magnitude))
+        if h.shape[0] == 0:
+            e[d, j] = _up(_up(e[b, j] * square + deviation * deviation * square / nearest + _SLACK * magnitude))
+            continue
+        cube = square * center
+        for q in range(h.shape[0]):
+            h[q, d, j] = -h[q, b, j] * square
+        _square_terms(h, g, d, b, b, cube, j)
+        magnitude += _quadratic_bound(h, d, radius, j)
+        linear = _up(_linear_bound(g, b, radius, j))
+        rest = _up(_quadratic_bound(h, b, radius, j) + e[b, j])
+        e[d, j] = _up(_up(e[b, j] * square + (2.0 * linear * rest + rest * rest) * abs(cube)
+                          + deviation * deviation * deviation * abs(cube) / nearest) + _SLACK * magnitude)
 
 
 @numba.njit(**_COMPILE)
-def _root(c, g, e, d, a, radius, feasible, status, n):  # pragma: no cover - compiled
+def _root(c, g, h, e, d, a, radius, feasible, status, n):  # pragma: no cover - compiled
     """Model d = √a, and each column's status worsened by its step (module docstring);
     at an edge, the chord model, and ``feasible`` narrowed."""
     parameters = g.shape[0]
     for j in range(n):
-        deviation = _deviation(g, e, a, radius, j)
+        deviation = _deviation(g, h, e, a, radius, j)
         low, high = rounded_down(c[a, j] - deviation), rounded_up(c[a, j] + deviation)
         if high < 0.0:
             status[j] = INFEASIBLE
-            _unbounded(c, g, e, d, j)
+            _unbounded(c, g, h, e, d, j)
         elif e[a, j] == np.inf:
             status[j] = max(status[j], EDGE)
-            _unbounded(c, g, e, d, j)
+            _unbounded(c, g, h, e, d, j)
         elif low > 0.0:
-            root = np.sqrt(c[a, j])
-            floor = np.sqrt(low) * (1.0 - _SLACK)
-            twice = 2.0 * root
-            magnitude = root
-            for k in range(parameters):
-                g[k, d, j] = g[k, a, j] / twice
-                magnitude += abs(g[k, d, j]) * radius[k, j]
-            quadratic = deviation * deviation / (twice * (floor + root) * (floor + root) * (1.0 - _SLACK))
-            c[d, j], e[d, j] = root, _up(_up(e[a, j] / twice + quadratic) + _SLACK * magnitude)
+            _proper_root(c, g, h, e, d, a, radius, deviation, low, j)
         else:
             status[j] = max(status[j], EDGE)
             if feasible.shape[0] == 2 and parameters == 1 and g[0, a, j] != 0.0:  # one parameter
-                reach = rounded_up(c[a, j] + e[a, j])  # c + g u + e ≥ 0 for some u
+                center, rest = linear_model(c, g, h, e, radius, a, j)
+                reach = rounded_up(center + rest)  # c + g u + e ≥ 0 for some u
                 if g[0, a, j] > 0.0:
                     feasible[0, j] = max(feasible[0, j], rounded_down(-reach / g[0, a, j]))
                 else:
@@ -437,15 +560,49 @@ def _root(c, g, e, d, a, radius, feasible, status, n):  # pragma: no cover - com
             for k in range(parameters):
                 g[k, d, j] = g[k, a, j] / r
                 magnitude += abs(g[k, d, j]) * radius[k, j]
+            for q in range(h.shape[0]):
+                h[q, d, j] = h[q, a, j] / r
+            magnitude += _quadratic_bound(h, d, radius, j)
             c[d, j], e[d, j] = c[a, j] / r + eighth, _up(e[a, j] / r + eighth + _SLACK * magnitude)
 
 
+@numba.njit(inline="always", **_COMPILE)
+def _proper_root(c, g, h, e, d, a, radius, deviation, low, j):  # pragma: no cover - compiled
+    """Model d = √a where a's range [low, ·] is above 0. With δ = a − c_a:
+    √a = √c + δ/(2√c) − δ²/(2√c (√a + √c)²) (first order: the last term bounded), or
+    √c + δ/(2√c) − δ²/(8 c√c) + δ³/(16 ξ^{5/2}) (second order: the last term bounded), the
+    second-order form where its remainder is the smaller (away from an edge: the cubic term
+    grows like 1/low^{5/2})."""
+    root = np.sqrt(c[a, j])
+    floor = np.sqrt(low) * (1.0 - _SLACK)
+    twice = 2.0 * root
+    magnitude = root
+    for k in range(g.shape[0]):
+        g[k, d, j] = g[k, a, j] / twice
+        magnitude += abs(g[k, d, j]) * radius[k, j]
+    for q in range(h.shape[0]):
+        h[q, d, j] = h[q, a, j] / twice
+    c[d, j] = root
+    first = _up(deviation * deviation / (twice * (floor + root) * (floor + root) * (1.0 - _SLACK)))
+    if h.shape[0] > 0:
+        linear = _up(_linear_bound(g, a, radius, j))
+        rest = _up(_quadratic_bound(h, a, radius, j) + e[a, j])
+        eighth = 1.0 / (8.0 * c[a, j] * root) * (1.0 + 4 * _SLACK)
+        second = _up(_up(2.0 * linear * rest + rest * rest) * eighth
+                     + deviation * deviation * deviation / (16.0 * low * low * floor * (1.0 - 4 * _SLACK)))
+        if second < first:  # the quadratic term is kept exactly: it cancels downstream
+            _square_terms(h, g, d, a, a, -1.0 / (8.0 * c[a, j] * root), j)
+            first = second
+        magnitude += _quadratic_bound(h, d, radius, j)
+    e[d, j] = _up(_up(e[a, j] / twice + first) + _SLACK * magnitude)
+
+
 @numba.njit(**_COMPILE)
-def _maximum(c, g, e, d, a, b, radius, n):  # pragma: no cover - compiled
+def _maximum(c, g, h, e, d, a, b, radius, n):  # pragma: no cover - compiled
     """Model d = max(a, b): the larger where the ranges are apart, else a constant model
     of the hull (no residual depends on it)."""
     for j in range(n):
-        deviation_a, deviation_b = _deviation(g, e, a, radius, j), _deviation(g, e, b, radius, j)
+        deviation_a, deviation_b = _deviation(g, h, e, a, radius, j), _deviation(g, h, e, b, radius, j)
         larger = -1
         if c[a, j] - deviation_a >= c[b, j] + deviation_b:
             larger = a
@@ -455,16 +612,20 @@ def _maximum(c, g, e, d, a, b, radius, n):  # pragma: no cover - compiled
             c[d, j], e[d, j] = c[larger, j], e[larger, j]
             for k in range(g.shape[0]):
                 g[k, d, j] = g[k, larger, j]
+            for q in range(h.shape[0]):
+                h[q, d, j] = h[q, larger, j]
             continue
         low = max(c[a, j] - deviation_a, c[b, j] - deviation_b)
         high = max(c[a, j] + deviation_a, c[b, j] + deviation_b)
         c[d, j], e[d, j] = 0.5 * (low + high), _up(0.5 * (high - low) + _SLACK * (abs(low) + abs(high)))
         for k in range(g.shape[0]):
             g[k, d, j] = 0.0
+        for q in range(h.shape[0]):
+            h[q, d, j] = 0.0
 
 
 @numba.njit(**_COMPILE)
-def _flat_zero(c, g, e, d, a, b, n):  # pragma: no cover - compiled
+def _flat_zero(c, g, h, e, d, a, b, n):  # pragma: no cover - compiled
     """Register ``d``: 0 where the sign in ``a`` is exactly 0 (the flat triangle asked
     for), else register ``b``."""
     for j in range(n):
@@ -472,67 +633,78 @@ def _flat_zero(c, g, e, d, a, b, n):  # pragma: no cover - compiled
         c[d, j], e[d, j] = (0.0, 0.0) if flat else (c[b, j], e[b, j])
         for k in range(g.shape[0]):
             g[k, d, j] = 0.0 if flat else g[k, b, j]
+        for q in range(h.shape[0]):
+            h[q, d, j] = 0.0 if flat else h[q, b, j]
 
 
 @numba.njit(**_COMPILE)
-def evaluate_models(instructions, c, g, e, radius, feasible, status, scratch, n):  # pragma: no cover - compiled
+def evaluate_models(instructions, c, g, h, e, radius, feasible, status, scratch, n):  # pragma: no cover - compiled
     """Run the differentiated program's ``instructions`` on the registers' models of K
-    boxes side by side (``c`` (R + 1, K), ``g`` (p, R + 1, K), ``e`` (R + 1, K): the
-    program's R registers and a scratch one, the inputs filled in; ``radius`` (p, K) the
-    boxes' half-widths; ``scratch`` (3, K)), over the first ``n`` columns (the boxes
+    boxes side by side (``c`` (R + 1, K), ``g`` (p, R + 1, K), ``h`` (q, R + 1, K),
+    ``e`` (R + 1, K): the program's R registers and a scratch one, the inputs filled in;
+    q = 0 for first-order models, p(p + 1)/2 for second order; ``radius`` (p, K) the
+    boxes' half-widths; ``scratch`` (5 + q, K)), over the first ``n`` columns (the boxes
     loaded: a round need not fill them all). Each column's ``status`` (K,), FEASIBLE on
     entry, is set to EDGE where a radicand's range holds 0 and INFEASIBLE where one is
     certainly below 0 (the column's later values are then meaningless). With one
     parameter, ``feasible`` (2, K) is narrowed to the range of u_0 where every radicand at
     an edge can be ≥ 0 (an array (0, K): not asked)."""
     spare = c.shape[0] - 1
+    q, parameters = 0, (g.shape[0] if h.shape[0] > 0 else 0)
+    for k in range(parameters):  # second order: ρ_k ρ_l, a row per term u_k u_l
+        for m in range(k, parameters):
+            for j in range(n):
+                scratch[_PRODUCTS + q, j] = radius[k, j] * radius[m, j]
+            q += 1
     for index in range(instructions.shape[0]):
         opcode, d, a, b = instructions[index, 0], instructions[index, 1], instructions[index, 2], instructions[index, 3]
         if opcode == MULTIPLY:
-            _product(c, g, e, d, a, b, radius, scratch, n)
+            _product(c, g, h, e, d, a, b, radius, scratch, n)
         elif opcode == ADD:
-            _sum(c, g, e, d, a, b, 1.0, radius, scratch[2], n)
+            _sum(c, g, h, e, d, a, b, 1.0, radius, scratch, n)
         elif opcode == SUBTRACT:
-            _sum(c, g, e, d, a, b, -1.0, radius, scratch[2], n)
+            _sum(c, g, h, e, d, a, b, -1.0, radius, scratch, n)
         elif opcode == DIVIDE:
-            _reciprocal(c, g, e, spare, b, radius, n)
-            _product(c, g, e, d, a, spare, radius, scratch, n)
+            _reciprocal(c, g, h, e, spare, b, radius, n)
+            _product(c, g, h, e, d, a, spare, radius, scratch, n)
         elif opcode == NEGATE:
-            _copy(c, g, e, d, a, -1.0, n)
+            _copy(c, g, h, e, d, a, -1.0, n)
         elif opcode == GUARDED_ROOT:
-            _root(c, g, e, d, a, radius, feasible, status, n)
+            _root(c, g, h, e, d, a, radius, feasible, status, n)
         elif opcode == FLAT_ZERO:  # a: the sign (exact); 0 asks for the flat triangle
-            _flat_zero(c, g, e, d, a, b, n)
+            _flat_zero(c, g, h, e, d, a, b, n)
         elif opcode == MAXIMUM:
-            _maximum(c, g, e, d, a, b, radius, n)
+            _maximum(c, g, h, e, d, a, b, radius, n)
         elif opcode == UNBOUNDED:
             for j in range(n):
-                _unbounded(c, g, e, d, j)
+                _unbounded(c, g, h, e, d, j)
 
 
 @numba.njit(**_COMPILE)
-def model_range(c, g, e, radius, register, j):  # pragma: no cover - compiled
+def model_range(c, g, h, e, radius, register, j):  # pragma: no cover - compiled
     """The range [low, high] of a register's model over the box of column ``j``."""
     if register < 0:
         return 0.0, 0.0
-    deviation = _deviation(g, e, register, radius, j)
-    return rounded_down(c[register, j] - deviation), rounded_up(c[register, j] + deviation)
+    center, rest = linear_model(c, g, h, e, radius, register, j)
+    deviation = _up(_linear_bound(g, register, radius, j) + rest)
+    return rounded_down(center - deviation), rounded_up(center + deviation)
 
 
 @numba.njit(**_COMPILE)
-def new_registers(base_c, base_e, parameters, columns):  # pragma: no cover - compiled
-    """The registers (c, g, e, radius, scratch) of ``columns`` boxes of one instance
+def new_registers(base_c, base_e, parameters, columns, order):  # pragma: no cover - compiled
+    """The registers (c, g, h, e, radius, scratch) of ``columns`` boxes of one instance
     (``base_c``, ``base_e``: constants, known distances and link signs; NaN elsewhere),
-    every slope 0. Once per instance: a box then sets only its parameters and signs
-    (:func:`load_box`), as every other register is written by the program (in SSA form)
-    before it is read."""
+    every slope 0, for models of ``order`` 1 or 2. Once per instance: a box then sets only
+    its parameters and signs (:func:`load_box`), as every other register is written by the
+    program (in SSA form) before it is read."""
     registers = base_c.shape[0] + 1  # and a spare one, for 1/b in a ÷ b
     c, e = np.empty((registers, columns)), np.empty((registers, columns))
     g = np.zeros((parameters, registers, columns))
+    h = np.zeros((parameters * (parameters + 1) // 2 if order == 2 else 0, registers, columns))
     for r in range(base_c.shape[0]):  # loops: numba compiles slice assignments slowly (5 s here)
         for j in range(columns):
             c[r, j], e[r, j] = base_c[r], base_e[r]
-    return c, g, e, np.zeros((parameters, columns)), np.empty((3, columns))
+    return c, g, h, e, np.zeros((parameters, columns)), np.empty((_PRODUCTS + h.shape[0], columns))
 
 
 @numba.njit(**_COMPILE)
@@ -558,7 +730,7 @@ COLUMNS = 64
 
 @numba.njit(**_COMPILE)
 def _evaluate_boxes(instructions, base_c, base_e, initial, parameter_registers, sign_registers, box_lo, box_hi, signs,
-                    outputs, derivatives):  # pragma: no cover - compiled
+                    outputs, derivatives, order):  # pragma: no cover - compiled
     """:func:`evaluate_models` on each box (rows of ``box_lo``/``box_hi``, on the branch
     of the same row of ``signs``), COLUMNS at a time: the outputs' ranges, their
     derivatives' ranges (``derivatives``: (c, p) registers), and the status (from the
@@ -567,7 +739,7 @@ def _evaluate_boxes(instructions, base_c, base_e, initial, parameter_registers, 
     values = np.empty((count, outputs.shape[0], 2))
     jacobians = np.zeros((count, outputs.shape[0], parameters, 2))
     status = np.empty(count, dtype=np.int64)
-    c, g, e, radius, scratch = new_registers(base_c, base_e, parameters, COLUMNS)
+    c, g, h, e, radius, scratch = new_registers(base_c, base_e, parameters, COLUMNS, order)
     feasible = np.empty((0, COLUMNS))
     column_status = np.empty(COLUMNS, dtype=np.int64)
     for start in range(0, count, COLUMNS):
@@ -576,14 +748,14 @@ def _evaluate_boxes(instructions, base_c, base_e, initial, parameter_registers, 
             load_box(parameter_registers, sign_registers, box_lo[start + j], box_hi[start + j], signs[start + j],
                      c, g, e, radius, j)
             column_status[j] = initial
-        evaluate_models(instructions, c, g, e, radius, feasible, column_status, scratch, width)
+        evaluate_models(instructions, c, g, h, e, radius, feasible, column_status, scratch, width)
         for j in range(width):
             n = start + j
             status[n] = column_status[j]
             for m in range(outputs.shape[0]):
-                values[n, m, 0], values[n, m, 1] = model_range(c, g, e, radius, outputs[m], j)
+                values[n, m, 0], values[n, m, 1] = model_range(c, g, h, e, radius, outputs[m], j)
                 for k in range(parameters):
-                    jacobians[n, m, k, 0], jacobians[n, m, k, 1] = model_range(c, g, e, radius, derivatives[m, k], j)
+                    jacobians[n, m, k, 0], jacobians[n, m, k, 1] = model_range(c, g, h, e, radius, derivatives[m, k], j)
     return values, jacobians, status
 
 
@@ -618,7 +790,8 @@ def _instance_models(instructions, center, remainder):  # pragma: no cover - com
     as a box's, its slopes all 0), in place; the status they leave."""
     c, e = center.reshape((-1, 1)), remainder.reshape((-1, 1))
     status = np.full(1, FEASIBLE, dtype=np.int64)
-    evaluate_models(instructions, c, np.zeros((0, c.shape[0], 1)), e, np.zeros((0, 1)), np.empty((0, 1)), status,
+    empty = np.zeros((0, c.shape[0], 1))
+    evaluate_models(instructions, c, empty, empty, e, np.zeros((0, 1)), np.empty((0, 1)), status,
                     np.empty((3, 1)), 1)
     return status[0]
 
@@ -641,9 +814,10 @@ def enclosing(values) -> tuple[np.ndarray, np.ndarray]:
 
 
 def evaluate_boxes(program: IntervalProgram, known_lo: np.ndarray, known_hi: np.ndarray, fixed_signs: np.ndarray,
-                   box_lo: np.ndarray, box_hi: np.ndarray, signs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                   box_lo: np.ndarray, box_hi: np.ndarray, signs: np.ndarray,
+                   order: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each box (rows of ``box_lo``, ``box_hi``: (N, p)) on the branch of the same row of
-    ``signs`` (N, m): the ranges of the closure residuals' models (N, c, 2), of their
+    ``signs`` (N, m), in Taylor models of ``order`` 1 or 2: the ranges of the closure residuals' models (N, c, 2), of their
     partial derivatives' models (N, c, p, 2) and the box's status (N,): FEASIBLE, EDGE or
     INFEASIBLE (then the ranges are meaningless). O(N × instructions), compiled."""
     source = program.program
@@ -651,4 +825,4 @@ def evaluate_boxes(program: IntervalProgram, known_lo: np.ndarray, known_hi: np.
     return _evaluate_boxes(
         program.instructions, center, remainder, initial, source.parameter_registers, source.sign_registers,
         np.ascontiguousarray(box_lo, dtype=float), np.ascontiguousarray(box_hi, dtype=float),
-        np.ascontiguousarray(signs, dtype=float), source.residual_registers, program.residual_derivatives)
+        np.ascontiguousarray(signs, dtype=float), source.residual_registers, program.residual_derivatives, order)

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import operator
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -259,15 +259,18 @@ class StraightLineProgram:
 
 
 def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
-               sliders: Mapping | None = None) -> StraightLineProgram:
+               sliders: Mapping | None = None, radicand: Callable | None = None) -> StraightLineProgram:
     """The straight-line program of :meth:`CompiledSystem.profile <.evaluate.CompiledSystem.profile>`
     for ``plan``, with the squared distances of ``known_pairs``, the orientation signs of
     the link steps ``fixed_triangles`` and, with slider joints (``sliders``: joint →
     :class:`~.sliders.SliderGeometry`, whose numbers are read only for their layout), each
     slider's geometry as inputs, so that one program serves every instance of the plan
     (with the parameters as :class:`~.evaluate.CompiledSystem` maps them: a slider's t,
-    not its searched value). O(steps) instructions."""
-    recorder = Recorder()
+    not its searched value). ``radicand``: the form of the radicands of the steps whose
+    triangle does not bound a parameter (default :func:`~.bilateration.triangle_radicand`,
+    the float kernels'; the interval program's source takes
+    :func:`~.bilateration.small_term_radicand`). O(steps) instructions."""
+    recorder, form = Recorder(), radicand
     inputs = {pair: recorder.input() for pair in known_pairs}
     parameters = [recorder.input() for _ in plan.parameters]
     fixed = {triangle: recorder.input() for triangle in fixed_triangles}
@@ -293,6 +296,8 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
     def root(index, step, sides, radicand):
         if index in factored:
             radicand = factored_radicand(sides, factored[index], input_root)
+        elif form is not None:  # the kernel's radicand is then dead code, dropped
+            radicand = form(*sides)
         largest = traced_maximum(traced_maximum(sides[0], sides[1]), sides[2])
         relative[:] = [radicand / largest ** 2]
         noise = -RADICAND_NOISE * largest ** 2

@@ -1,6 +1,6 @@
 """The plan's straight-line program on intervals (closure/interval_program.py, issue 56):
 at every point of a box the exact value of each closure residual and of its partial
-derivatives lies in the computed intervals, with and without the mean-value tightening;
+derivatives lies in the computed intervals, in first- and second-order models;
 a box called infeasible holds no point where the branch's triangles exist. The oracle is
 the same program run on flint's arb balls at 256 bits, with forward-mode derivatives, at
 points of random boxes of random instances of every truss to nine links (coupling 1 and
@@ -116,6 +116,17 @@ def _instance(truss, seed):
     return rng, compiled, program, known, fixed, generating
 
 
+def _example(name: str):
+    """(scene, compiled system, interval program, known distances' enclosures, link
+    steps' signs) of examples/``name``."""
+    scene = load_scene(ROOT / "examples" / name)
+    compiled = compile_scene(scene, solvable_plan(scene))
+    program = compiled.straight_line_program()
+    known = enclosing([scene.known[pair] for pair in program.known_pairs])
+    fixed = np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float)
+    return scene, compiled, interval_program(program), known, fixed
+
+
 def _contains(interval, ball) -> bool:
     return float(interval[0]) <= float(ball.lower()) and float(ball.upper()) <= float(interval[1])
 
@@ -133,8 +144,9 @@ def test_the_intervals_hold_the_exact_values_at_every_point_of_the_box(truss, se
         width = size * 10.0 ** rng.uniform(-8, 0, p)
         low = generating - width * rng.uniform(0, 1, p) if draw % 3 else rng.uniform(0, 2 * size, p)
         branch = branches[rng.integers(len(branches))]
+        order = 1 + draw % 2  # first- and second-order models
         values, jacobians, status = evaluate_boxes(reduced, *enclosing(known), fixed, low[None], (low + width)[None],
-                                                   branch[None])
+                                                   branch[None], order=order)
         for point in low + width * rng.uniform(0, 1, (4, p)):
             feasible, residuals, gradients = _arb_program(reduced, known, fixed, point, branch)
             if status[0] == INFEASIBLE:
@@ -143,29 +155,25 @@ def test_the_intervals_hold_the_exact_values_at_every_point_of_the_box(truss, se
             if feasible is False:
                 continue
             for c, ball in enumerate(residuals):
-                assert _contains(values[0, c], ball), (values[0, c], ball)
+                assert _contains(values[0, c], ball), (order, values[0, c], ball)
                 if feasible and status[0] == FEASIBLE:
                     for k in range(p):
-                        assert _contains(jacobians[0, c, k], gradients[c][k]), k
+                        assert _contains(jacobians[0, c, k], gradients[c][k]), (order, k)
     ctx.prec = 53
 
 
 def test_the_models_are_tight_to_second_order():
     """7/B1 (the thesis example), the box [45, 45 + w] of s1,4 on every branch: the
     ranges of the residual and of its derivative exceed their true ranges (sampled) by
-    terms of order w²: measured, at w = 0.001 by at most 9 % and 1 %, at w = 0.01 by at
-    most 94 % and 23 % (the branch whose residual barely moves), at w = 1 by up to 27 and
-    11 times (plain interval arithmetic: 200 times at w = 0.001)."""
-    scene = load_scene(ROOT / "examples" / "7-B1.json")
-    compiled = compile_scene(scene, solvable_plan(scene))
-    program = compiled.straight_line_program()
-    reduced = interval_program(program)
-    known = enclosing([scene.known[pair] for pair in program.known_pairs])
-    fixed = np.array([compiled.fixed_signs[t] for t in program.fixed_triangles], float)
+    terms of order w²: measured (2026-11-29), at w = 0.001 by at most 6 % and 0.3 %, at
+    w = 0.01 by at most 60 % and 12 % (the branch whose residual barely moves), at w = 1 by
+    up to 17 and 6 times (plain interval arithmetic: 200 times at w = 0.001); in
+    second-order models by at most 1.2 % and 0.6 % at w = 0.01, 50 % and 21 % at w = 1."""
+    scene, compiled, reduced, known, fixed = _example("7-B1.json")
     branches = sign_branches(len(compiled.free_triangles)).astype(float)
-    for width, factor in ((0.001, 1.15), (0.01, 2.5)):
+    for order, width, factor in ((1, 0.001, 1.15), (1, 0.01, 2.5), (2, 0.01, 1.05), (2, 1.0, 2.0)):
         low = np.full((len(branches), 1), 45.0)
-        values, jacobians, status = evaluate_boxes(reduced, *known, fixed, low, low + width, branches)
+        values, jacobians, status = evaluate_boxes(reduced, *known, fixed, low, low + width, branches, order=order)
         assert (status == FEASIBLE).all()
         points = np.linspace(45.0, 45.0 + width, 401)
         residuals = compiled.residuals(points[:, None], branches)[..., 0]
@@ -173,3 +181,36 @@ def test_the_models_are_tight_to_second_order():
         for b in range(len(branches)):
             assert values[b, 0, 1] - values[b, 0, 0] <= factor * np.ptp(residuals[b]) + 1e-12
             assert jacobians[b, 0, 0, 1] - jacobians[b, 0, 0, 0] <= factor * np.ptp(slopes[b]) + 1e-12
+
+
+def test_second_order_models_are_tight_to_third_order():
+    """9/B28 (coupling 2), the box mode ± w about its mode at (s1,12, s1,11) ≈ (489.0,
+    441.1): the second-order models' ranges of both residuals and of their four partial
+    derivatives exceed the sampled ranges by terms of order w³, measured at w = 1 by
+    5.4 % of a residual's range and 12-22 % of a derivative's; the first-order models' by
+    terms of order w²: 3.4 times and 7-12 times (2026-11-29, the radicands in
+    closure/bilateration.py: small_term_radicand's form)."""
+    scene, compiled, reduced, known, fixed = _example("9-B28.json")
+    mode = np.array([489.02096252, 441.08647381])
+    signs = next(branch for branch in sign_branches(len(compiled.free_triangles)).astype(float)
+                 if np.abs(compiled.residuals(mode[None], branch[None])[0, 0]).max() < 1e-6)
+    grid = np.linspace(-1.0, 1.0, 41)
+    points = mode + np.array([[a, b] for a in grid for b in grid])
+    step = 1e-5
+    sampled = [compiled.residuals(points, signs[None])[0]]
+    for k in range(2):
+        shift = np.eye(2)[k] * step
+        sampled.append((compiled.residuals(points + shift, signs[None])[0]
+                        - compiled.residuals(points - shift, signs[None])[0]) / (2 * step))
+    excess = {}
+    for order in (1, 2):
+        values, jacobians, status = evaluate_boxes(reduced, *known, fixed, (mode - 1.0)[None], (mode + 1.0)[None],
+                                                   signs[None], order=order)
+        assert status[0] == FEASIBLE
+        ranges = [values[0]] + [jacobians[0, :, k] for k in range(2)]
+        for got, true in zip(ranges, sampled, strict=True):
+            assert (got[:, 0] <= true.min(axis=0) + 1e-12).all() and (true.max(axis=0) <= got[:, 1] + 1e-12).all()
+        excess[order] = [float(((got[:, 1] - got[:, 0]) / np.ptp(true, axis=0)).max() - 1)
+                         for got, true in zip(ranges, sampled, strict=True)]
+    assert excess[2][0] < 0.1 and max(excess[2][1:]) < 0.3, excess
+    assert excess[1][0] > 2 and max(excess[1][1:]) > 5, excess

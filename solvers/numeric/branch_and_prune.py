@@ -59,6 +59,7 @@ from baranov.closure.interval_program import (
     evaluate_models,
     instance_registers,
     interval_program,
+    linear_model,
     load_box,
     model_range,
     new_registers,
@@ -164,6 +165,9 @@ def _newton_image(a, b, g0, g1, center, rest):  # pragma: no cover - compiled
     return rounded_down(m - q1), rounded_up(m - q0)
 
 
+#: The order of the Taylor models the boxes are decided with (1 or 2).
+ORDER = 1
+
 #: The work on a box (:func:`_prune`): search it; test the box about f's linear model's
 #: root for exactly one root; contract a box known to hold exactly one root.
 SEARCH, CERTIFY, CONTRACT = 0, 1, 2
@@ -178,15 +182,15 @@ def _evaluated(instructions, values, registers, feasible, status, starts, residu
     part [z0, z1] of the box where the triangles at an edge can exist and f's linear model
     vanish); status EXCLUDED where that part is empty. f′'s models are computed only if
     some box is FEASIBLE and not excluded."""
-    c, g, e, radius, scratch = registers
+    c, g, h, e, radius, scratch = registers
     for j in range(count):
         status[j] = starts[j]
         feasible[0, j], feasible[1, j] = -np.inf, np.inf
-    evaluate_models(instructions[:values], c, g, e, radius, feasible, status, scratch, count)
+    evaluate_models(instructions[:values], c, g, h, e, radius, feasible, status, scratch, count)
     needed = False
     for j in range(count):
         a, b = low[j], high[j]
-        center, slope, rest = c[residual, j], g[0, residual, j], e[residual, j]
+        (center, rest), slope = linear_model(c, g, h, e, radius, residual, j), g[0, residual, j]
         middle = 0.5 * (a + b)
         z0, z1 = max(a, rounded_down(middle + feasible[0, j])), min(b, rounded_up(middle + feasible[1, j]))
         if status[j] != INFEASIBLE:
@@ -196,10 +200,10 @@ def _evaluated(instructions, values, registers, feasible, status, starts, residu
         out[j, 4], out[j, 5], out[j, 6], out[j, 7] = -np.inf, np.inf, z0, z1
         needed = needed or kind == FEASIBLE
     if needed:
-        evaluate_models(instructions[values:], c, g, e, radius, feasible, status, scratch, count)
+        evaluate_models(instructions[values:], c, g, h, e, radius, feasible, status, scratch, count)
         for j in range(count):
             if out[j, 0] == FEASIBLE:
-                out[j, 4], out[j, 5] = model_range(c, g, e, radius, derivative, j)
+                out[j, 4], out[j, 5] = model_range(c, g, h, e, radius, derivative, j)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -232,7 +236,7 @@ def _split(stack, unresolved, a, b, k, status, z0, z1, minimum_width):  # pragma
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def _prune(instructions, values, instance_c, instance_e, starts, instance_outputs, parameter, sign_registers, branches,
-           residual, derivative, low, high, minimum_width, budget, columns, record):  # pragma: no cover - compiled
+           residual, derivative, low, high, minimum_width, budget, columns, record, order):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_instances` over every branch of every
     instance (the first ``values`` instructions compute the values, the rest the
     derivatives; instance i's registers ``instance_c[i]``, ``instance_e[i]``, its status
@@ -240,8 +244,8 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
     instances, each round one evaluation of the program side by side. A box's branch
     index k stands for branch k mod B of instance k // B. With ``record``, every box
     evaluated is logged: (low, high, branch index, work kind, decision, f monotone, status)."""
-    registers = new_registers(instance_c[0], instance_e[0], 1, columns)
-    c, g, e, radius, _ = registers
+    registers = new_registers(instance_c[0], instance_e[0], 1, columns, order)
+    c, g, _, e, radius, _ = registers
     feasible, status, out = np.empty((2, columns)), np.empty(columns, dtype=np.int64), np.empty((columns, 8))
     column_starts = np.empty(columns, dtype=np.int64)
     parameters, box_low, box_high = np.array([parameter]), np.empty(1), np.empty(1)
@@ -422,6 +426,7 @@ def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: 
     O(instances × boxes × instructions), without Python work per box. ``record``: each
     result's ``boxes`` lists the boxes evaluated (a diagnostic: where the boxes go)."""
     reduced = interval_program(program)
+    source = reduced.program  # the program traced for intervals: its own registers
     registers = [instance_registers(reduced, *arguments) for arguments in inputs]
     low, high = (np.array([float(domain[end]) for domain in domains]) for end in (0, 1))
     count = len(branches)
@@ -430,10 +435,10 @@ def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: 
                                       np.array([center for center, _, _ in registers]),
                                       np.array([remainder for _, remainder, _ in registers]),
                                       np.array([status for _, _, status in registers], dtype=np.int64),
-                                      reduced.instance_outputs, int(program.parameter_registers[0]),
-                                      program.sign_registers, np.ascontiguousarray(branches, dtype=float),
-                                      int(program.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
-                                      low, high, minimum_width * high, budget, columns, record)
+                                      reduced.instance_outputs, int(source.parameter_registers[0]),
+                                      source.sign_registers, np.ascontiguousarray(branches, dtype=float),
+                                      int(source.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
+                                      low, high, minimum_width * high, budget, columns, record, ORDER)
     owner_found, owner_left = found[:, 2] // count, left[:, 2] // count
     pruned = []
     for i in range(len(inputs)):

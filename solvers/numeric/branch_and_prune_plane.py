@@ -125,17 +125,17 @@ def _examine(instructions, values, start, work, parameters, sign_registers, sign
     """Decide ``box`` (lo0, hi0, lo1, hi1) on the branch ``signs`` by one evaluation:
     (_EXCLUDED | _CERTIFIED | _UNDECIDED, status); ``narrowed`` (4,) receives the box cut to
     where roots can be (the Krawczyk image for a certified box)."""
-    c, g, e, radii, scratch, feasible, statuses, low, high = work  # one column: one box
+    c, g, h, e, radii, scratch, feasible, statuses, low, high = work  # one column: one box
     low[0], high[0], low[1], high[1] = box[0], box[1], box[2], box[3]
     models.load_box(parameters, sign_registers, low, high, signs, c, g, e, radii, 0)
     statuses[0] = start  # the instance's status
-    models.evaluate_models(instructions[:values], c, g, e, radii, feasible, statuses, scratch, 1)
+    models.evaluate_models(instructions[:values], c, g, h, e, radii, feasible, statuses, scratch, 1)
     status, radius = statuses[0], radii[:, 0].copy()
     if status == models.INFEASIBLE:
         return _EXCLUDED, status
     center, rest, slopes = np.empty(2), np.empty(2), np.empty((2, 2))
     for i in range(2):
-        center[i], rest[i] = c[residuals[i], 0], e[residuals[i], 0]
+        center[i], rest[i] = models.linear_model(c, g, h, e, radii, residuals[i], 0)
         slopes[i, 0], slopes[i, 1] = g[0, residuals[i], 0], g[1, residuals[i], 0]
     u_low, u_high = -radius.copy(), radius.copy()
     if not _hull_consistent(center, slopes, rest, u_low, u_high):
@@ -146,11 +146,11 @@ def _examine(instructions, values, start, work, parameters, sign_registers, sign
         narrowed[2 * k + 1] = min(high[k], models.rounded_up(middle[k] + u_high[k]))
     if status != models.FEASIBLE:
         return _UNDECIDED, status
-    models.evaluate_models(instructions[values:], c, g, e, radii, feasible, statuses, scratch, 1)
+    models.evaluate_models(instructions[values:], c, g, h, e, radii, feasible, statuses, scratch, 1)
     jacobian, image = np.empty((2, 2, 2)), np.empty((2, 2))
     for i in range(2):
         for k in range(2):
-            jacobian[i, k, 0], jacobian[i, k, 1] = models.model_range(c, g, e, radii, derivatives[i, k], 0)
+            jacobian[i, k, 0], jacobian[i, k, 1] = models.model_range(c, g, h, e, radii, derivatives[i, k], 0)
     if not _krawczyk(middle, radius, center, rest, jacobian, image):
         return _UNDECIDED, status
     inside = True
@@ -188,9 +188,9 @@ def _contracted(instructions, values, start, work, parameters, sign_registers, s
 
 @numba.njit(**_COMPILE)
 def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_registers, branches, residuals, derivatives,
-                 domain, minimum_width, budget):  # pragma: no cover - compiled
+                 domain, minimum_width, budget, order):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_two_parameters` over every branch."""
-    work = (*models.new_registers(base_c, base_e, 2, 1), np.empty((0, 1)), np.empty(1, dtype=np.int64),
+    work = (*models.new_registers(base_c, base_e, 2, 1, order), np.empty((0, 1)), np.empty(1, dtype=np.int64),
             np.empty(2), np.empty(2))
     stack = [(domain.copy(), 0)]
     stack.pop()
@@ -266,7 +266,8 @@ def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_r
 
 def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
                          domain: tuple[tuple[float, float], tuple[float, float]], exact_known=None,
-                         minimum_width: float = MINIMUM_WIDTH, budget: int = EVALUATION_BUDGET) -> PrunedRoots:
+                         minimum_width: float = MINIMUM_WIDTH, budget: int = EVALUATION_BUDGET,
+                         order: int = 2) -> PrunedRoots:
     """Every real root of a coupling-2 plan's two closure conditions in ``domain`` (one
     interval per parameter holding every mode: :func:`~.branch_and_prune.searched_box`)
     on each of ``branches`` (B, m), certified or left in a named undecided box (module
@@ -283,9 +284,9 @@ def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
     box = np.array([float(end) for interval in domain for end in interval])
     derivatives = np.ascontiguousarray(reduced.residual_derivatives, dtype=np.int64)
     found, left, evaluations = _prune_plane(
-        reduced.instructions, reduced.values, base_c, base_e, start, np.ascontiguousarray(program.parameter_registers),
-        program.sign_registers, np.ascontiguousarray(branches, dtype=float),
-        np.ascontiguousarray(program.residual_registers), derivatives, box, minimum_width, budget)
+        reduced.instructions, reduced.values, base_c, base_e, start, np.ascontiguousarray(reduced.program.parameter_registers),
+        reduced.program.sign_registers, np.ascontiguousarray(branches, dtype=float),
+        np.ascontiguousarray(reduced.program.residual_registers), derivatives, box, minimum_width, budget, order)
     return PrunedRoots(_distinct(found), left, evaluations, tuple(map(tuple, box.reshape(2, 2))))
 
 
