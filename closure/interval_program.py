@@ -65,7 +65,8 @@ a root, to keep what follows linear in it, saved 11 % of the boxes on 7/B1 and 1
 nine-link truss but cost as much in a third symbol on every operation: the same times.)
 With one
 parameter the radicand's model also bounds the part of the box where the triangle can
-exist (c + g u + e ≥ 0): a contraction of the box towards its feasible side. The float program's rounding guard (a
+exist (c + Σ g_k u_k + e ≥ 0, one linear inequality's hull consistency, with one
+parameter or two): a contraction of the box towards its feasible side. The float program's rounding guard (a
 radicand a rounding error below 0 taken as 0) is not applied: the models hold the values
 of exact arithmetic. The free signs and the link steps' orientation signs are exact (±1,
 or 0 for a flat triangle); the program's constants are small integers and powers of two
@@ -545,13 +546,8 @@ def _root(c, g, h, e, d, a, radius, feasible, status, n):  # pragma: no cover - 
             _proper_root(c, g, h, e, d, a, radius, deviation, low, j)
         else:
             status[j] = max(status[j], EDGE)
-            if feasible.shape[0] == 2 and parameters == 1 and g[0, a, j] != 0.0:  # one parameter
-                center, rest = linear_model(c, g, h, e, radius, a, j)
-                reach = rounded_up(center + rest)  # c + g u + e ≥ 0 for some u
-                if g[0, a, j] > 0.0:
-                    feasible[0, j] = max(feasible[0, j], rounded_down(-reach / g[0, a, j]))
-                else:
-                    feasible[1, j] = min(feasible[1, j], rounded_up(-reach / g[0, a, j]))
+            if feasible.shape[0] == 2 * parameters:
+                _feasible_part(c, g, h, e, a, radius, feasible, j)
             # where the radicand x is in [0, r²] (the rest of the box is infeasible),
             # x/r ≤ √x ≤ x/r + r/4 (chord and parallel tangent): a model that keeps x's slopes
             r = rounded_up(np.sqrt(high))
@@ -564,6 +560,32 @@ def _root(c, g, h, e, d, a, radius, feasible, status, n):  # pragma: no cover - 
                 h[q, d, j] = h[q, a, j] / r
             magnitude += _quadratic_bound(h, d, radius, j)
             c[d, j], e[d, j] = c[a, j] / r + eighth, _up(e[a, j] / r + eighth + _SLACK * magnitude)
+
+
+@numba.njit(inline="always", **_COMPILE)
+def _feasible_part(c, g, h, e, a, radius, feasible, j):  # pragma: no cover - compiled
+    """Narrow ``feasible`` (rows 2k, 2k + 1: the range of u_k, column ``j``) to where the
+    radicand in register ``a`` can be ≥ 0: its first-order model c + Σ g_k u_k ± e is, only
+    where g_k u_k ≥ −(c + e) − max Σ_{l≠k} g_l u_l over the others' ranges (the hull
+    consistency of one linear inequality; one pass over the axes)."""
+    center, rest = linear_model(c, g, h, e, radius, a, j)
+    reach = rounded_up(center + rest)
+    parameters = g.shape[0]
+    for k in range(parameters):
+        slope = g[k, a, j]
+        if slope == 0.0:
+            continue
+        others = 0.0
+        for m in range(parameters):
+            if m != k:
+                low = max(feasible[2 * m, j], -radius[m, j])
+                high = min(feasible[2 * m + 1, j], radius[m, j])
+                others = rounded_up(others + max(g[m, a, j] * low, g[m, a, j] * high))
+        bound = rounded_up(reach + others)
+        if slope > 0.0:
+            feasible[2 * k, j] = max(feasible[2 * k, j], rounded_down(-bound / slope))
+        else:
+            feasible[2 * k + 1, j] = min(feasible[2 * k + 1, j], rounded_up(-bound / slope))
 
 
 @numba.njit(inline="always", **_COMPILE)
@@ -646,9 +668,9 @@ def evaluate_models(instructions, c, g, h, e, radius, feasible, status, scratch,
     boxes' half-widths; ``scratch`` (5 + q, K)), over the first ``n`` columns (the boxes
     loaded: a round need not fill them all). Each column's ``status`` (K,), FEASIBLE on
     entry, is set to EDGE where a radicand's range holds 0 and INFEASIBLE where one is
-    certainly below 0 (the column's later values are then meaningless). With one
-    parameter, ``feasible`` (2, K) is narrowed to the range of u_0 where every radicand at
-    an edge can be ≥ 0 (an array (0, K): not asked)."""
+    certainly below 0 (the column's later values are then meaningless). ``feasible``
+    (2p, K), rows 2k and 2k + 1 the range of u_k (from ±∞), is narrowed to where every
+    radicand at an edge can be ≥ 0 (an array (0, K): not asked)."""
     spare = c.shape[0] - 1
     q, parameters = 0, (g.shape[0] if h.shape[0] > 0 else 0)
     for k in range(parameters):  # second order: ρ_k ρ_l, a row per term u_k u_l

@@ -129,6 +129,8 @@ def _examine(instructions, values, start, work, parameters, sign_registers, sign
     low[0], high[0], low[1], high[1] = box[0], box[1], box[2], box[3]
     models.load_box(parameters, sign_registers, low, high, signs, c, g, e, radii, 0)
     statuses[0] = start  # the instance's status
+    for k in range(4):
+        feasible[k, 0] = -np.inf if k % 2 == 0 else np.inf
     models.evaluate_models(instructions[:values], c, g, h, e, radii, feasible, statuses, scratch, 1)
     status, radius = statuses[0], radii[:, 0].copy()
     if status == models.INFEASIBLE:
@@ -137,7 +139,12 @@ def _examine(instructions, values, start, work, parameters, sign_registers, sign
     for i in range(2):
         center[i], rest[i] = models.linear_model(c, g, h, e, radii, residuals[i], 0)
         slopes[i, 0], slopes[i, 1] = g[0, residuals[i], 0], g[1, residuals[i], 0]
-    u_low, u_high = -radius.copy(), radius.copy()
+    # where the triangles at an edge can exist (the radicands' models), then where both
+    # conditions' models can vanish
+    u_low = np.array([max(-radius[0], feasible[0, 0]), max(-radius[1], feasible[2, 0])])
+    u_high = np.array([min(radius[0], feasible[1, 0]), min(radius[1], feasible[3, 0])])
+    if u_low[0] > u_high[0] or u_low[1] > u_high[1]:
+        return _EXCLUDED, status
     if not _hull_consistent(center, slopes, rest, u_low, u_high):
         return _EXCLUDED, status
     middle = np.array([c[parameters[0], 0], c[parameters[1], 0]])
@@ -190,7 +197,7 @@ def _contracted(instructions, values, start, work, parameters, sign_registers, s
 def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_registers, branches, residuals, derivatives,
                  domain, minimum_width, budget, order):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_two_parameters` over every branch."""
-    work = (*models.new_registers(base_c, base_e, 2, 1, order), np.empty((0, 1)), np.empty(1, dtype=np.int64),
+    work = (*models.new_registers(base_c, base_e, 2, 1, order), np.empty((4, 1)), np.empty(1, dtype=np.int64),
             np.empty(2), np.empty(2))
     stack = [(domain.copy(), 0)]
     stack.pop()
