@@ -209,6 +209,7 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
                  after_step: Callable[[int, Any, Point], bool] | None = None,
                  slider_step: Callable[[int, Any, dict, Fraction2, Callable], Point | None] | None = None,
                  slider_frame: Callable[[], tuple[dict[str, Point], Fraction2] | None] | None = None,
+                 radicand: Callable = triangle_radicand,
                  ) -> tuple[dict[str, Point], Fraction2, Callable[[str, str], Fraction2]]:
     """Every joint of ``plan`` placed by bilateration, one step after another (thesis
     §2.5), in one arithmetic: the single kernel that numeric residuals, ball placements,
@@ -240,6 +241,10 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
     slider_frame
         for a reference pair that holds a slider, the frame on its axis:
         the other joint placed, and s_ref (world units: 1); None otherwise.
+    radicand
+        ``radicand(s_ij, s_ik, s_jk, multiply)``: a step's 16 A² from its sides,
+        :func:`triangle_radicand` (every arithmetic but the interval program's
+        source, which takes :func:`small_term_radicand`).
 
     Returns
     -------
@@ -269,8 +274,7 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
         placed = slider_step(index, step, points, reference, distance) if slider_step is not None else None
         if placed is None:
             sides = common_sides(distance(i, j), distance(i, k), distance(j, k), multiply)
-            radicand = triangle_radicand(*sides, multiply)
-            root = signed_root(index, step, sides, radicand)
+            root = signed_root(index, step, sides, radicand(*sides, multiply))
             placed = points[k] = reduced_point(bilaterated(points[i], points[j], sides, root, multiply))
         if after_step is not None and after_step(index, step, placed) is False:
             break

@@ -52,8 +52,10 @@ A range c + Σ h_kk ρ_k²/2 ± (L + Σ_k |h_kk| ρ_k²/2 + Σ_{k<l} |h_kl| ρ_k
 square's term lies in [0, h_kk ρ_k²]); what decides a box reads the first-order model
 that is (:func:`linear_model`). On 9/B28 about a mode, a box of half-width 1 gives the
 residuals' ranges 5 % wider than their sampled ranges and the derivatives' 12-22 %
-(first order: 3.4 and 7-12 times); `tests/test_interval_program.py`. A product costs
-about twice as much.
+(first order: 3.4 and 7-12 times); `tests/test_interval_program.py`. A box costs about
+2.5 times as much (7/B1). The quadratic terms h are an argument of the compiled
+arithmetic, None for first order (:func:`quadratic_terms`), so that numba compiles each
+order apart.
 
 Square roots of a step. A radicand whose range is certainly negative makes the box
 *infeasible* on that branch (:data:`INFEASIBLE`). A range that holds 0 is a domain edge in
@@ -354,7 +356,7 @@ def _quadratic_bound(h, r, radius, j):  # pragma: no cover - compiled
     """Q = Σ|h_kl| ρ_k ρ_l of register ``r`` in column ``j`` (0 for first-order models;
     not rounded)."""
     total, q = 0.0, 0
-    if h.shape[0] == 0:
+    if h is None:
         return total
     for k in range(radius.shape[0]):
         for m in range(k, radius.shape[0]):
@@ -377,7 +379,7 @@ def linear_model(c, g, h, e, radius, r, j):  # pragma: no cover - compiled
     [0, h_kk ρ_k²], moves the center by half its range and adds the other half to the
     remainder, a product's term h_kl u_k u_l adds its bound. The model itself for
     first-order models."""
-    if h.shape[0] == 0:
+    if h is None:
         return c[r, j], e[r, j]
     center, rest, q = c[r, j], e[r, j], 0
     for k in range(radius.shape[0]):
@@ -398,8 +400,9 @@ def _unbounded(c, g, h, e, d, j):  # pragma: no cover - compiled
     c[d, j], e[d, j] = 0.0, np.inf
     for k in range(g.shape[0]):
         g[k, d, j] = 0.0
-    for q in range(h.shape[0]):
-        h[q, d, j] = 0.0
+    if h is not None:
+        for q in range(h.shape[0]):
+            h[q, d, j] = 0.0
 
 
 @numba.njit(inline="always", **_COMPILE)
@@ -410,9 +413,10 @@ def _copy(c, g, h, e, d, a, sign, n):  # pragma: no cover - compiled
     for k in range(g.shape[0]):
         for j in range(n):
             g[k, d, j] = sign * g[k, a, j]
-    for q in range(h.shape[0]):
-        for j in range(n):
-            h[q, d, j] = sign * h[q, a, j]
+    if h is not None:
+        for q in range(h.shape[0]):
+            for j in range(n):
+                h[q, d, j] = sign * h[q, a, j]
 
 
 @numba.njit(inline="always", **_COMPILE)
@@ -425,10 +429,11 @@ def _sum(c, g, h, e, d, a, b, sign, radius, scratch, n):  # pragma: no cover - c
         for j in range(n):
             magnitude[j] += (abs(g[k, a, j]) + abs(g[k, b, j])) * radius[k, j]
             g[k, d, j] = g[k, a, j] + sign * g[k, b, j]
-    for q in range(h.shape[0]):
-        for j in range(n):
-            h[q, d, j] = h[q, a, j] + sign * h[q, b, j]
-            magnitude[j] += (abs(h[q, a, j]) + abs(h[q, b, j])) * scratch[_PRODUCTS + q, j]
+    if h is not None:
+        for q in range(h.shape[0]):
+            for j in range(n):
+                h[q, d, j] = h[q, a, j] + sign * h[q, b, j]
+                magnitude[j] += (abs(h[q, a, j]) + abs(h[q, b, j])) * scratch[_PRODUCTS + q, j]
     for j in range(n):
         c[d, j], e[d, j] = c[a, j] + sign * c[b, j], _up(e[a, j] + e[b, j] + _SLACK * magnitude[j])
 
@@ -461,38 +466,47 @@ def _product(c, g, h, e, d, a, b, radius, scratch, n):  # pragma: no cover - com
             x, y = c[a, j] * slope_b, c[b, j] * slope_a
             magnitude[j] += (abs(x) + abs(y)) * radius[k, j]
             g[k, d, j] = x + y
-    if h.shape[0] == 0:
+    if h is None:
         for j in range(n):
             ca, cb = c[a, j], c[b, j]
             c[d, j] = ca * cb
             e[d, j] = _up(abs(ca) * e[b, j] + abs(cb) * e[a, j] + _up(linear_a[j] + e[a, j]) * _up(linear_b[j] + e[b, j])
                           + _SLACK * magnitude[j])
     else:
-        quadratic_a, quadratic_b = scratch[3], scratch[4]
-        for j in range(n):
-            quadratic_a[j], quadratic_b[j] = 0.0, 0.0
-        q = 0
-        for k in range(g.shape[0]):
-            for m in range(k, g.shape[0]):
-                for j in range(n):
-                    cross = g[k, a, j] * g[k, b, j] if k == m else g[k, a, j] * g[m, b, j] + g[m, a, j] * g[k, b, j]
-                    h[q, d, j] = c[a, j] * h[q, b, j] + c[b, j] * h[q, a, j] + cross
-                    quadratic_a[j] += abs(h[q, a, j]) * scratch[_PRODUCTS + q, j]
-                    quadratic_b[j] += abs(h[q, b, j]) * scratch[_PRODUCTS + q, j]
-                    magnitude[j] += (abs(c[a, j] * h[q, b, j]) + abs(c[b, j] * h[q, a, j]) + abs(cross)
-                                     ) * scratch[_PRODUCTS + q, j]
-                q += 1
-        for j in range(n):
-            ca, cb = c[a, j], c[b, j]
-            c[d, j] = ca * cb
-            rest_a, rest_b = _up(quadratic_a[j] + e[a, j]), _up(quadratic_b[j] + e[b, j])
-            e[d, j] = _up(abs(ca) * e[b, j] + abs(cb) * e[a, j] + _up(linear_a[j]) * rest_b
-                          + rest_a * _up(linear_b[j] + rest_b) + _SLACK * magnitude[j])
+        _second_order_product(c, g, h, e, d, a, b, radius, scratch, n)
     # an unbounded factor (e = ∞) gives ∞ or 0 × ∞ = NaN: checked after the arithmetic,
     # in a loop of its own, so that the arithmetic's loops stay free of branches
     for j in range(n):
         if not e[d, j] < np.inf:
             _unbounded(c, g, h, e, d, j)
+
+
+@numba.njit(**_COMPILE)
+def _second_order_product(c, g, h, e, d, a, b, radius, scratch, n):  # pragma: no cover - compiled
+    """The quadratic terms and the remainder of :func:`_product` for second-order models
+    (its slopes and scratch rows 0-2 filled in). Not inlined: the first-order loops stay
+    as small as they were (inlined, this code made a first-order box 30 % slower)."""
+    linear_a, linear_b, magnitude = scratch[0], scratch[1], scratch[2]
+    quadratic_a, quadratic_b = scratch[3], scratch[4]
+    for j in range(n):
+        quadratic_a[j], quadratic_b[j] = 0.0, 0.0
+    q = 0
+    for k in range(g.shape[0]):
+        for m in range(k, g.shape[0]):
+            for j in range(n):
+                cross = g[k, a, j] * g[k, b, j] if k == m else g[k, a, j] * g[m, b, j] + g[m, a, j] * g[k, b, j]
+                h[q, d, j] = c[a, j] * h[q, b, j] + c[b, j] * h[q, a, j] + cross
+                quadratic_a[j] += abs(h[q, a, j]) * scratch[_PRODUCTS + q, j]
+                quadratic_b[j] += abs(h[q, b, j]) * scratch[_PRODUCTS + q, j]
+                magnitude[j] += (abs(c[a, j] * h[q, b, j]) + abs(c[b, j] * h[q, a, j]) + abs(cross)
+                                 ) * scratch[_PRODUCTS + q, j]
+            q += 1
+    for j in range(n):
+        ca, cb = c[a, j], c[b, j]
+        c[d, j] = ca * cb
+        rest_a, rest_b = _up(quadratic_a[j] + e[a, j]), _up(quadratic_b[j] + e[b, j])
+        e[d, j] = _up(abs(ca) * e[b, j] + abs(cb) * e[a, j] + _up(linear_a[j]) * rest_b
+                      + rest_a * _up(linear_b[j] + rest_b) + _SLACK * magnitude[j])
 
 
 @numba.njit(**_COMPILE)
@@ -514,18 +528,18 @@ def _reciprocal(c, g, h, e, d, b, radius, n):  # pragma: no cover - compiled
             g[k, d, j] = -g[k, b, j] * square
             magnitude += abs(g[k, d, j]) * radius[k, j]
         c[d, j] = center
-        if h.shape[0] == 0:
+        if h is None:
             e[d, j] = _up(_up(e[b, j] * square + deviation * deviation * square / nearest + _SLACK * magnitude))
-            continue
-        cube = square * center
-        for q in range(h.shape[0]):
-            h[q, d, j] = -h[q, b, j] * square
-        _square_terms(h, g, d, b, b, cube, j)
-        magnitude += _quadratic_bound(h, d, radius, j)
-        linear = _up(_linear_bound(g, b, radius, j))
-        rest = _up(_quadratic_bound(h, b, radius, j) + e[b, j])
-        e[d, j] = _up(_up(e[b, j] * square + (2.0 * linear * rest + rest * rest) * abs(cube)
-                          + deviation * deviation * deviation * abs(cube) / nearest) + _SLACK * magnitude)
+        else:
+            cube = square * center
+            for q in range(h.shape[0]):
+                h[q, d, j] = -h[q, b, j] * square
+            _square_terms(h, g, d, b, b, cube, j)
+            magnitude += _quadratic_bound(h, d, radius, j)
+            linear = _up(_linear_bound(g, b, radius, j))
+            rest = _up(_quadratic_bound(h, b, radius, j) + e[b, j])
+            e[d, j] = _up(_up(e[b, j] * square + (2.0 * linear * rest + rest * rest) * abs(cube)
+                              + deviation * deviation * deviation * abs(cube) / nearest) + _SLACK * magnitude)
 
 
 @numba.njit(**_COMPILE)
@@ -556,8 +570,9 @@ def _root(c, g, h, e, d, a, radius, feasible, status, n):  # pragma: no cover - 
             for k in range(parameters):
                 g[k, d, j] = g[k, a, j] / r
                 magnitude += abs(g[k, d, j]) * radius[k, j]
-            for q in range(h.shape[0]):
-                h[q, d, j] = h[q, a, j] / r
+            if h is not None:
+                for q in range(h.shape[0]):
+                    h[q, d, j] = h[q, a, j] / r
             magnitude += _quadratic_bound(h, d, radius, j)
             c[d, j], e[d, j] = c[a, j] / r + eighth, _up(e[a, j] / r + eighth + _SLACK * magnitude)
 
@@ -602,11 +617,12 @@ def _proper_root(c, g, h, e, d, a, radius, deviation, low, j):  # pragma: no cov
     for k in range(g.shape[0]):
         g[k, d, j] = g[k, a, j] / twice
         magnitude += abs(g[k, d, j]) * radius[k, j]
-    for q in range(h.shape[0]):
-        h[q, d, j] = h[q, a, j] / twice
+    if h is not None:
+        for q in range(h.shape[0]):
+            h[q, d, j] = h[q, a, j] / twice
     c[d, j] = root
     first = _up(deviation * deviation / (twice * (floor + root) * (floor + root) * (1.0 - _SLACK)))
-    if h.shape[0] > 0:
+    if h is not None:
         linear = _up(_linear_bound(g, a, radius, j))
         rest = _up(_quadratic_bound(h, a, radius, j) + e[a, j])
         eighth = 1.0 / (8.0 * c[a, j] * root) * (1.0 + 4 * _SLACK)
@@ -634,16 +650,18 @@ def _maximum(c, g, h, e, d, a, b, radius, n):  # pragma: no cover - compiled
             c[d, j], e[d, j] = c[larger, j], e[larger, j]
             for k in range(g.shape[0]):
                 g[k, d, j] = g[k, larger, j]
-            for q in range(h.shape[0]):
-                h[q, d, j] = h[q, larger, j]
+            if h is not None:
+                for q in range(h.shape[0]):
+                    h[q, d, j] = h[q, larger, j]
             continue
         low = max(c[a, j] - deviation_a, c[b, j] - deviation_b)
         high = max(c[a, j] + deviation_a, c[b, j] + deviation_b)
         c[d, j], e[d, j] = 0.5 * (low + high), _up(0.5 * (high - low) + _SLACK * (abs(low) + abs(high)))
         for k in range(g.shape[0]):
             g[k, d, j] = 0.0
-        for q in range(h.shape[0]):
-            h[q, d, j] = 0.0
+        if h is not None:
+            for q in range(h.shape[0]):
+                h[q, d, j] = 0.0
 
 
 @numba.njit(**_COMPILE)
@@ -655,8 +673,9 @@ def _flat_zero(c, g, h, e, d, a, b, n):  # pragma: no cover - compiled
         c[d, j], e[d, j] = (0.0, 0.0) if flat else (c[b, j], e[b, j])
         for k in range(g.shape[0]):
             g[k, d, j] = 0.0 if flat else g[k, b, j]
-        for q in range(h.shape[0]):
-            h[q, d, j] = 0.0 if flat else h[q, b, j]
+        if h is not None:
+            for q in range(h.shape[0]):
+                h[q, d, j] = 0.0 if flat else h[q, b, j]
 
 
 @numba.njit(**_COMPILE)
@@ -672,12 +691,13 @@ def evaluate_models(instructions, c, g, h, e, radius, feasible, status, scratch,
     (2p, K), rows 2k and 2k + 1 the range of u_k (from ±∞), is narrowed to where every
     radicand at an edge can be ≥ 0 (an array (0, K): not asked)."""
     spare = c.shape[0] - 1
-    q, parameters = 0, (g.shape[0] if h.shape[0] > 0 else 0)
-    for k in range(parameters):  # second order: ρ_k ρ_l, a row per term u_k u_l
-        for m in range(k, parameters):
-            for j in range(n):
-                scratch[_PRODUCTS + q, j] = radius[k, j] * radius[m, j]
-            q += 1
+    if h is not None:  # second order: ρ_k ρ_l, a row per term u_k u_l
+        q = 0
+        for k in range(g.shape[0]):
+            for m in range(k, g.shape[0]):
+                for j in range(n):
+                    scratch[_PRODUCTS + q, j] = radius[k, j] * radius[m, j]
+                q += 1
     for index in range(instructions.shape[0]):
         opcode, d, a, b = instructions[index, 0], instructions[index, 1], instructions[index, 2], instructions[index, 3]
         if opcode == MULTIPLY:
@@ -713,20 +733,31 @@ def model_range(c, g, h, e, radius, register, j):  # pragma: no cover - compiled
 
 
 @numba.njit(**_COMPILE)
-def new_registers(base_c, base_e, parameters, columns, order):  # pragma: no cover - compiled
-    """The registers (c, g, h, e, radius, scratch) of ``columns`` boxes of one instance
+def new_registers(base_c, base_e, parameters, columns):  # pragma: no cover - compiled
+    """The registers (c, g, e, radius, scratch) of ``columns`` boxes of one instance
     (``base_c``, ``base_e``: constants, known distances and link signs; NaN elsewhere),
-    every slope 0, for models of ``order`` 1 or 2. Once per instance: a box then sets only
-    its parameters and signs (:func:`load_box`), as every other register is written by the
-    program (in SSA form) before it is read."""
+    every slope 0. Once per instance: a box then sets only its parameters and signs
+    (:func:`load_box`), as every other register is written by the program (in SSA form)
+    before it is read. Second-order models add :func:`quadratic_terms`."""
     registers = base_c.shape[0] + 1  # and a spare one, for 1/b in a ÷ b
     c, e = np.empty((registers, columns)), np.empty((registers, columns))
     g = np.zeros((parameters, registers, columns))
-    h = np.zeros((parameters * (parameters + 1) // 2 if order == 2 else 0, registers, columns))
     for r in range(base_c.shape[0]):  # loops: numba compiles slice assignments slowly (5 s here)
         for j in range(columns):
             c[r, j], e[r, j] = base_c[r], base_e[r]
-    return c, g, h, e, np.zeros((parameters, columns)), np.empty((_PRODUCTS + h.shape[0], columns))
+    return c, g, e, np.zeros((parameters, columns)), np.empty((_PRODUCTS + parameters * (parameters + 1) // 2, columns))
+
+
+def quadratic_terms(order: int, parameters: int, registers: int, columns: int) -> np.ndarray | None:
+    """The quadratic coefficients h (q, R + 1, K) of second-order models (q = p(p + 1)/2,
+    zero), or None for first order: the compiled arithmetic is specialised on it, so that
+    first-order models run the first-order code alone (with the second-order code beside
+    it, measured 30 % slower a box)."""
+    if order == 1:
+        return None
+    if order != 2:
+        raise ValueError(f"order {order}: Taylor models of order 1 or 2")
+    return np.zeros((parameters * (parameters + 1) // 2, registers + 1, columns))
 
 
 @numba.njit(**_COMPILE)
@@ -752,7 +783,7 @@ COLUMNS = 64
 
 @numba.njit(**_COMPILE)
 def _evaluate_boxes(instructions, base_c, base_e, initial, parameter_registers, sign_registers, box_lo, box_hi, signs,
-                    outputs, derivatives, order):  # pragma: no cover - compiled
+                    outputs, derivatives, h):  # pragma: no cover - compiled
     """:func:`evaluate_models` on each box (rows of ``box_lo``/``box_hi``, on the branch
     of the same row of ``signs``), COLUMNS at a time: the outputs' ranges, their
     derivatives' ranges (``derivatives``: (c, p) registers), and the status (from the
@@ -761,7 +792,7 @@ def _evaluate_boxes(instructions, base_c, base_e, initial, parameter_registers, 
     values = np.empty((count, outputs.shape[0], 2))
     jacobians = np.zeros((count, outputs.shape[0], parameters, 2))
     status = np.empty(count, dtype=np.int64)
-    c, g, h, e, radius, scratch = new_registers(base_c, base_e, parameters, COLUMNS, order)
+    c, g, e, radius, scratch = new_registers(base_c, base_e, parameters, COLUMNS)
     feasible = np.empty((0, COLUMNS))
     column_status = np.empty(COLUMNS, dtype=np.int64)
     for start in range(0, count, COLUMNS):
@@ -812,8 +843,7 @@ def _instance_models(instructions, center, remainder):  # pragma: no cover - com
     as a box's, its slopes all 0), in place; the status they leave."""
     c, e = center.reshape((-1, 1)), remainder.reshape((-1, 1))
     status = np.full(1, FEASIBLE, dtype=np.int64)
-    empty = np.zeros((0, c.shape[0], 1))
-    evaluate_models(instructions, c, empty, empty, e, np.zeros((0, 1)), np.empty((0, 1)), status,
+    evaluate_models(instructions, c, np.zeros((0, c.shape[0], 1)), None, e, np.zeros((0, 1)), np.empty((0, 1)), status,
                     np.empty((3, 1)), 1)
     return status[0]
 
@@ -847,4 +877,5 @@ def evaluate_boxes(program: IntervalProgram, known_lo: np.ndarray, known_hi: np.
     return _evaluate_boxes(
         program.instructions, center, remainder, initial, source.parameter_registers, source.sign_registers,
         np.ascontiguousarray(box_lo, dtype=float), np.ascontiguousarray(box_hi, dtype=float),
-        np.ascontiguousarray(signs, dtype=float), source.residual_registers, program.residual_derivatives, order)
+        np.ascontiguousarray(signs, dtype=float), source.residual_registers, program.residual_derivatives,
+        quadratic_terms(order, len(source.parameter_registers), len(center), COLUMNS))

@@ -30,7 +30,14 @@ from typing import Any
 
 import numpy as np
 
-from .bilateration import RADICAND_NOISE, dehomogenised, factored_radicand, parameter_triangles, place_joints
+from .bilateration import (
+    RADICAND_NOISE,
+    dehomogenised,
+    factored_radicand,
+    parameter_triangles,
+    place_joints,
+    triangle_radicand,
+)
 
 #: NaN as one object, so that the recorder keeps one register for it (NaN ≠ NaN).
 NOT_A_NUMBER = float("nan")
@@ -266,10 +273,11 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
     :class:`~.sliders.SliderGeometry`, whose numbers are read only for their layout), each
     slider's geometry as inputs, so that one program serves every instance of the plan
     (with the parameters as :class:`~.evaluate.CompiledSystem` maps them: a slider's t,
-    not its searched value). ``radicand``: the form of the radicands of the steps whose
-    triangle does not bound a parameter (default :func:`~.bilateration.triangle_radicand`,
+    not its searched value). ``radicand``: the form of the steps' triangle radicands
+    (:func:`~.bilateration.place_joints`'s; default :func:`~.bilateration.triangle_radicand`,
     the float kernels'; the interval program's source takes
-    :func:`~.bilateration.small_term_radicand`). O(steps) instructions."""
+    :func:`~.bilateration.small_term_radicand`), but for the triangles that bound a
+    parameter (:func:`~.bilateration.factored_radicand`). O(steps) instructions."""
     recorder, form = Recorder(), radicand
     inputs = {pair: recorder.input() for pair in known_pairs}
     parameters = [recorder.input() for _ in plan.parameters]
@@ -296,8 +304,6 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
     def root(index, step, sides, radicand):
         if index in factored:
             radicand = factored_radicand(sides, factored[index], input_root)
-        elif form is not None:  # the kernel's radicand is then dead code, dropped
-            radicand = form(*sides)
         largest = traced_maximum(traced_maximum(sides[0], sides[1]), sides[2])
         relative[:] = [radicand / largest ** 2]
         noise = -RADICAND_NOISE * largest ** 2
@@ -327,7 +333,8 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
                                         if frozenset((u, v)) in parameter_index else None, root)
     points, (reference, _), distance = place_joints(
         plan, known, root, reduced_point=dehomogenised, after_step=after_step,
-        slider_step=hooks.slider_step if hooks else None, slider_frame=hooks.slider_frame if hooks else None)
+        slider_step=hooks.slider_step if hooks else None, slider_frame=hooks.slider_frame if hooks else None,
+        radicand=form or triangle_radicand)
     residuals = []
     for u, v in plan.closure_pairs:
         if hooks and (u in sliders or v in sliders):

@@ -63,6 +63,7 @@ from baranov.closure.interval_program import (
     load_box,
     model_range,
     new_registers,
+    quadratic_terms,
     rounded_down,
     rounded_up,
 )
@@ -174,7 +175,7 @@ SEARCH, CERTIFY, CONTRACT = 0, 1, 2
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _evaluated(instructions, values, registers, feasible, status, starts, residual, derivative, low, high, count,
+def _evaluated(instructions, values, registers, h, feasible, status, starts, residual, derivative, low, high, count,
                out):  # pragma: no cover - compiled
     """Evaluate the boxes [low[j], high[j]] loaded in the first ``count`` columns (their
     status starting from their instance's, ``starts[j]``): row j of
@@ -182,7 +183,7 @@ def _evaluated(instructions, values, registers, feasible, status, starts, residu
     part [z0, z1] of the box where the triangles at an edge can exist and f's linear model
     vanish); status EXCLUDED where that part is empty. f′'s models are computed only if
     some box is FEASIBLE and not excluded."""
-    c, g, h, e, radius, scratch = registers
+    c, g, e, radius, scratch = registers
     for j in range(count):
         status[j] = starts[j]
         feasible[0, j], feasible[1, j] = -np.inf, np.inf
@@ -236,7 +237,7 @@ def _split(stack, unresolved, a, b, k, status, z0, z1, minimum_width):  # pragma
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def _prune(instructions, values, instance_c, instance_e, starts, instance_outputs, parameter, sign_registers, branches,
-           residual, derivative, low, high, minimum_width, budget, columns, record, order):  # pragma: no cover - compiled
+           residual, derivative, low, high, minimum_width, budget, columns, record, h):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_instances` over every branch of every
     instance (the first ``values`` instructions compute the values, the rest the
     derivatives; instance i's registers ``instance_c[i]``, ``instance_e[i]``, its status
@@ -244,8 +245,8 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
     instances, each round one evaluation of the program side by side. A box's branch
     index k stands for branch k mod B of instance k // B. With ``record``, every box
     evaluated is logged: (low, high, branch index, work kind, decision, f monotone, status)."""
-    registers = new_registers(instance_c[0], instance_e[0], 1, columns, order)
-    c, g, _, e, radius, _ = registers
+    registers = new_registers(instance_c[0], instance_e[0], 1, columns)
+    c, g, e, radius, _ = registers
     feasible, status, out = np.empty((2, columns)), np.empty(columns, dtype=np.int64), np.empty((columns, 8))
     column_starts = np.empty(columns, dtype=np.int64)
     parameters, box_low, box_high = np.array([parameter]), np.empty(1), np.empty(1)
@@ -295,7 +296,7 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
             batch.append(item)
         if len(batch) == 0:
             continue
-        _evaluated(instructions, values, registers, feasible, status, column_starts, residual, derivative, lows, highs,
+        _evaluated(instructions, values, registers, h, feasible, status, column_starts, residual, derivative, lows, highs,
                    used, out)
         for n in range(len(batch)):
             j = slots[n]
@@ -438,7 +439,8 @@ def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: 
                                       reduced.instance_outputs, int(source.parameter_registers[0]),
                                       source.sign_registers, np.ascontiguousarray(branches, dtype=float),
                                       int(source.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
-                                      low, high, minimum_width * high, budget, columns, record, ORDER)
+                                      low, high, minimum_width * high, budget, columns, record,
+                                      quadratic_terms(ORDER, 1, len(registers[0][0]), columns))
     owner_found, owner_left = found[:, 2] // count, left[:, 2] // count
     pruned = []
     for i in range(len(inputs)):

@@ -195,9 +195,10 @@ def _contracted(instructions, values, start, work, parameters, sign_registers, s
 
 @numba.njit(**_COMPILE)
 def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_registers, branches, residuals, derivatives,
-                 domain, minimum_width, budget, order):  # pragma: no cover - compiled
+                 domain, minimum_width, budget, h):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_two_parameters` over every branch."""
-    work = (*models.new_registers(base_c, base_e, 2, 1, order), np.empty((4, 1)), np.empty(1, dtype=np.int64),
+    c, g, e, radii, scratch = models.new_registers(base_c, base_e, 2, 1)
+    work = (c, g, h, e, radii, scratch, np.empty((4, 1)), np.empty(1, dtype=np.int64),
             np.empty(2), np.empty(2))
     stack = [(domain.copy(), 0)]
     stack.pop()
@@ -293,7 +294,8 @@ def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
     found, left, evaluations = _prune_plane(
         reduced.instructions, reduced.values, base_c, base_e, start, np.ascontiguousarray(reduced.program.parameter_registers),
         reduced.program.sign_registers, np.ascontiguousarray(branches, dtype=float),
-        np.ascontiguousarray(reduced.program.residual_registers), derivatives, box, minimum_width, budget, order)
+        np.ascontiguousarray(reduced.program.residual_registers), derivatives, box, minimum_width, budget,
+        models.quadratic_terms(order, 2, len(base_c), 1))
     return PrunedRoots(_distinct(found), left, evaluations, tuple(map(tuple, box.reshape(2, 2))))
 
 
