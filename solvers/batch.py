@@ -69,9 +69,10 @@ def solve_many(scene: Scene, instances: Iterable, columns: Sequence[str] | None 
     the instances in that many processes (the plan is searched before they start, and
     each inherits it where processes fork).
 
-    Cost: the plan search once, then a single solve's per instance (7/B1, numeric: 19.8 ms
-    per instance in one process, 10.6 ms with two workers; docs/solving.md, "Many instances of one
-    linkage"); the work of one process is not yet shared across instances.
+    Cost: the plan search once; with the numeric method in one process, one
+    branch-and-prune over the boxes of every instance side by side and one verification
+    of all their roots (7/B1: about 1 ms an instance, docs/bench/numeric-speed.md), an
+    instance not certified so solved alone; else a single solve's per instance.
 
     >>> from baranov.scene import load_scene
     >>> scene = load_scene("examples/7-B1.json")
