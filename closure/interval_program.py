@@ -573,7 +573,7 @@ def _root(c, g, h, e, d, a, radius, feasible, status, n):  # pragma: no cover - 
             if h is not None:
                 for q in range(h.shape[0]):
                     h[q, d, j] = h[q, a, j] / r
-            magnitude += _quadratic_bound(h, d, radius, j)
+                magnitude += _quadratic_bound(h, d, radius, j)
             c[d, j], e[d, j] = c[a, j] / r + eighth, _up(e[a, j] / r + eighth + _SLACK * magnitude)
 
 
@@ -617,12 +617,11 @@ def _proper_root(c, g, h, e, d, a, radius, deviation, low, j):  # pragma: no cov
     for k in range(g.shape[0]):
         g[k, d, j] = g[k, a, j] / twice
         magnitude += abs(g[k, d, j]) * radius[k, j]
-    if h is not None:
-        for q in range(h.shape[0]):
-            h[q, d, j] = h[q, a, j] / twice
     c[d, j] = root
     first = _up(deviation * deviation / (twice * (floor + root) * (floor + root) * (1.0 - _SLACK)))
     if h is not None:
+        for q in range(h.shape[0]):
+            h[q, d, j] = h[q, a, j] / twice
         linear = _up(_linear_bound(g, a, radius, j))
         rest = _up(_quadratic_bound(h, a, radius, j) + e[a, j])
         eighth = 1.0 / (8.0 * c[a, j] * root) * (1.0 + 4 * _SLACK)

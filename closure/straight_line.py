@@ -266,7 +266,7 @@ class StraightLineProgram:
 
 
 def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
-               sliders: Mapping | None = None, radicand: Callable | None = None) -> StraightLineProgram:
+               sliders: Mapping | None = None, radicand: Callable = triangle_radicand) -> StraightLineProgram:
     """The straight-line program of :meth:`CompiledSystem.profile <.evaluate.CompiledSystem.profile>`
     for ``plan``, with the squared distances of ``known_pairs``, the orientation signs of
     the link steps ``fixed_triangles`` and, with slider joints (``sliders``: joint →
@@ -278,7 +278,7 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
     the float kernels'; the interval program's source takes
     :func:`~.bilateration.small_term_radicand`), but for the triangles that bound a
     parameter (:func:`~.bilateration.factored_radicand`). O(steps) instructions."""
-    recorder, form = Recorder(), radicand
+    recorder = Recorder()
     inputs = {pair: recorder.input() for pair in known_pairs}
     parameters = [recorder.input() for _ in plan.parameters]
     fixed = {triangle: recorder.input() for triangle in fixed_triangles}
@@ -301,14 +301,14 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
             return parameters[parameter_index[pair]], 1
         return None
 
-    def root(index, step, sides, radicand):
+    def root(index, step, sides, area16):
         if index in factored:
-            radicand = factored_radicand(sides, factored[index], input_root)
+            area16 = factored_radicand(sides, factored[index], input_root)
         largest = traced_maximum(traced_maximum(sides[0], sides[1]), sides[2])
-        relative[:] = [radicand / largest ** 2]
+        relative[:] = [area16 / largest ** 2]
         noise = -RADICAND_NOISE * largest ** 2
         sign = signs[index] if step.free_sign else fixed[step.triangle]
-        guarded = recorder.emit(GUARDED_ROOT, recorder.operand(radicand), recorder.operand(noise))
+        guarded = recorder.emit(GUARDED_ROOT, recorder.operand(area16), recorder.operand(noise))
         signed = sign * guarded
         if step.free_sign:
             margins.append(relative[0])
@@ -334,7 +334,7 @@ def trace_plan(plan, known_pairs: tuple[frozenset, ...], fixed_triangles: tuple,
     points, (reference, _), distance = place_joints(
         plan, known, root, reduced_point=dehomogenised, after_step=after_step,
         slider_step=hooks.slider_step if hooks else None, slider_frame=hooks.slider_frame if hooks else None,
-        radicand=form or triangle_radicand)
+        radicand=radicand)
     residuals = []
     for u, v in plan.closure_pairs:
         if hooks and (u in sliders or v in sliders):

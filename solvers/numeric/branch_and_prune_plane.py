@@ -291,10 +291,11 @@ def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
     base_c, base_e, start = models.instance_registers(reduced, *inputs)
     box = np.array([float(end) for interval in domain for end in interval])
     derivatives = np.ascontiguousarray(reduced.residual_derivatives, dtype=np.int64)
+    source = reduced.program  # the program traced for intervals: its own registers
     found, left, evaluations = _prune_plane(
-        reduced.instructions, reduced.values, base_c, base_e, start, np.ascontiguousarray(reduced.program.parameter_registers),
-        reduced.program.sign_registers, np.ascontiguousarray(branches, dtype=float),
-        np.ascontiguousarray(reduced.program.residual_registers), derivatives, box, minimum_width, budget,
+        reduced.instructions, reduced.values, base_c, base_e, start, np.ascontiguousarray(source.parameter_registers),
+        source.sign_registers, np.ascontiguousarray(branches, dtype=float),
+        np.ascontiguousarray(source.residual_registers), derivatives, box, minimum_width, budget,
         models.quadratic_terms(order, 2, len(base_c), 1))
     return PrunedRoots(_distinct(found), left, evaluations, tuple(map(tuple, box.reshape(2, 2))))
 
