@@ -62,10 +62,19 @@ Square roots of a step. A radicand whose range is certainly negative makes the b
 the box (:data:`EDGE`): the root, which exists only on the part of the box where its
 radicand x is in [0, r²] (r ≥ √U), is enclosed there by the chord and the parallel
 tangent, x/r ≤ √x ≤ x/r + r/4, a model that keeps x's slopes, and its derivative is
-unbounded. (A symbol of its own for such
-a root, to keep what follows linear in it, saved 11 % of the boxes on 7/B1 and 16 % on a
-nine-link truss but cost as much in a third symbol on every operation: the same times.)
-With one
+unbounded.
+
+Edge symbols. Registers made by :func:`new_registers` with more symbols than parameters
+carry *edge symbols* besides the box's parameters (rows k ≥ p of g, radius 0 until
+taken, then 1): the uncertainty r/8 of a root at an edge (:func:`_edge_root`), and the
+remainder of a proper root above 5 % of its linear part's bound (beside an edge, where
+the radicand varies by a large factor over the box: :func:`_remainder_symbol`), each
+become a symbol of their own, so that they are counted once however often the root is
+used and cancel where the values cancel (affine arithmetic's new noise symbols). The
+two-parameter search takes two (on 9/B28 down to boxes of 2⁻⁸ of the sides, 79 946 →
+43 989 boxes, 7 → 8 of 14 modes certified, the time about the same: a box costs twice
+as much); in one parameter, where an edge is a point, a symbol saved 11 % of the boxes
+on 7/B1 and 16 % on a nine-link truss but cost as much a box, so it takes none. With one
 parameter the radicand's model also bounds the part of the box where the triangle can
 exist (c + Σ g_k u_k + e ≥ 0, one linear inequality's hull consistency, with one
 parameter or two): a contraction of the box towards its feasible side. The float program's rounding guard (a
@@ -316,6 +325,9 @@ _SLACK = 2.0**-50
 _PRODUCTS = 5
 #: An absolute slack covering underflow (at most 2^-1074 per operation).
 _TINY = 1e-300
+#: A proper root's remainder above this share of its linear part's bound becomes a symbol
+#: of its own where one is free (:func:`_remainder_symbol`).
+_SYMBOL_REMAINDER = 0.05
 
 
 @numba.njit(inline="always", **_COMPILE)
@@ -373,15 +385,20 @@ def _deviation(g, h, e, r, radius, j):  # pragma: no cover - compiled
 
 
 @numba.njit(inline="always", **_COMPILE)
-def linear_model(c, g, h, e, radius, r, j):  # pragma: no cover - compiled
-    """(center, remainder) of the first-order model that register ``r``'s model is over
-    the box of column ``j`` (its slopes unchanged): a square's term h_kk u_k², in
-    [0, h_kk ρ_k²], moves the center by half its range and adds the other half to the
-    remainder, a product's term h_kl u_k u_l adds its bound. The model itself for
-    first-order models."""
-    if h is None:
+def linear_model(c, g, h, e, radius, r, j, parameters):  # pragma: no cover - compiled
+    """(center, remainder) of the first-order model in the first ``parameters`` symbols
+    (the box's parameters) that register ``r``'s model is over the box of column ``j``
+    (their slopes unchanged): a square's term h_kk u_k², in [0, h_kk ρ_k²], moves the
+    center by half its range and adds the other half to the remainder, a product's term
+    h_kl u_k u_l adds its bound, and an edge symbol's term g_k u_k (k ≥ ``parameters``)
+    its bound. The model itself for first-order models without edge symbols."""
+    if h is None and parameters == g.shape[0]:
         return c[r, j], e[r, j]
     center, rest, q = c[r, j], e[r, j], 0
+    for k in range(parameters, g.shape[0]):
+        rest += abs(g[k, r, j]) * radius[k, j]
+    if h is None:
+        return center, _up(rest + _SLACK * (abs(center) + rest))
     for k in range(radius.shape[0]):
         for m in range(k, radius.shape[0]):
             bound = abs(h[q, r, j]) * radius[k, j] * radius[m, j]
@@ -543,10 +560,10 @@ def _reciprocal(c, g, h, e, d, b, radius, n):  # pragma: no cover - compiled
 
 
 @numba.njit(**_COMPILE)
-def _root(c, g, h, e, d, a, radius, feasible, status, n):  # pragma: no cover - compiled
+def _root(c, g, h, e, d, a, radius, feasible, status, scratch, parameters, n):  # pragma: no cover - compiled
     """Model d = √a, and each column's status worsened by its step (module docstring);
-    at an edge, the chord model, and ``feasible`` narrowed."""
-    parameters = g.shape[0]
+    at an edge, the chord model (with an edge symbol of its own where one is free), and
+    ``feasible`` narrowed."""
     for j in range(n):
         deviation = _deviation(g, h, e, a, radius, j)
         low, high = rounded_down(c[a, j] - deviation), rounded_up(c[a, j] + deviation)
@@ -558,34 +575,80 @@ def _root(c, g, h, e, d, a, radius, feasible, status, n):  # pragma: no cover - 
             _unbounded(c, g, h, e, d, j)
         elif low > 0.0:
             _proper_root(c, g, h, e, d, a, radius, deviation, low, j)
+            if parameters < g.shape[0] and e[d, j] > _SYMBOL_REMAINDER * _linear_bound(g, d, radius, j):
+                _remainder_symbol(g, h, e, d, radius, scratch, parameters, j)
         else:
             status[j] = max(status[j], EDGE)
             if feasible.shape[0] == 2 * parameters:
-                _feasible_part(c, g, h, e, a, radius, feasible, j)
-            # where the radicand x is in [0, r²] (the rest of the box is infeasible),
-            # x/r ≤ √x ≤ x/r + r/4 (chord and parallel tangent): a model that keeps x's slopes
-            r = rounded_up(np.sqrt(high))
-            eighth = 0.125 * r
-            magnitude = abs(c[a, j]) / r + eighth
-            for k in range(parameters):
-                g[k, d, j] = g[k, a, j] / r
-                magnitude += abs(g[k, d, j]) * radius[k, j]
-            if h is not None:
-                for q in range(h.shape[0]):
-                    h[q, d, j] = h[q, a, j] / r
-                magnitude += _quadratic_bound(h, d, radius, j)
-            c[d, j], e[d, j] = c[a, j] / r + eighth, _up(e[a, j] / r + eighth + _SLACK * magnitude)
+                _feasible_part(c, g, h, e, a, radius, feasible, parameters, j)
+            _edge_root(c, g, h, e, d, a, radius, scratch, parameters, rounded_up(np.sqrt(high)), j)
 
 
 @numba.njit(inline="always", **_COMPILE)
-def _feasible_part(c, g, h, e, a, radius, feasible, j):  # pragma: no cover - compiled
-    """Narrow ``feasible`` (rows 2k, 2k + 1: the range of u_k, column ``j``) to where the
-    radicand in register ``a`` can be ≥ 0: its first-order model c + Σ g_k u_k ± e is, only
-    where g_k u_k ≥ −(c + e) − max Σ_{l≠k} g_l u_l over the others' ranges (the hull
-    consistency of one linear inequality; one pass over the axes)."""
-    center, rest = linear_model(c, g, h, e, radius, a, j)
+def _edge_root(c, g, h, e, d, a, radius, scratch, parameters, r, j):  # pragma: no cover - compiled
+    """Model d = √a where a's range [L, U] holds 0 and r ≥ √U: where the radicand x is in
+    [0, r²] (the rest of the box is infeasible), x/r ≤ √x ≤ x/r + r/4 (chord and parallel
+    tangent), so √x = x/r + r/8 + (r/8) ε with some ε in [−1, 1] at each point: ε is an
+    *edge symbol* of its own (a row k ≥ ``parameters`` of g whose radius is still 0, then
+    set to 1), so that what follows stays linear in it and its uncertainty is counted once
+    however often the root is used (affine arithmetic's new noise symbol: Stolfi and de
+    Figueiredo 1997); where every edge symbol is taken, r/8 goes to the remainder."""
+    eighth = 0.125 * r  # exact: r/8 is r with its exponent lowered
+    magnitude = abs(c[a, j]) / r + eighth
+    for k in range(g.shape[0]):
+        g[k, d, j] = g[k, a, j] / r
+        magnitude += abs(g[k, d, j]) * radius[k, j]
+    if h is not None:
+        for q in range(h.shape[0]):
+            h[q, d, j] = h[q, a, j] / r
+        magnitude += _quadratic_bound(h, d, radius, j)
+    rest = eighth
+    for k in range(parameters, g.shape[0]):
+        if radius[k, j] == 0.0:  # a free edge symbol: a had no term in it
+            g[k, d, j], radius[k, j], rest = eighth, 1.0, 0.0
+            if h is not None:
+                _products(radius, scratch, j)
+            break
+    c[d, j], e[d, j] = c[a, j] / r + eighth, _up(e[a, j] / r + rest + _SLACK * magnitude)
+
+
+@numba.njit(inline="always", **_COMPILE)
+def _remainder_symbol(g, h, e, d, radius, scratch, parameters, j):  # pragma: no cover - compiled
+    """Register d's remainder e made a symbol of its own, where one is free: at each point
+    of the box the remainder is e ε for some ε in [−1, 1], and what follows stays linear
+    in that ε (where the radicand varies by a large factor over the box, e.g. next to a
+    flat triangle, √'s remainder is a large part of its range, and values that cancel in
+    exact arithmetic cancel in their symbols' terms, not in their remainders: on a 9/B28
+    box beside a domain edge, two values whose difference varies by 0.006 had remainders
+    of 0.1 each)."""
+    for k in range(parameters, g.shape[0]):
+        if radius[k, j] == 0.0:
+            g[k, d, j], radius[k, j], e[d, j] = e[d, j], 1.0, 0.0
+            if h is not None:
+                _products(radius, scratch, j)
+            return
+
+
+@numba.njit(inline="always", **_COMPILE)
+def _products(radius, scratch, j):  # pragma: no cover - compiled
+    """The bounds ρ_k ρ_l of the second-order terms u_k u_l (k ≤ l) of column ``j``, into
+    ``scratch``'s rows from _PRODUCTS."""
+    q = 0
+    for k in range(radius.shape[0]):
+        for m in range(k, radius.shape[0]):
+            scratch[_PRODUCTS + q, j] = radius[k, j] * radius[m, j]
+            q += 1
+
+
+@numba.njit(inline="always", **_COMPILE)
+def _feasible_part(c, g, h, e, a, radius, feasible, parameters, j):  # pragma: no cover - compiled
+    """Narrow ``feasible`` (rows 2k, 2k + 1: the range of the parameter u_k, column ``j``)
+    to where the radicand in register ``a`` can be ≥ 0: its first-order model
+    c + Σ g_k u_k ± e is, only where g_k u_k ≥ −(c + e) − max Σ_{l≠k} g_l u_l over the
+    others' ranges (the hull consistency of one linear inequality; one pass over the
+    axes)."""
+    center, rest = linear_model(c, g, h, e, radius, a, j, parameters)
     reach = rounded_up(center + rest)
-    parameters = g.shape[0]
     for k in range(parameters):
         slope = g[k, a, j]
         if slope == 0.0:
@@ -678,7 +741,8 @@ def _flat_zero(c, g, h, e, d, a, b, n):  # pragma: no cover - compiled
 
 
 @numba.njit(**_COMPILE)
-def evaluate_models(instructions, c, g, h, e, radius, feasible, status, scratch, n):  # pragma: no cover - compiled
+def evaluate_models(instructions, c, g, h, e, radius, feasible, status, scratch, parameters, n
+                    ):  # pragma: no cover - compiled
     """Run the differentiated program's ``instructions`` on the registers' models of K
     boxes side by side (``c`` (R + 1, K), ``g`` (p, R + 1, K), ``h`` (q, R + 1, K),
     ``e`` (R + 1, K): the program's R registers and a scratch one, the inputs filled in;
@@ -691,12 +755,8 @@ def evaluate_models(instructions, c, g, h, e, radius, feasible, status, scratch,
     radicand at an edge can be ≥ 0 (an array (0, K): not asked)."""
     spare = c.shape[0] - 1
     if h is not None:  # second order: ρ_k ρ_l, a row per term u_k u_l
-        q = 0
-        for k in range(g.shape[0]):
-            for m in range(k, g.shape[0]):
-                for j in range(n):
-                    scratch[_PRODUCTS + q, j] = radius[k, j] * radius[m, j]
-                q += 1
+        for j in range(n):
+            _products(radius, scratch, j)
     for index in range(instructions.shape[0]):
         opcode, d, a, b = instructions[index, 0], instructions[index, 1], instructions[index, 2], instructions[index, 3]
         if opcode == MULTIPLY:
@@ -711,7 +771,7 @@ def evaluate_models(instructions, c, g, h, e, radius, feasible, status, scratch,
         elif opcode == NEGATE:
             _copy(c, g, h, e, d, a, -1.0, n)
         elif opcode == GUARDED_ROOT:
-            _root(c, g, h, e, d, a, radius, feasible, status, n)
+            _root(c, g, h, e, d, a, radius, feasible, status, scratch, parameters, n)
         elif opcode == FLAT_ZERO:  # a: the sign (exact); 0 asks for the flat triangle
             _flat_zero(c, g, h, e, d, a, b, n)
         elif opcode == MAXIMUM:
@@ -726,43 +786,45 @@ def model_range(c, g, h, e, radius, register, j):  # pragma: no cover - compiled
     """The range [low, high] of a register's model over the box of column ``j``."""
     if register < 0:
         return 0.0, 0.0
-    center, rest = linear_model(c, g, h, e, radius, register, j)
+    center, rest = linear_model(c, g, h, e, radius, register, j, g.shape[0])
     deviation = _up(_linear_bound(g, register, radius, j) + rest)
     return rounded_down(center - deviation), rounded_up(center + deviation)
 
 
 @numba.njit(**_COMPILE)
-def new_registers(base_c, base_e, parameters, columns):  # pragma: no cover - compiled
+def new_registers(base_c, base_e, symbols, columns):  # pragma: no cover - compiled
     """The registers (c, g, e, radius, scratch) of ``columns`` boxes of one instance
     (``base_c``, ``base_e``: constants, known distances and link signs; NaN elsewhere),
-    every slope 0. Once per instance: a box then sets only its parameters and signs
-    (:func:`load_box`), as every other register is written by the program (in SSA form)
-    before it is read. Second-order models add :func:`quadratic_terms`."""
+    every slope 0, over ``symbols`` symbols: the box's parameters, then any edge symbols
+    (:func:`_edge_root`). Once per instance: a box then sets only its parameters and
+    signs (:func:`load_box`), as every other register is written by the program (in SSA
+    form) before it is read. Second-order models add :func:`quadratic_terms`."""
     registers = base_c.shape[0] + 1  # and a spare one, for 1/b in a ÷ b
     c, e = np.empty((registers, columns)), np.empty((registers, columns))
-    g = np.zeros((parameters, registers, columns))
+    g = np.zeros((symbols, registers, columns))
     for r in range(base_c.shape[0]):  # loops: numba compiles slice assignments slowly (5 s here)
         for j in range(columns):
             c[r, j], e[r, j] = base_c[r], base_e[r]
-    return c, g, e, np.zeros((parameters, columns)), np.empty((_PRODUCTS + parameters * (parameters + 1) // 2, columns))
+    return c, g, e, np.zeros((symbols, columns)), np.empty((_PRODUCTS + symbols * (symbols + 1) // 2, columns))
 
 
-def quadratic_terms(order: int, parameters: int, registers: int, columns: int) -> np.ndarray | None:
-    """The quadratic coefficients h (q, R + 1, K) of second-order models (q = p(p + 1)/2,
-    zero), or None for first order: the compiled arithmetic is specialised on it, so that
+def quadratic_terms(order: int, symbols: int, registers: int, columns: int) -> np.ndarray | None:
+    """The quadratic coefficients h (q, R + 1, K) of second-order models in ``symbols``
+    symbols (q = p(p + 1)/2 for p symbols, zero), or None for first order: the compiled arithmetic is specialised on it, so that
     first-order models run the first-order code alone (with the second-order code beside
     it, measured 30 % slower a box)."""
     if order == 1:
         return None
     if order != 2:
         raise ValueError(f"order {order}: Taylor models of order 1 or 2")
-    return np.zeros((parameters * (parameters + 1) // 2, registers + 1, columns))
+    return np.zeros((symbols * (symbols + 1) // 2, registers + 1, columns))
 
 
 @numba.njit(**_COMPILE)
 def load_box(parameter_registers, sign_registers, low, high, signs, c, g, e, radius, j):  # pragma: no cover - compiled
     """The box [low, high] (p,) and the branch ``signs`` into column ``j`` of registers
-    made by :func:`new_registers`; its half-widths into ``radius``."""
+    made by :func:`new_registers`; its half-widths into ``radius``, and every edge symbol
+    free (radius 0)."""
     for k in range(low.shape[0]):
         r = parameter_registers[k]
         middle = 0.5 * (low[k] + high[k])
@@ -770,6 +832,8 @@ def load_box(parameter_registers, sign_registers, low, high, signs, c, g, e, rad
         for q in range(g.shape[0]):
             g[q, r, j] = 1.0 if q == k else 0.0
         radius[k, j] = rounded_up(max(middle - low[k], high[k] - middle))
+    for k in range(low.shape[0], radius.shape[0]):
+        radius[k, j] = 0.0
     for k in range(sign_registers.shape[0]):
         c[sign_registers[k], j], e[sign_registers[k], j] = signs[k], 0.0
 
@@ -782,7 +846,7 @@ COLUMNS = 64
 
 @numba.njit(**_COMPILE)
 def _evaluate_boxes(instructions, base_c, base_e, initial, parameter_registers, sign_registers, box_lo, box_hi, signs,
-                    outputs, derivatives, h):  # pragma: no cover - compiled
+                    outputs, derivatives, h, symbols):  # pragma: no cover - compiled
     """:func:`evaluate_models` on each box (rows of ``box_lo``/``box_hi``, on the branch
     of the same row of ``signs``), COLUMNS at a time: the outputs' ranges, their
     derivatives' ranges (``derivatives``: (c, p) registers), and the status (from the
@@ -791,7 +855,7 @@ def _evaluate_boxes(instructions, base_c, base_e, initial, parameter_registers, 
     values = np.empty((count, outputs.shape[0], 2))
     jacobians = np.zeros((count, outputs.shape[0], parameters, 2))
     status = np.empty(count, dtype=np.int64)
-    c, g, e, radius, scratch = new_registers(base_c, base_e, parameters, COLUMNS)
+    c, g, e, radius, scratch = new_registers(base_c, base_e, symbols, COLUMNS)
     feasible = np.empty((0, COLUMNS))
     column_status = np.empty(COLUMNS, dtype=np.int64)
     for start in range(0, count, COLUMNS):
@@ -800,7 +864,7 @@ def _evaluate_boxes(instructions, base_c, base_e, initial, parameter_registers, 
             load_box(parameter_registers, sign_registers, box_lo[start + j], box_hi[start + j], signs[start + j],
                      c, g, e, radius, j)
             column_status[j] = initial
-        evaluate_models(instructions, c, g, h, e, radius, feasible, column_status, scratch, width)
+        evaluate_models(instructions, c, g, h, e, radius, feasible, column_status, scratch, parameters, width)
         for j in range(width):
             n = start + j
             status[n] = column_status[j]
@@ -843,7 +907,7 @@ def _instance_models(instructions, center, remainder):  # pragma: no cover - com
     c, e = center.reshape((-1, 1)), remainder.reshape((-1, 1))
     status = np.full(1, FEASIBLE, dtype=np.int64)
     evaluate_models(instructions, c, np.zeros((0, c.shape[0], 1)), None, e, np.zeros((0, 1)), np.empty((0, 1)), status,
-                    np.empty((3, 1)), 1)
+                    np.empty((_PRODUCTS, 1)), 0, 1)
     return status[0]
 
 
@@ -866,9 +930,10 @@ def enclosing(values) -> tuple[np.ndarray, np.ndarray]:
 
 def evaluate_boxes(program: IntervalProgram, known_lo: np.ndarray, known_hi: np.ndarray, fixed_signs: np.ndarray,
                    box_lo: np.ndarray, box_hi: np.ndarray, signs: np.ndarray,
-                   order: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                   order: int = 1, edge_symbols: int = 0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each box (rows of ``box_lo``, ``box_hi``: (N, p)) on the branch of the same row of
-    ``signs`` (N, m), in Taylor models of ``order`` 1 or 2: the ranges of the closure residuals' models (N, c, 2), of their
+    ``signs`` (N, m), in Taylor models of ``order`` 1 or 2 with up to ``edge_symbols`` edge
+    symbols (:func:`_edge_root`): the ranges of the closure residuals' models (N, c, 2), of their
     partial derivatives' models (N, c, p, 2) and the box's status (N,): FEASIBLE, EDGE or
     INFEASIBLE (then the ranges are meaningless). O(N × instructions), compiled."""
     source = program.program
@@ -877,4 +942,5 @@ def evaluate_boxes(program: IntervalProgram, known_lo: np.ndarray, known_hi: np.
         program.instructions, center, remainder, initial, source.parameter_registers, source.sign_registers,
         np.ascontiguousarray(box_lo, dtype=float), np.ascontiguousarray(box_hi, dtype=float),
         np.ascontiguousarray(signs, dtype=float), source.residual_registers, program.residual_derivatives,
-        quadratic_terms(order, len(source.parameter_registers), len(center), COLUMNS))
+        quadratic_terms(order, len(source.parameter_registers) + edge_symbols, len(center), COLUMNS),
+        len(source.parameter_registers) + edge_symbols)

@@ -15,6 +15,7 @@ from flint import arb, ctx
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from baranov.closure import interval_program as models
 from baranov.closure.evaluate import sign_branches
 from baranov.closure.interval_program import (
     FEASIBLE,
@@ -44,11 +45,11 @@ ROOT = Path(__file__).resolve().parents[1]
 TRUSSES = [(links, index) for links in (5, 7, 9) for index in range(len(baranov_trusses(links)))]
 
 
-def _arb_program(reduced, known, fixed_signs, point, signs):
+def _arb_program(reduced, known, fixed_signs, point, signs, registers=None):
     """(feasible, residuals, derivatives): the plan's program (all of it, not the reduced
     and differentiated one) at ``point`` in arb balls with dual numbers (value,
     gradient); feasible False where a radicand is certainly negative, None where one
-    holds 0."""
+    holds 0. ``registers``: a dict that receives every register's value."""
     program = reduced.program
     p = len(point)
     value: dict[int, arb] = {}
@@ -95,6 +96,8 @@ def _arb_program(reduced, known, fixed_signs, point, signs):
         elif opcode == FLAT_ZERO:
             value[d], gradient[d] = (arb(0), zero) if x == 0 else (y, dy)
     outputs = [int(r) for r in program.residual_registers]
+    if registers is not None:
+        registers.update(value)
     return feasible, [value[r] for r in outputs], [gradient[r] for r in outputs]
 
 
@@ -144,9 +147,9 @@ def test_the_intervals_hold_the_exact_values_at_every_point_of_the_box(truss, se
         width = size * 10.0 ** rng.uniform(-8, 0, p)
         low = generating - width * rng.uniform(0, 1, p) if draw % 3 else rng.uniform(0, 2 * size, p)
         branch = branches[rng.integers(len(branches))]
-        order = 1 + draw % 2  # first- and second-order models
+        order = 1 + draw % 2  # first- and second-order models, with 0, 1 or 2 edge symbols
         values, jacobians, status = evaluate_boxes(reduced, *enclosing(known), fixed, low[None], (low + width)[None],
-                                                   branch[None], order=order)
+                                                   branch[None], order=order, edge_symbols=(draw // 2) % 3)
         for point in low + width * rng.uniform(0, 1, (4, p)):
             feasible, residuals, gradients = _arb_program(reduced, known, fixed, point, branch)
             if status[0] == INFEASIBLE:
@@ -214,3 +217,48 @@ def test_second_order_models_are_tight_to_third_order():
                          for got, true in zip(ranges, sampled, strict=True)]
     assert excess[2][0] < 0.1 and max(excess[2][1:]) < 0.3, excess
     assert excess[1][0] > 2 and max(excess[1][1:]) > 5, excess
+
+
+def test_the_models_hold_the_values_beside_a_domain_edge():
+    """Boxes of 9/B28 that a domain edge crosses (a triangle of the branch flat inside the
+    box), where the root at the edge and the large remainders of roots beside it become
+    symbols of their own (0, 1 or 2 of them): at the points of the box where the branch
+    exists, the exact value of every register lies in its model's range. The boxes are
+    drawn about the points of a coarse grid where feasibility changes between neighbours,
+    at five widths."""
+    scene, compiled, reduced, known, fixed = _example("9-B28.json")
+    source = reduced.program
+    exact_known = [scene.known[pair] for pair in source.known_pairs]
+    branches = sign_branches(len(compiled.free_triangles)).astype(float)
+    axes = [np.linspace(10.0, 6800.0, 24), np.linspace(250.0, 9600.0, 24)]
+    grid = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 2)
+    defined = ~np.isnan(compiled.residuals(grid, branches)).any(axis=2).reshape(len(branches), 24, 24)
+    base_c, base_e, start = models.instance_registers(reduced, *known, fixed)
+    written = reduced.instructions[:reduced.values, 1]
+    rng = np.random.default_rng(3)
+    ctx.prec = 256
+    checked = 0
+    for k in range(len(branches)):
+        for i, j in np.argwhere(defined[k, 1:, :] != defined[k, :-1, :])[::3]:
+            middle = np.array([axes[0][i] + 0.5 * (axes[0][1] - axes[0][0]), axes[1][j]])
+            for width, symbols, order in ((300.0, 2, 2), (30.0, 1, 2), (30.0, 2, 1), (3.0, 2, 2), (0.3, 1, 2)):
+                low = middle - width * rng.uniform(0.2, 0.8, 2)
+                c, g, e, radius, scratch = models.new_registers(base_c, base_e, 2 + symbols, 1)
+                h = models.quadratic_terms(order, 2 + symbols, len(base_c), 1)
+                models.load_box(source.parameter_registers, source.sign_registers, low, low + width, branches[k], c, g, e,
+                                radius, 0)
+                status, feasible_part = np.array([start]), np.array([[-np.inf], [np.inf]] * 2)
+                models.evaluate_models(reduced.instructions[:reduced.values], c, g, h, e, radius, feasible_part, status,
+                                       scratch, 2, 1)
+                if status[0] != models.EDGE:
+                    continue
+                ranges = [models.model_range(c, g, h, e, radius, register, 0) for register in written]
+                for point in low + width * rng.uniform(0, 1, (6, 2)):
+                    exact: dict = {}
+                    if _arb_program(reduced, exact_known, fixed, point, branches[k], exact)[0] is not True:
+                        continue
+                    checked += 1
+                    for register, interval in zip(written, ranges, strict=True):
+                        assert _contains(interval, exact[register]), (k, low, width, symbols, order, register)
+    ctx.prec = 53
+    assert checked >= 80, checked  # points of boxes that an edge crosses

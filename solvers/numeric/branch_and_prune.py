@@ -187,11 +187,11 @@ def _evaluated(instructions, values, registers, h, feasible, status, starts, res
     for j in range(count):
         status[j] = starts[j]
         feasible[0, j], feasible[1, j] = -np.inf, np.inf
-    evaluate_models(instructions[:values], c, g, h, e, radius, feasible, status, scratch, count)
+    evaluate_models(instructions[:values], c, g, h, e, radius, feasible, status, scratch, 1, count)
     needed = False
     for j in range(count):
         a, b = low[j], high[j]
-        (center, rest), slope = linear_model(c, g, h, e, radius, residual, j), g[0, residual, j]
+        (center, rest), slope = linear_model(c, g, h, e, radius, residual, j, 1), g[0, residual, j]
         middle = 0.5 * (a + b)
         z0, z1 = max(a, rounded_down(middle + feasible[0, j])), min(b, rounded_up(middle + feasible[1, j]))
         if status[j] != INFEASIBLE:
@@ -201,7 +201,7 @@ def _evaluated(instructions, values, registers, h, feasible, status, starts, res
         out[j, 4], out[j, 5], out[j, 6], out[j, 7] = -np.inf, np.inf, z0, z1
         needed = needed or kind == FEASIBLE
     if needed:
-        evaluate_models(instructions[values:], c, g, h, e, radius, feasible, status, scratch, count)
+        evaluate_models(instructions[values:], c, g, h, e, radius, feasible, status, scratch, 1, count)
         for j in range(count):
             if out[j, 0] == FEASIBLE:
                 out[j, 4], out[j, 5] = model_range(c, g, h, e, radius, derivative, j)

@@ -62,6 +62,9 @@ _EXCLUDED, _CERTIFIED, _UNDECIDED, _NEAR = 0, 1, 2, 3
 #: box, e.g. of a box drawn about a mode, would lie on the boundary of both halves, and
 #: the Krawczyk test certifies a root in a box's interior only).
 SPLIT_AT = 0.4921875
+#: Edge symbols of the models (:func:`~baranov.closure.interval_program._edge_root`): the
+#: roots at the first domain edges a box holds, each a symbol of its own.
+EDGE_SYMBOLS = 2
 
 
 @numba.njit(**_COMPILE)
@@ -131,13 +134,13 @@ def _examine(instructions, values, start, work, parameters, sign_registers, sign
     statuses[0] = start  # the instance's status
     for k in range(4):
         feasible[k, 0] = -np.inf if k % 2 == 0 else np.inf
-    models.evaluate_models(instructions[:values], c, g, h, e, radii, feasible, statuses, scratch, 1)
-    status, radius = statuses[0], radii[:, 0].copy()
+    models.evaluate_models(instructions[:values], c, g, h, e, radii, feasible, statuses, scratch, 2, 1)
+    status, radius = statuses[0], radii[:2, 0].copy()
     if status == models.INFEASIBLE:
         return _EXCLUDED, status
     center, rest, slopes = np.empty(2), np.empty(2), np.empty((2, 2))
     for i in range(2):
-        center[i], rest[i] = models.linear_model(c, g, h, e, radii, residuals[i], 0)
+        center[i], rest[i] = models.linear_model(c, g, h, e, radii, residuals[i], 0, 2)
         slopes[i, 0], slopes[i, 1] = g[0, residuals[i], 0], g[1, residuals[i], 0]
     # where the triangles at an edge can exist (the radicands' models), then where both
     # conditions' models can vanish
@@ -153,7 +156,7 @@ def _examine(instructions, values, start, work, parameters, sign_registers, sign
         narrowed[2 * k + 1] = min(high[k], models.rounded_up(middle[k] + u_high[k]))
     if status != models.FEASIBLE:
         return _UNDECIDED, status
-    models.evaluate_models(instructions[values:], c, g, h, e, radii, feasible, statuses, scratch, 1)
+    models.evaluate_models(instructions[values:], c, g, h, e, radii, feasible, statuses, scratch, 2, 1)
     jacobian, image = np.empty((2, 2, 2)), np.empty((2, 2))
     for i in range(2):
         for k in range(2):
@@ -195,9 +198,9 @@ def _contracted(instructions, values, start, work, parameters, sign_registers, s
 
 @numba.njit(**_COMPILE)
 def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_registers, branches, residuals, derivatives,
-                 domain, minimum_width, budget, h):  # pragma: no cover - compiled
+                 domain, minimum_width, budget, h, symbols):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_two_parameters` over every branch."""
-    c, g, e, radii, scratch = models.new_registers(base_c, base_e, 2, 1)
+    c, g, e, radii, scratch = models.new_registers(base_c, base_e, symbols, 1)
     work = (c, g, h, e, radii, scratch, np.empty((4, 1)), np.empty(1, dtype=np.int64),
             np.empty(2), np.empty(2))
     stack = [(domain.copy(), 0)]
@@ -275,7 +278,7 @@ def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_r
 def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
                          domain: tuple[tuple[float, float], tuple[float, float]], exact_known=None,
                          minimum_width: float = MINIMUM_WIDTH, budget: int = EVALUATION_BUDGET,
-                         order: int = 2) -> PrunedRoots:
+                         order: int = 2, edge_symbols: int = EDGE_SYMBOLS) -> PrunedRoots:
     """Every real root of a coupling-2 plan's two closure conditions in ``domain`` (one
     interval per parameter holding every mode: :func:`~.branch_and_prune.searched_box`)
     on each of ``branches`` (B, m), certified or left in a named undecided box (module
@@ -296,7 +299,7 @@ def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
         reduced.instructions, reduced.values, base_c, base_e, start, np.ascontiguousarray(source.parameter_registers),
         source.sign_registers, np.ascontiguousarray(branches, dtype=float),
         np.ascontiguousarray(source.residual_registers), derivatives, box, minimum_width, budget,
-        models.quadratic_terms(order, 2, len(base_c), 1))
+        models.quadratic_terms(order, 2 + edge_symbols, len(base_c), 1), 2 + edge_symbols)
     return PrunedRoots(_distinct(found), left, evaluations, tuple(map(tuple, box.reshape(2, 2))))
 
 
