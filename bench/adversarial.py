@@ -147,7 +147,7 @@ def failed(row: dict, methods: tuple[str, ...]) -> bool:
                    for m in methods)
     if row["msolve_status"] != "finite":
         return True
-    # an uncertified exact list is a failure; the numeric backend proves what it can (not coupling 2)
+    # an uncertified exact list is a failure; the numeric backend proves what it can
     return any(row.get(f"{m}_status") != "solved" or row.get(f"{m}_missed") or row.get(f"{m}_spurious")
                or not row.get(f"{m}_has_generating") or (m == "exact" and row.get(f"{m}_certified") is False)
                for m in methods)

@@ -1,10 +1,10 @@
-"""Why the numeric backend does not yet certify coupling 2 (issue 56): the interval
+"""Where the numeric backend's certification of coupling 2 stands (issue 56): the interval
 branch-and-prune over two parameters (solvers/numeric/branch_and_prune_plane.py) on
 coupling-2 nine-link trusses — 9/B28 of the thesis and random generic integer instances
 of other coupling-2 trusses — over their whole searched box, at several smallest box
 widths: boxes evaluated, roots certified (against the exact backend's modes), boxes left
 undecided and why; and how wide a box about a mode may be for the first-order models to
-keep the Jacobian regular (the width at which the Krawczyk test can certify).
+keep the Jacobian regular (the second-order models; the width at which the Krawczyk test can certify).
 
     python bench/bench_plane_pruning.py [--instances 2] [--seed 1] [--out FILE]
 

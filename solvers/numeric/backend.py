@@ -45,9 +45,11 @@ from .branch_and_prune import (
     evaluation_budget,
     instance_inputs,
     prune_one_parameter,
+    searched_box,
     searched_domain,
     slider_searched_domain,
 )
+from .branch_and_prune_plane import prune_two_parameters
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
 from .two_parameter import ridge_roots, shared_curve, two_parameter_roots
 
@@ -88,19 +90,22 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
             polished = _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
         candidates += roots_at_critical_values(compiled, branches, critical_values(scene, plan))
     elif degree == 2:
+        certified, certificate, searched = _certified_plane(scene, plan, compiled, branches, deadline)
+        if certificate.complete:
+            return Solution.of_plan("numeric", scene, plan, certified, certificate=certificate)
         upper = _upper_bounds(scene, plan, compiled)
-        candidates, (stalled, stalled_branches), (unsearched, reason) = two_parameter_roots(compiled, branches, upper,
+        candidates, (stalled, stalled_branches), (unsearched, reason) = two_parameter_roots(compiled, searched, upper,
                                                                                            deadline)
-        candidates += ridge_roots(compiled, branches, upper)
-        _require_no_shared_curve(scene, compiled, branches, candidates)
-        polished = _polished(scene, compiled, stalled, branches[stalled_branches])
-        undecided += _unsearched_cells(compiled, branches, unsearched, reason)
+        candidates += ridge_roots(compiled, searched, upper)
+        _require_no_shared_curve(scene, compiled, searched, candidates)
+        polished = _polished(scene, compiled, stalled, searched[stalled_branches])
+        undecided += _unsearched_cells(compiled, searched, unsearched, reason)
+        candidates += [(np.array([mode.parameters[name] for name in compiled.parameter_names]), np.array(mode.signs))
+                       for mode in certified]
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2; "
                           "--method homotopy solves any (docs/homotopy.md)")
     modes = assembly_modes(scene, compiled, candidates, polished)
-    if degree == 2:
-        certificate = Certificate(False, None, (PLANE_NOT_PROVEN.format(parameters=", ".join(compiled.parameter_names)),))
     if degree > 0 and coincidences:
         modes, unsettled = _modes_of_coincident_joints(scene, plan, samples, modes)
         undecided += unsettled
@@ -112,9 +117,13 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
                             certificate=certificate)
 
 
-#: Why a coupling-2 solve carries no proof (docs/numeric.md, "What the numeric backend proves").
-PLANE_NOT_PROVEN = ("coupling 2: the plane of ({parameters}) is searched by sampling, Newton's method and "
-                    "the ridge and edge searches, not yet by an interval branch-and-prune")
+#: Why a coupling-2 solve of a slider chain carries no proof (docs/numeric.md).
+PLANE_NOT_PROVEN = ("coupling 2 with slider joints: the plane of ({parameters}) is searched by sampling, Newton's "
+                    "method and the ridge and edge searches, not by the interval branch-and-prune")
+#: Box evaluations allowed to the two-parameter branch-and-prune on each branch (about
+#: 20 µs each): on 24 random coupling-2 nine-link instances, 1000 decided 8, 3000
+#: decided 13 (docs/numeric.md).
+PLANE_BUDGET = 3000
 
 
 #: Seconds one box evaluation of the branch-and-prune takes at most, about (7/B1: 6 µs;
@@ -145,6 +154,58 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
                                  budget=int(min(evaluation_budget(len(branches)), remaining / SECONDS_PER_BOX)),
                                  slider_values=slider_values)
     return modes_of_pruned(scene, compiled, branches, pruned)
+
+
+def _certified_plane(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
+                     deadline: float = math.inf) -> tuple[tuple[AssemblyMode, ...], Certificate, np.ndarray]:
+    """A coupling-2 plan's modes by the two-parameter interval branch-and-prune
+    (:mod:`~baranov.solvers.numeric.branch_and_prune_plane`), each certified root read
+    back, polished and verified; the certificate (complete where every box of the searched
+    box was decided and every certified root verified as a distinct mode); and the
+    branches left to the searches: those with an undecided box (all of them where the
+    branch-and-prune did not run or a root did not verify)."""
+    names = ", ".join(compiled.parameter_names)
+    if scene.sliders:
+        return (), Certificate(False, None, (PLANE_NOT_PROVEN.format(parameters=names),)), branches
+    remaining = deadline - time.monotonic()
+    if remaining <= 0:
+        return (), Certificate(False, None, ("the time limit passed before the branch-and-prune ran",)), branches
+    pruned = prune_two_parameters(compiled, branches, searched_box(scene, plan), scene.known,
+                                  budget=int(min(PLANE_BUDGET, remaining / SECONDS_PER_BOX / len(branches))))
+    candidates = [(0.5 * (row[0:2] + row[2:4]), branches[int(row[4])]) for row in pruned.roots]
+    modes = assembly_modes(scene, compiled, candidates, distinct=True)
+    (low_s, high_s), (low_t, high_t) = pruned.domain
+    where = f"({names}) in [{low_s:.6g}, {high_s:.6g}] × [{low_t:.6g}, {high_t:.6g}]"
+    if len(modes) != len(pruned.roots):
+        return modes, Certificate(False, None, (f"{len(pruned.roots)} roots certified, {len(modes)} verified as "
+                                                "distinct modes: every branch searched by sampling",)), branches
+    if len(pruned.unresolved):
+        left = np.unique(pruned.unresolved[:, 4].astype(int))
+        return modes, Certificate(False, None, (*_plane_gaps(compiled, branches, pruned.unresolved),
+                                                f"interval branch-and-prune of {where}: these boxes are not decided; "
+                                                "the modes on their branches come from the sampling searches")
+                                  ), branches[left]
+    proof = (f"interval branch-and-prune of {where}, {len(branches)} branches: each root alone in its box "
+             f"(Krawczyk), the rest excluded; {pruned.evaluations} boxes")
+    return modes, Certificate(True, None, (), proof), branches[:0]
+
+
+def _plane_gaps(compiled: CompiledSystem, branches: np.ndarray, unresolved: np.ndarray) -> tuple[str, ...]:
+    """One sentence for each reason the two-parameter branch-and-prune left boxes
+    undecided (``unresolved`` rows: lower ends, upper ends, branch index, reason): how
+    many, on which branches, within which bounding box."""
+    names = " × ".join(compiled.parameter_names)
+    sentences = []
+    for why in sorted(REASONS):
+        boxes = unresolved[unresolved[:, 5] == why]
+        if not len(boxes):
+            continue
+        low, high = boxes[:, 0:2].min(axis=0), boxes[:, 2:4].max(axis=0)
+        counts = ", ".join(f"{signs_text(branches[k])} {int((boxes[:, 4] == k).sum())}"
+                           for k in np.unique(boxes[:, 4].astype(int)))
+        sentences.append(f"{len(boxes)} boxes of {names} in [{low[0]:.6g}, {high[0]:.6g}] × [{low[1]:.6g}, "
+                         f"{high[1]:.6g}] undecided on branches {counts}: {REASONS[why]}")
+    return tuple(sentences)
 
 
 def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem) -> tuple[tuple[float, float] | None, list, str]:

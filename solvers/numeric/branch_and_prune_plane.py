@@ -286,7 +286,8 @@ def _decided(stack, roots, unresolved, item, outcome, status, narrowed, domain, 
 def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_registers, branches, residuals, derivatives,
                  domain, minimum_width, budget, h, symbols):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_two_parameters` over every branch: rounds
-    of up to COLUMNS boxes of any branch and work, each one evaluation side by side."""
+    of up to COLUMNS boxes of any branch and work, each one evaluation side by side; at
+    most ``budget`` evaluations on each branch."""
     c, g, e, radii, scratch = models.new_registers(base_c, base_e, symbols, COLUMNS)
     registers = (c, g, e, radii, scratch, np.empty((4, COLUMNS)))
     feasible = registers[5]
@@ -303,19 +304,19 @@ def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_r
     narrowed, outcomes = np.empty((COLUMNS, 4)), np.empty(COLUMNS, dtype=np.int64)
     centers, rests = np.empty((COLUMNS, 2)), np.empty((COLUMNS, 2))
     low, high = np.empty(2), np.empty(2)
-    evaluations = 0
+    evaluations = np.zeros(branches.shape[0], dtype=np.int64)
     while len(stack) > 0:
         batch.clear()
         while len(stack) > 0 and len(batch) < COLUMNS:
             item = stack.pop()
-            if evaluations >= budget:  # a box being contracted holds its root already
+            if evaluations[item[1]] >= budget:  # a box being contracted holds its root already
                 box, k, work, other, _ = item
                 if work == _CONTRACT:
                     roots.append((box, k, other))
                 else:
                     unresolved.append((box if work == _SEARCH else other, k, OVER_BUDGET))
                 continue
-            evaluations += 1
+            evaluations[item[1]] += 1
             j = len(batch)
             boxes[j] = item[0]
             low[0], high[0], low[1], high[1] = item[0][0], item[0][1], item[0][2], item[0][3]
@@ -340,7 +341,7 @@ def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_r
     for n in range(len(unresolved)):
         box, k, why = unresolved[n]
         left[n, 0], left[n, 1], left[n, 2], left[n, 3], left[n, 4], left[n, 5] = box[0], box[2], box[1], box[3], k, why
-    return found, left, evaluations
+    return found, left, evaluations.sum()
 
 
 def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
@@ -351,7 +352,9 @@ def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
     interval per parameter holding every mode: :func:`~.branch_and_prune.searched_box`)
     on each of ``branches`` (B, m), certified or left in a named undecided box (module
     docstring). ``exact_known``: the known squared distances as exact numbers (pair →
-    int, Fraction, …). Not for plans with slider joints. Cost O(boxes × instructions).
+    int, Fraction, …); ``budget``: box evaluations allowed on each branch (a branch past
+    it leaves its boxes undecided, the others go on). Not for plans with slider joints.
+    Cost O(boxes × instructions).
 
     Rows of the result: ``roots`` (lower ends (2), upper ends (2), branch index);
     ``unresolved`` the same and the reason.
