@@ -114,3 +114,31 @@ def test_instances_pruned_together_are_pruned_as_each_alone(truss, seed):
         alone = prune_one_parameter(system, branches, domain, scene.known)
         assert pruned.evaluations == alone.evaluations
         assert np.array_equal(pruned.roots, alone.roots) and np.array_equal(pruned.unresolved, alone.unresolved)
+
+
+@pytest.mark.parametrize("name", ["9-N7-flat-at-50", "9-N13-branch-cut"])
+def test_the_searches_run_only_on_the_branches_left_undecided(name, monkeypatch):
+    """Saved instances where the branch-and-prune leaves a box undecided at a flat
+    triangle on a few branches (measured 2026-11-29: 2 and 4 of 16): the sampling
+    searches run on exactly those branches, the others are proven, and the modes are
+    the exact backend's."""
+    import baranov.solvers.numeric.backend as backend
+    from baranov.solvers.modes import signs_text
+
+    searched: list[np.ndarray] = []
+    searches = backend.one_parameter_roots
+
+    def recorded(compiled, branches, *args, **kwargs):
+        searched.append(branches)
+        return searches(compiled, branches, *args, **kwargs)
+
+    monkeypatch.setattr(backend, "one_parameter_roots", recorded)
+    scene = load_scene(ROOT / "tests" / "regressions" / f"{name}.json")
+    numeric = solve(scene)
+    assert not numeric.certificate.complete and len(searched) == 1
+    assert 0 < len(searched[0]) < 16
+    left = {gap.split(" on branch ")[1].split(":")[0] for gap in numeric.certificate.gaps if " on branch " in gap}
+    assert left == {signs_text(branch) for branch in searched[0]}
+    exact = solve(scene, method="exact")
+    assert sorted(round(m.parameters[n], 6) for m in numeric.assembly_modes for n in m.parameters) == \
+        sorted(round(m.parameters[n], 6) for m in exact.assembly_modes for n in m.parameters)

@@ -3,8 +3,9 @@ Krawczyk test (solvers/numeric/branch_and_prune_plane.py, issue 56), against the
 backend's certified modes of 9/B28 (thesis §3.4.1): a box about each exact mode
 certifies exactly that mode on its branch, boxes away from every mode certify nothing,
 and over the whole searched box every certified root is a mode and every mode is
-certified or in a box left undecided. (The backend does not run it yet: it needs too many
-boxes, docs/numeric.md, "Coupling 2".)"""
+certified or in a box left undecided. The numeric backend runs it first on coupling-2
+plans: a certified answer equals the exact one, and where it leaves boxes undecided the
+sampling searches run on their branches alone (docs/numeric.md, "Certified coupling 2")."""
 
 from __future__ import annotations
 
@@ -13,13 +14,17 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import baranov.solvers.numeric.backend as backend
 from baranov.closure.evaluate import sign_branches
+from baranov.enumerate import baranov_trusses
 from baranov.scene import load_scene
+from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import solve
 from baranov.solvers.coincidence import solvable_plan
 from baranov.solvers.numeric.branch_and_prune import searched_box
 from baranov.solvers.numeric.branch_and_prune_plane import prune_two_parameters
 from baranov.solvers.placement import compile_scene
+from baranov.solvers.verification import same_mode
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -88,3 +93,31 @@ def test_the_whole_box_excludes_no_mode(b28):
         assert sum(holds(row, *where) for where in points) == 1, row
     for where in points:
         assert any(holds(row, *where) for row in pruned.roots) or any(holds(row, *where) for row in pruned.unresolved), where
+
+
+def _same_modes(scene, first, second) -> bool:
+    return len(first) == len(second) and all(any(same_mode(m, n, scene) for n in second) for m in first)
+
+
+def test_the_backend_certifies_a_decided_plane_and_searches_only_undecided_branches(monkeypatch):
+    """Random 9/N27 instances (seed 7): the first is decided whole (certified, 4 modes),
+    the second leaves boxes undecided on one branch of 16 (measured 2026-11-29), whose
+    modes the sampling searches then find there alone; both equal the exact backend's."""
+    searched: list[int] = []
+    searches = backend.two_parameter_roots
+
+    def recorded(compiled, branches, *args, **kwargs):
+        searched.append(len(branches))
+        return searches(compiled, branches, *args, **kwargs)
+
+    monkeypatch.setattr(backend, "two_parameter_roots", recorded)
+    truss, rng = baranov_trusses(9)[26], np.random.default_rng(7)
+    for certified in (True, False):
+        scene = scene_of(truss, generic_integer_configuration(truss, rng))
+        searched.clear()
+        numeric, exact = solve(scene), solve(scene, method="exact")
+        assert numeric.certificate.complete is certified
+        assert searched == ([] if certified else [1])
+        assert _same_modes(scene, numeric.assembly_modes, exact.assembly_modes)
+        if not certified:
+            assert "undecided on branches -+-- " in numeric.certificate.gaps[0]

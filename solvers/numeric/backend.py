@@ -81,14 +81,15 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
             return Solution.of_plan("numeric", scene, plan, certified, certificate=certificate)
         candidates = [(np.zeros(0), branch) for branch in branches]
     elif degree == 1:
-        certified, certificate = _certified_modes(scene, plan, compiled, branches, deadline)
+        certified, certificate, searched = _certified_modes(scene, plan, compiled, branches, deadline)
         if certificate.complete:
             return Solution.of_plan("numeric", scene, plan, certified, certificate=certificate)
-        candidates, near = one_parameter_roots(compiled, branches, _upper_bounds(scene, plan, compiled)[0], samples,
+        candidates, near = one_parameter_roots(compiled, searched, _upper_bounds(scene, plan, compiled)[0], samples,
                                                 undecided, deadline)
         if near:  # a root where f is not smooth (a singular mode): polished on the links, then verified
             polished = _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
-        candidates += roots_at_critical_values(compiled, branches, critical_values(scene, plan))
+        candidates += roots_at_critical_values(compiled, searched, critical_values(scene, plan))
+        candidates += _candidates_of(compiled, certified)
     elif degree == 2:
         certified, certificate, searched = _certified_plane(scene, plan, compiled, branches, deadline)
         if certificate.complete:
@@ -100,8 +101,7 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         _require_no_shared_curve(scene, compiled, searched, candidates)
         polished = _polished(scene, compiled, stalled, searched[stalled_branches])
         undecided += _unsearched_cells(compiled, searched, unsearched, reason)
-        candidates += [(np.array([mode.parameters[name] for name in compiled.parameter_names]), np.array(mode.signs))
-                       for mode in certified]
+        candidates += _candidates_of(compiled, certified)
     else:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2; "
                           "--method homotopy solves any (docs/homotopy.md)")
@@ -115,6 +115,13 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     modes, near_misses = _without_near_misses(scene, compiled, modes)
     return Solution.of_plan("numeric", scene, plan, modes, undecided=tuple(undecided) + valleys + near_misses,
                             certificate=certificate)
+
+
+def _candidates_of(compiled: CompiledSystem, modes: tuple[AssemblyMode, ...]) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Modes (certified roots, verified) as candidates beside the searches' own (their
+    parameters as searched: a slider's t through its map)."""
+    return [(compiled.searched_values(np.array([mode.parameters[name] for name in compiled.parameter_names])),
+             np.array(mode.signs)) for mode in modes]
 
 
 #: Why a coupling-2 solve of a slider chain carries no proof (docs/numeric.md).
@@ -132,28 +139,32 @@ SECONDS_PER_BOX = 20e-6
 
 
 def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
-                     deadline: float = math.inf) -> tuple[tuple[AssemblyMode, ...], Certificate]:
+                     deadline: float = math.inf) -> tuple[tuple[AssemblyMode, ...], Certificate, np.ndarray]:
     """A coupling-1 plan's modes by interval branch-and-prune
     (:mod:`~baranov.solvers.numeric.branch_and_prune`), each certified root read back,
-    polished and verified; and the certificate: complete where every box of the domain
-    was decided and every certified root verified as a distinct mode. Where it is not,
-    its gaps say which boxes are left to the searches (slider chains: not yet, none).
-    Before ``deadline`` (time.monotonic()), in as many evaluations as fit."""
+    polished and verified; the certificate: complete where every box of the domain
+    was decided and every certified root verified as a distinct mode, else its gaps say
+    which boxes are left to the searches; and the branches left to the searches: those
+    with an undecided box (all of them where the branch-and-prune did not run or a root
+    did not verify). Before ``deadline`` (time.monotonic()), in as many evaluations as fit."""
     slider_values: list = []
     if scene.sliders:
         domain, slider_values, reason = _slider_inputs(scene, plan, compiled)
         if reason:
-            return (), Certificate(False, None, (reason,))
-        branches = distinct_branches(compiled.straight_line_program(), branches)
+            return (), Certificate(False, None, (reason,)), branches
+        searched = distinct_branches(compiled.straight_line_program(), branches)
     else:
-        domain = searched_domain(scene, plan)
+        domain, searched = searched_domain(scene, plan), branches
     remaining = deadline - time.monotonic()
     if remaining <= 0:
-        return (), Certificate(False, None, ("the time limit passed before the branch-and-prune ran",))
-    pruned = prune_one_parameter(compiled, branches, domain, scene.known,
-                                 budget=int(min(evaluation_budget(len(branches)), remaining / SECONDS_PER_BOX)),
+        return (), Certificate(False, None, ("the time limit passed before the branch-and-prune ran",)), branches
+    pruned = prune_one_parameter(compiled, searched, domain, scene.known,
+                                 budget=int(min(evaluation_budget(len(searched)), remaining / SECONDS_PER_BOX)),
                                  slider_values=slider_values)
-    return modes_of_pruned(scene, compiled, branches, pruned)
+    modes, certificate = modes_of_pruned(scene, compiled, searched, pruned)
+    if len(modes) != len(pruned.roots):
+        return modes, certificate, branches
+    return modes, certificate, searched[np.unique(pruned.unresolved[:, 2].astype(int))]
 
 
 def _certified_plane(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
@@ -231,16 +242,16 @@ def modes_of_pruned(scene: Scene, compiled: CompiledSystem, branches: np.ndarray
     polished and verified, and the certificate: complete where every box of the domain
     was decided and every certified root verified as a distinct mode; else its gaps name
     the boxes left to the searches."""
-    name = compiled.parameter_names[0]
-    gaps = tuple(f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branches[int(k)])}: {REASONS[int(why)]}"
-                 for low, high, k, why in pruned.unresolved)
-    if gaps:
-        return (), Certificate(False, None, (*gaps, "these boxes are not decided by the branch-and-prune: the modes "
-                                             "listed come from the sampling searches"))
     mapping = compiled.searched.get(frozenset(compiled.parameters[0]))  # a slider's t: back to its searched value
     candidates = [(np.array([0.5 * (low + high) if mapping is None else float(mapping.searched(0.5 * (low + high)))]),
                    branches[int(k)]) for low, high, k in pruned.roots]
     modes = assembly_modes(scene, compiled, candidates, distinct=True)
+    name = compiled.parameter_names[0]
+    gaps = tuple(f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branches[int(k)])}: {REASONS[int(why)]}"
+                 for low, high, k, why in pruned.unresolved)
+    if gaps:
+        return modes, Certificate(False, None, (*gaps, "these boxes are not decided by the branch-and-prune: the "
+                                                "modes on their branches come from the sampling searches"))
     return modes, certificate_of_pruned(compiled, branches, pruned, modes)
 
 
