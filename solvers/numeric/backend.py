@@ -1,16 +1,24 @@
-"""Numeric backend: every assembly mode of a scene over all free-sign branches.
+"""Numeric backend: every assembly mode of a scene over all free-sign branches, in stages
+(:func:`solve_numeric`):
 
-For coupling degree 0 every branch is evaluated directly. For coupling degree 1 the
-closure condition f(s) = 0 of the best plan is solved on each branch (thesis §3.2–3.3:
-"the roots can be quickly obtained for the combinations of signs ... using a standard
-numerical procedure"; :mod:`baranov.solvers.numeric.one_parameter`). For coupling degree 2
-the two conditions are solved together (:mod:`baranov.solvers.numeric.two_parameter`), and points
-where Newton stalls next to the domain boundary are polished on the link constraints
-(:mod:`baranov.solvers.polish`).
-
-Every candidate becomes a configuration placed from the ground link; it is kept only if
-every link dimension holds (relative residual below ``1e-8``) and no rigid link is
-mirrored. Modes found on several branches are reported once.
+1. *compile*: the best plan (a bounded one for a slider chain), its straight-line program;
+2. *prune and certify* (:func:`_certified`): the plan's program on intervals decides the
+   searched domain of every branch — one evaluation a branch for coupling degree 0, the
+   interval branch-and-prune over one or two parameters for coupling 1 and 2
+   (:mod:`~baranov.solvers.numeric.branch_and_prune`,
+   :mod:`~baranov.solvers.numeric.branch_and_prune_plane`); where it decides everything,
+   its modes are the answer and the certificate says what is proven;
+3. *resolve what is left* (:func:`_searched`): on the branches with an undecided box
+   only, the sampling searches (thesis §3.2–3.3: "the roots can be quickly obtained for
+   the combinations of signs ... using a standard numerical procedure";
+   :mod:`~baranov.solvers.numeric.one_parameter`,
+   :mod:`~baranov.solvers.numeric.two_parameter`, points where Newton stalls next to the
+   domain boundary polished on the link constraints, :mod:`baranov.solvers.polish`);
+4. *read back and verify*: every candidate, certified or searched, becomes a
+   configuration placed from the ground link, kept only if every link dimension holds
+   (relative residual below ``1e-8``) and no rigid link is mirrored; modes found on
+   several branches are reported once; then the modes where joints the plan divides by
+   coincide, and (without sliders) clusters merged and near misses dropped.
 """
 
 from __future__ import annotations
@@ -73,38 +81,16 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     if time_limit is not None and not time_limit >= 0:
         raise SolverError(f"time_limit {time_limit}: must be a number of seconds, 0 or more")
     deadline = time.monotonic() + time_limit if time_limit is not None else math.inf
-    undecided: list[str] = []
-    polished = None  # configurations polished on the link constraints
-    if degree == 0:
-        certified, certificate = _certified_construction(scene, compiled, branches)
-        if certificate.complete:
-            return Solution.of_plan("numeric", scene, plan, certified, certificate=certificate)
-        candidates = [(np.zeros(0), branch) for branch in branches]
-    elif degree == 1:
-        certified, certificate, searched = _certified_modes(scene, plan, compiled, branches, deadline)
-        if certificate.complete:
-            return Solution.of_plan("numeric", scene, plan, certified, certificate=certificate)
-        candidates, near = one_parameter_roots(compiled, searched, _upper_bounds(scene, plan, compiled)[0], samples,
-                                                undecided, deadline)
-        if near:  # a root where f is not smooth (a singular mode): polished on the links, then verified
-            polished = _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
-        candidates += roots_at_critical_values(compiled, searched, critical_values(scene, plan))
-        candidates += _candidates_of(compiled, certified)
-    elif degree == 2:
-        certified, certificate, searched = _certified_plane(scene, plan, compiled, branches, deadline)
-        if certificate.complete:
-            return Solution.of_plan("numeric", scene, plan, certified, certificate=certificate)
-        upper = _upper_bounds(scene, plan, compiled)
-        candidates, (stalled, stalled_branches), (unsearched, reason) = two_parameter_roots(compiled, searched, upper,
-                                                                                           deadline)
-        candidates += ridge_roots(compiled, searched, upper)
-        _require_no_shared_curve(scene, compiled, searched, candidates)
-        polished = _polished(scene, compiled, stalled, searched[stalled_branches])
-        undecided += _unsearched_cells(compiled, searched, unsearched, reason)
-        candidates += _candidates_of(compiled, certified)
-    else:
+    if degree > 2:
         raise SolverError(f"coupling degree {degree}: the numeric method solves coupling degrees 0 to 2; "
                           "--method homotopy solves any (docs/homotopy.md)")
+    # prune and certify; then the searches resolve the branches left, and every
+    # candidate is read back and verified (docs/numeric.md)
+    certified, certificate, searched = _certified(scene, plan, compiled, branches, deadline)
+    if certificate.complete:
+        return Solution.of_plan("numeric", scene, plan, certified, certificate=certificate)
+    candidates, polished, undecided = _searched(scene, plan, compiled, searched, samples, deadline)
+    candidates += _candidates_of(compiled, certified)
     modes = assembly_modes(scene, compiled, candidates, polished)
     if degree > 0 and coincidences:
         modes, unsettled = _modes_of_coincident_joints(scene, plan, samples, modes)
@@ -115,6 +101,43 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     modes, near_misses = _without_near_misses(scene, compiled, modes)
     return Solution.of_plan("numeric", scene, plan, modes, undecided=tuple(undecided) + valleys + near_misses,
                             certificate=certificate)
+
+
+def _certified(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray, deadline: float
+               ) -> tuple[tuple[AssemblyMode, ...], Certificate, np.ndarray]:
+    """The interval stage, by the plan's coupling degree (0: one evaluation a branch; 1
+    and 2: branch-and-prune): the modes it certified, its certificate, and the branches
+    it left to the searches."""
+    if plan.number_of_parameters == 0:
+        modes, certificate = _certified_construction(scene, compiled, branches)
+        return modes, certificate, branches[:0] if certificate.complete else branches
+    if plan.number_of_parameters == 1:
+        return _certified_modes(scene, plan, compiled, branches, deadline)
+    return _certified_plane(scene, plan, compiled, branches, deadline)
+
+
+def _searched(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray, samples: int,
+              deadline: float) -> tuple[list, tuple | None, list[str]]:
+    """The search stage on ``branches`` (those the interval stage left), by the coupling
+    degree: candidate roots, configurations to polish on the link constraints (or None),
+    and what was left unsearched (time limit, too many cells)."""
+    undecided: list[str] = []
+    if plan.number_of_parameters == 0:
+        return [(np.zeros(0), branch) for branch in branches], None, undecided
+    if plan.number_of_parameters == 1:
+        candidates, near = one_parameter_roots(compiled, branches, _upper_bounds(scene, plan, compiled)[0], samples,
+                                                undecided, deadline)
+        polished = None
+        if near:  # a root where f is not smooth (a singular mode): polished on the links, then verified
+            polished = _polished(scene, compiled, np.array([v for v, _ in near]), np.array([b for _, b in near]))
+        return candidates + roots_at_critical_values(compiled, branches, critical_values(scene, plan)), polished, undecided
+    upper = _upper_bounds(scene, plan, compiled)
+    candidates, (stalled, stalled_branches), (unsearched, reason) = two_parameter_roots(compiled, branches, upper,
+                                                                                       deadline)
+    candidates += ridge_roots(compiled, branches, upper)
+    _require_no_shared_curve(scene, compiled, branches, candidates)
+    polished = _polished(scene, compiled, stalled, branches[stalled_branches])
+    return candidates, polished, _unsearched_cells(compiled, branches, unsearched, reason)
 
 
 def _candidates_of(compiled: CompiledSystem, modes: tuple[AssemblyMode, ...]) -> list[tuple[np.ndarray, np.ndarray]]:
