@@ -15,9 +15,8 @@ from __future__ import annotations
 
 import json
 import logging
-import os
+import multiprocessing
 import shutil
-import signal
 import tempfile
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import CancelledError
@@ -73,19 +72,23 @@ def dask_client(workers: int, scheduler: str | None = None) -> Iterator[Any]:
         try:
             yield client
         except BaseException:
-            _kill_workers(cluster)
+            kill_worker_processes()
             raise
 
 
-def _kill_workers(cluster: Any) -> None:
-    """Kill the embedded cluster's worker processes, before the cluster closes on an
-    exception (Ctrl-C, SIGTERM). A worker busy in a task holds its GIL in flint or numba
-    and cannot answer a graceful close: its nanny waits 4 s, then kills it, and under load
-    the close took 22 s (test_catalog_faults, the suite run of 2026-11-29). Their work is
-    lost either way, and only this process writes files."""
-    for nanny in list(cluster.workers.values()):
-        with suppress(OSError, AttributeError, TypeError):  # already gone, or not started
-            os.kill(nanny.pid, signal.SIGKILL)
+def kill_worker_processes() -> None:
+    """Kill the worker processes of an embedded cluster (every child process this one
+    started through multiprocessing, as Dask's nannies start them), before the cluster
+    closes on an exception (Ctrl-C, SIGTERM; the command line's signal handler calls it
+    too, so that workers still starting are covered). A worker busy in a task holds its
+    GIL in flint or numba and cannot answer a graceful close: its nanny waits 4 s, then
+    kills it, and under load the close took 22 s (test_catalog_faults, a suite run of
+    2026-11-29; again in a fresh clone with the workers killed in the block above only,
+    cause not isolated: a signal while the cluster starts escapes that block). Their work
+    is lost either way, and only this process writes files."""
+    for child in multiprocessing.active_children():
+        with suppress(OSError, AttributeError, ValueError):  # already gone, or closed
+            child.kill()
 
 
 def run_in_shards(function: Callable[[Any], Any], jobs: Sequence, folder: Path, client: Any = None,

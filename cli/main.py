@@ -376,12 +376,16 @@ def run_batch(args: argparse.Namespace, scene, options: dict) -> int:
 
 
 def _stop(signum: int, frame) -> None:
+    from baranov.catalog.tasks import kill_worker_processes  # imported already by run_catalog
+
+    kill_worker_processes()  # at once, whatever the job is doing (a cluster still starting too)
     raise KeyboardInterrupt  # SIGTERM stops the catalog job like Ctrl-C: workers terminated, one line
 
 
 def run_catalog(args: argparse.Namespace) -> int:
     from baranov.catalog import build_catalog
     from baranov.catalog.files import check_writable_folder, folder_lock, remove_stale_temporaries
+    from baranov.catalog.tasks import kill_worker_processes  # noqa: F401  (for _stop: no import in a signal handler)
 
     link_counts = parse_link_counts(args.links)
     if args.workers < 1:
