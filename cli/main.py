@@ -375,17 +375,10 @@ def run_batch(args: argparse.Namespace, scene, options: dict) -> int:
     return 0
 
 
-def _stop(signum: int, frame) -> None:
-    from baranov.catalog.tasks import kill_worker_processes  # imported already by run_catalog
-
-    kill_worker_processes()  # at once, whatever the job is doing (a cluster still starting too)
-    raise KeyboardInterrupt  # SIGTERM stops the catalog job like Ctrl-C: workers terminated, one line
-
-
 def run_catalog(args: argparse.Namespace) -> int:
     from baranov.catalog import build_catalog
     from baranov.catalog.files import check_writable_folder, folder_lock, remove_stale_temporaries
-    from baranov.catalog.tasks import kill_worker_processes  # noqa: F401  (for _stop: no import in a signal handler)
+    from baranov.catalog.tasks import kill_worker_processes
 
     link_counts = parse_link_counts(args.links)
     if args.workers < 1:
@@ -403,8 +396,12 @@ def run_catalog(args: argparse.Namespace) -> int:
         raise UsageError(f"--out {args.out}: cannot write there ({error.strerror or error})") from None
     log = (lambda message: None) if args.quiet else (lambda message: print(message, file=sys.stderr))
     # installed, not inherited: a job started in the background of a script ignores SIGINT
+    def stop(signum: int, frame) -> None:
+        kill_worker_processes()  # at once, whatever the job is doing (a cluster still starting too)
+        raise KeyboardInterrupt  # SIGTERM stops the job like Ctrl-C: workers terminated, one line
+
     for number in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(number, _stop)
+        signal.signal(number, stop)
     with folder_lock(args.out):
         remove_stale_temporaries(args.out)
         summary = build_catalog(

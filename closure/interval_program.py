@@ -603,12 +603,9 @@ def _edge_root(c, g, h, e, d, a, radius, scratch, parameters, r, j):  # pragma: 
             h[q, d, j] = h[q, a, j] / r
         magnitude += _quadratic_bound(h, d, radius, j)
     rest = eighth
-    for k in range(parameters, g.shape[0]):
-        if radius[k, j] == 0.0:  # a free edge symbol: a had no term in it
-            g[k, d, j], radius[k, j], rest = eighth, 1.0, 0.0
-            if h is not None:
-                _products(radius, scratch, j)
-            break
+    k = _taken_symbol(h, radius, scratch, parameters, j)
+    if k >= 0:  # a free edge symbol: a had no term in it
+        g[k, d, j], rest = eighth, 0.0
     c[d, j], e[d, j] = c[a, j] / r + eighth, _up(e[a, j] / r + rest + _SLACK * magnitude)
 
 
@@ -621,12 +618,23 @@ def _remainder_symbol(g, h, e, d, radius, scratch, parameters, j):  # pragma: no
     exact arithmetic cancel in their symbols' terms, not in their remainders: on a 9/B28
     box beside a domain edge, two values whose difference varies by 0.006 had remainders
     of 0.1 each)."""
-    for k in range(parameters, g.shape[0]):
+    k = _taken_symbol(h, radius, scratch, parameters, j)
+    if k >= 0:
+        g[k, d, j], e[d, j] = e[d, j], 0.0
+
+
+@numba.njit(inline="always", **_COMPILE)
+def _taken_symbol(h, radius, scratch, parameters, j):  # pragma: no cover - compiled
+    """The first free edge symbol of column ``j`` (radius 0: no register has a term in
+    it), taken (radius 1, and the second-order bounds ρ_k ρ_l refreshed); −1 where every
+    one is taken."""
+    for k in range(parameters, radius.shape[0]):
         if radius[k, j] == 0.0:
-            g[k, d, j], radius[k, j], e[d, j] = e[d, j], 1.0, 0.0
+            radius[k, j] = 1.0
             if h is not None:
                 _products(radius, scratch, j)
-            return
+            return k
+    return -1
 
 
 @numba.njit(inline="always", **_COMPILE)

@@ -185,9 +185,18 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
                                  budget=int(min(evaluation_budget(len(searched)), remaining / SECONDS_PER_BOX)),
                                  slider_values=slider_values)
     modes, certificate = modes_of_pruned(scene, compiled, searched, pruned)
+    return modes, certificate, _branches_left(branches, searched, modes, pruned, branch_column=2)
+
+
+def _branches_left(branches: np.ndarray, searched: np.ndarray, modes: tuple, pruned: PrunedRoots,
+                   branch_column: int) -> np.ndarray:
+    """The branches a branch-and-prune over ``searched`` leaves to the searches: those with
+    an undecided box (``pruned.unresolved``'s column ``branch_column`` holds the branch
+    index), or all of ``branches`` where its certified roots did not verify as as many
+    distinct ``modes``."""
     if len(modes) != len(pruned.roots):
-        return modes, certificate, branches
-    return modes, certificate, searched[np.unique(pruned.unresolved[:, 2].astype(int))]
+        return branches
+    return searched[np.unique(pruned.unresolved[:, branch_column].astype(int))]
 
 
 def _certified_plane(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
@@ -210,18 +219,18 @@ def _certified_plane(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     modes = assembly_modes(scene, compiled, candidates, distinct=True)
     (low_s, high_s), (low_t, high_t) = pruned.domain
     where = f"({names}) in [{low_s:.6g}, {high_s:.6g}] × [{low_t:.6g}, {high_t:.6g}]"
+    left = _branches_left(branches, branches, modes, pruned, branch_column=4)
     if len(modes) != len(pruned.roots):
         return modes, Certificate(False, None, (f"{len(pruned.roots)} roots certified, {len(modes)} verified as "
-                                                "distinct modes: every branch searched by sampling",)), branches
+                                                "distinct modes: every branch searched by sampling",)), left
     if len(pruned.unresolved):
-        left = np.unique(pruned.unresolved[:, 4].astype(int))
         return modes, Certificate(False, None, (*_plane_gaps(compiled, branches, pruned.unresolved),
                                                 f"interval branch-and-prune of {where}: these boxes are not decided; "
                                                 "the modes on their branches come from the sampling searches")
-                                  ), branches[left]
+                                  ), left
     proof = (f"interval branch-and-prune of {where}, {len(branches)} branches: each root alone in its box "
              f"(Krawczyk), the rest excluded; {pruned.evaluations} boxes")
-    return modes, Certificate(True, None, (), proof), branches[:0]
+    return modes, Certificate(True, None, (), proof), left
 
 
 def _plane_gaps(compiled: CompiledSystem, branches: np.ndarray, unresolved: np.ndarray) -> tuple[str, ...]:

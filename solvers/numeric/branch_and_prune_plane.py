@@ -299,7 +299,7 @@ def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_r
     roots.pop()
     unresolved = [(np.empty(4), 0, 0)]
     unresolved.pop()
-    batch = [stack[0]] if len(stack) > 0 else [(domain.copy(), 0, _SEARCH, domain.copy(), 0)]
+    batch = [(domain.copy(), 0, _SEARCH, domain.copy(), 0)]  # typed by its first item
     boxes, statuses = np.empty((COLUMNS, 4)), np.empty(COLUMNS, dtype=np.int64)
     narrowed, outcomes = np.empty((COLUMNS, 4)), np.empty(COLUMNS, dtype=np.int64)
     centers, rests = np.empty((COLUMNS, 2)), np.empty((COLUMNS, 2))
