@@ -61,8 +61,9 @@ Square roots of a step. A radicand whose range is certainly negative makes the b
 *infeasible* on that branch (:data:`INFEASIBLE`). A range that holds 0 is a domain edge in
 the box (:data:`EDGE`): the root, which exists only on the part of the box where its
 radicand x is in [0, r²] (r ≥ √U), is enclosed there by the chord and the parallel
-tangent, x/r ≤ √x ≤ x/r + r/4, a model that keeps x's slopes, and its derivative is
-unbounded.
+tangent, x/r ≤ √x ≤ x/r + r/4, a model that keeps x's slopes, or — where more of x's range
+lies below 0 than above, so that the chord's slope would carry the infeasible part's values
+— by the interval [0, r] (:func:`_interval_root`); its derivative is unbounded.
 
 Edge symbols. Registers made by :func:`new_registers` with more symbols than parameters
 carry *edge symbols* besides the box's parameters (rows k ≥ p of g, radius 0 until
@@ -581,7 +582,31 @@ def _root(c, g, h, e, d, a, radius, feasible, status, scratch, parameters, n):  
             status[j] = max(status[j], EDGE)
             if feasible.shape[0] == 2 * parameters:
                 _feasible_part(c, g, h, e, a, radius, feasible, parameters, j)
-            _edge_root(c, g, h, e, d, a, radius, scratch, parameters, rounded_up(np.sqrt(high)), j)
+            r = rounded_up(np.sqrt(high))
+            if deviation > r * r:  # most of the radicand's range below 0: the chord's slope spans more than [0, r]
+                _interval_root(c, g, h, e, d, radius, scratch, parameters, r, j)
+            else:
+                _edge_root(c, g, h, e, d, a, radius, scratch, parameters, r, j)
+
+
+@numba.njit(inline="always", **_COMPILE)
+def _interval_root(c, g, h, e, d, radius, scratch, parameters, r, j):  # pragma: no cover - compiled
+    """Model d = √a where a's range [L, U] holds 0 and r ≥ √U, by the interval [0, r]: its
+    half-width an edge symbol of its own where one is free. Narrower than the chord model
+    (:func:`_edge_root`, whose range is [L/r, r + r/4]) where −L > U: over a box that the
+    edge crosses near its feasible corner, the chord's slope carries the radicand's values
+    on the infeasible part (on 9/B28's whole box, 43 989 → 41 707 boxes)."""
+    for k in range(g.shape[0]):
+        g[k, d, j] = 0.0
+    if h is not None:
+        for q in range(h.shape[0]):
+            h[q, d, j] = 0.0
+    half = 0.5 * r  # exact
+    rest = half
+    k = _taken_symbol(h, radius, scratch, parameters, j)
+    if k >= 0:
+        g[k, d, j], rest = half, 0.0
+    c[d, j], e[d, j] = half, _up(rest + _SLACK * r)
 
 
 @numba.njit(inline="always", **_COMPILE)

@@ -151,9 +151,9 @@ def _candidates_of(compiled: CompiledSystem, modes: tuple[AssemblyMode, ...]) ->
 PLANE_NOT_PROVEN = ("coupling 2 with slider joints: the plane of ({parameters}) is searched by sampling, Newton's "
                     "method and the ridge and edge searches, not by the interval branch-and-prune")
 #: Box evaluations allowed to the two-parameter branch-and-prune on each branch (about
-#: 20 µs each): on 24 random coupling-2 nine-link instances, 1000 decided 8, 3000
-#: decided 13 (docs/numeric.md).
-PLANE_BUDGET = 3000
+#: 15 µs each): on 24 random coupling-2 nine-link instances, 3000 decided 13, 6000
+#: decided 18, 12 000 decided 22 at the same median solve (docs/numeric.md).
+PLANE_BUDGET = 12_000
 
 
 #: Seconds one box evaluation of the branch-and-prune takes at most, about (7/B1: 6 µs;
