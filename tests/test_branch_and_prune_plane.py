@@ -21,6 +21,7 @@ from baranov.scene import load_scene
 from baranov.scene.instances import generic_integer_configuration, scene_of
 from baranov.solvers import solve
 from baranov.solvers.coincidence import solvable_plan
+from baranov.solvers.msolve import compare_modes, find_msolve
 from baranov.solvers.numeric.branch_and_prune import searched_box
 from baranov.solvers.numeric.branch_and_prune_plane import prune_two_parameters
 from baranov.solvers.placement import compile_scene
@@ -123,3 +124,20 @@ def test_the_backend_certifies_a_decided_plane_and_searches_only_undecided_branc
         assert _same_modes(scene, numeric.assembly_modes, exact.assembly_modes)
         if not certified:
             assert "undecided on branches -+-- " in numeric.certificate.gaps[0]
+
+
+@pytest.mark.skipif(find_msolve() is None, reason="msolve binary not installed (make installs it)")
+def test_a_slider_chain_of_coupling_two_is_certified_by_the_plane_pruner():
+    """A random nine-link slider chain of coupling 2 (rational axes; seed 2 of
+    bench_numeric's generator, its third chain): the two-parameter branch-and-prune runs on
+    its slider program — a slider's t and squared distances as the program takes them,
+    the geometry's exact numbers enclosed — decides its whole box, and its 2 modes are
+    msolve's."""
+    scene = load_scene(Path(__file__).parent / "scenes" / "9-slider-chain-coupling-2.json")
+    numeric = solve(scene)
+    assert numeric.certificate.complete
+    assert "interval branch-and-prune of (s1,11, s1,9)" in numeric.certificate.proof
+    expected = solve(scene, method="msolve")
+    missed, spurious, _ = compare_modes([mode.joints for mode in numeric.assembly_modes],
+                                        [mode.joints for mode in expected.assembly_modes])
+    assert len(numeric.assembly_modes) == 2 and (missed, spurious) == (0, 0)

@@ -147,13 +147,14 @@ def _candidates_of(compiled: CompiledSystem, modes: tuple[AssemblyMode, ...]) ->
              np.array(mode.signs)) for mode in modes]
 
 
-#: Why a coupling-2 solve of a slider chain carries no proof (docs/numeric.md).
-PLANE_NOT_PROVEN = ("coupling 2 with slider joints: the plane of ({parameters}) is searched by sampling, Newton's "
-                    "method and the ridge and edge searches, not by the interval branch-and-prune")
 #: Box evaluations allowed to the two-parameter branch-and-prune on each branch (about
 #: 15 µs each): on 24 random coupling-2 nine-link instances, 3000 decided 13, 6000
 #: decided 18, 12 000 decided 22 at the same median solve (docs/numeric.md).
 PLANE_BUDGET = 12_000
+#: The same for slider chains: on 15 random nine-link coupling-2 slider chains (seeds 1
+#: and 2), 3000 certified 8 at a mean solve of 0.63 s against 0.93 s by the sampling
+#: searches alone; 12 000 made the undecided ones slower (docs/numeric.md).
+SLIDER_PLANE_BUDGET = 3000
 
 
 #: Seconds one box evaluation of the branch-and-prune takes at most, about (7/B1: 6 µs;
@@ -172,10 +173,10 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     did not verify). Before ``deadline`` (time.monotonic()), in as many evaluations as fit."""
     slider_values: list = []
     if scene.sliders:
-        domain, slider_values, reason = _slider_inputs(scene, plan, compiled)
+        box, slider_values, reason = _slider_inputs(scene, plan, compiled)
         if reason:
             return (), Certificate(False, None, (reason,)), branches
-        searched = distinct_branches(compiled.straight_line_program(), branches)
+        domain, searched = box[0], distinct_branches(compiled.straight_line_program(), branches)
     else:
         domain, searched = searched_domain(scene, plan), branches
     remaining = deadline - time.monotonic()
@@ -208,27 +209,35 @@ def _certified_plane(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     branches left to the searches: those with an undecided box (all of them where the
     branch-and-prune did not run or a root did not verify)."""
     names = ", ".join(compiled.parameter_names)
+    slider_values: list = []
     if scene.sliders:
-        return (), Certificate(False, None, (PLANE_NOT_PROVEN.format(parameters=names),)), branches
+        box, slider_values, reason = _slider_inputs(scene, plan, compiled)
+        if reason:
+            return (), Certificate(False, None, (reason,)), branches
+        searched = distinct_branches(compiled.straight_line_program(), branches)
+    else:
+        box, searched = searched_box(scene, plan), branches
     remaining = deadline - time.monotonic()
     if remaining <= 0:
         return (), Certificate(False, None, ("the time limit passed before the branch-and-prune ran",)), branches
-    pruned = prune_two_parameters(compiled, branches, searched_box(scene, plan), scene.known,
-                                  budget=int(min(PLANE_BUDGET, remaining / SECONDS_PER_BOX / len(branches))))
-    candidates = [(0.5 * (row[0:2] + row[2:4]), branches[int(row[4])]) for row in pruned.roots]
+    budget = SLIDER_PLANE_BUDGET if scene.sliders else PLANE_BUDGET
+    pruned = prune_two_parameters(compiled, searched, box, scene.known, slider_values=slider_values,
+                                  budget=int(min(budget, remaining / SECONDS_PER_BOX / len(searched))))
+    candidates = [(_searched_values(compiled, 0.5 * (row[0:2] + row[2:4])), searched[int(row[4])])
+                  for row in pruned.roots]
     modes = assembly_modes(scene, compiled, candidates, distinct=True)
     (low_s, high_s), (low_t, high_t) = pruned.domain
     where = f"({names}) in [{low_s:.6g}, {high_s:.6g}] × [{low_t:.6g}, {high_t:.6g}]"
-    left = _branches_left(branches, branches, modes, pruned, branch_column=4)
+    left = _branches_left(branches, searched, modes, pruned, branch_column=4)
     if len(modes) != len(pruned.roots):
         return modes, Certificate(False, None, (f"{len(pruned.roots)} roots certified, {len(modes)} verified as "
                                                 "distinct modes: every branch searched by sampling",)), left
     if len(pruned.unresolved):
-        return modes, Certificate(False, None, (*_plane_gaps(compiled, branches, pruned.unresolved),
+        return modes, Certificate(False, None, (*_plane_gaps(compiled, searched, pruned.unresolved),
                                                 f"interval branch-and-prune of {where}: these boxes are not decided; "
                                                 "the modes on their branches come from the sampling searches")
                                   ), left
-    proof = (f"interval branch-and-prune of {where}, {len(branches)} branches: each root alone in its box "
+    proof = (f"interval branch-and-prune of {where}, {len(searched)} branches: each root alone in its box "
              f"(Krawczyk), the rest excluded; {pruned.evaluations} boxes")
     return modes, Certificate(True, None, (), proof), left
 
@@ -251,21 +260,33 @@ def _plane_gaps(compiled: CompiledSystem, branches: np.ndarray, unresolved: np.n
     return tuple(sentences)
 
 
-def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem) -> tuple[tuple[float, float] | None, list, str]:
-    """For a slider chain's branch-and-prune: the searched domain of its parameter, the
+def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem) -> tuple[tuple, list, str]:
+    """For a slider chain's branch-and-prune: the searched domain of each parameter, the
     exact numbers of its slider geometry, and why it cannot run (else \"\"): a parameter
     no path of link dimensions bounds, or a slider frame that is irrational in world units
     (its numbers then have no exact enclosure here)."""
-    domain = slider_searched_domain(scene, plan, compiled.searched)
-    if domain is None:
-        return None, [], (f"{compiled.parameter_names[0]} is bounded by no path of link dimensions: the "
-                          "branch-and-prune searches bounded domains only")
+    box = tuple(slider_searched_domain(scene, plan, compiled.searched, index)
+                for index in range(plan.number_of_parameters))
+    for name, domain in zip(compiled.parameter_names, box, strict=True):
+        if domain is None:
+            return (), [], (f"{name} is bounded by no path of link dimensions: the branch-and-prune searches "
+                            "bounded domains only")
     exact = exact_slider_constants(compiled.straight_line_program().slider_constants,
                                    slider_geometry(scene, number=lambda pair: pair), compiled.sliders)
     if exact is None:
         return None, [], ("a slider frame is irrational in world units: its numbers are not enclosed exactly, so the "
                           "interval branch-and-prune does not run")
-    return domain, exact, ""
+    return box, exact, ""
+
+
+def _searched_values(compiled: CompiledSystem, values: np.ndarray) -> np.ndarray:
+    """The parameters' values as the program takes them (a slider's t) back to their
+    searched values (what the compiled system's residuals and the read-back take)."""
+    mapped = []
+    for pair, value in zip(compiled.parameters, values, strict=True):
+        mapping = compiled.searched.get(frozenset(pair))
+        mapped.append(float(value) if mapping is None else float(mapping.searched(value)))
+    return np.array(mapped)
 
 
 def modes_of_pruned(scene: Scene, compiled: CompiledSystem, branches: np.ndarray,
@@ -274,9 +295,8 @@ def modes_of_pruned(scene: Scene, compiled: CompiledSystem, branches: np.ndarray
     polished and verified, and the certificate: complete where every box of the domain
     was decided and every certified root verified as a distinct mode; else its gaps name
     the boxes left to the searches."""
-    mapping = compiled.searched.get(frozenset(compiled.parameters[0]))  # a slider's t: back to its searched value
-    candidates = [(np.array([0.5 * (low + high) if mapping is None else float(mapping.searched(0.5 * (low + high)))]),
-                   branches[int(k)]) for low, high, k in pruned.roots]
+    candidates = [(_searched_values(compiled, np.array([0.5 * (low + high)])), branches[int(k)])
+                  for low, high, k in pruned.roots]
     modes = assembly_modes(scene, compiled, candidates, distinct=True)
     name = compiled.parameter_names[0]
     gaps = tuple(f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branches[int(k)])}: {REASONS[int(why)]}"

@@ -553,22 +553,22 @@ def searched_domain(scene, plan) -> tuple[float, float]:
 FLOAT_BOUND_SLACK = 1e-12
 
 
-def slider_searched_domain(scene, plan, searched) -> tuple[float, float] | None:
-    """With slider joints, the range of a coupling-1 plan's parameter, as the plan's
+def slider_searched_domain(scene, plan, searched, index: int = 0) -> tuple[float, float] | None:
+    """With slider joints, the range of a plan's parameter ``index``, as the plan's
     program takes it, that holds every mode: for a slider's oriented distance t, |t| at
     most the shortest path of link dimensions to the nearer of the slider's points
     (:meth:`~baranov.scene.Scene.largest_distance`: the distance to the axis is at most
     that to a point of it); for a squared distance, :func:`parameter_domain` below the
     square of that path. Rounded outward. None where no path bounds it (``searched``:
     the compiled system's :class:`~baranov.closure.sliders.SearchedParameter` maps)."""
-    pair = tuple(plan.parameters[0])
+    pair = tuple(plan.parameters[index])
     bound = scene.largest_distance(*pair) * (1 + FLOAT_BOUND_SLACK)
     if not math.isfinite(bound):
         return None
     mapping = searched.get(frozenset(pair))
     if mapping is not None:
         return (-bound, bound) if mapping.signed else None
-    return parameter_domain(scene, plan, math.nextafter(bound * bound, math.inf))
+    return parameter_domain(scene, plan, math.nextafter(bound * bound, math.inf), index)
 
 
 def searched_box(scene, plan) -> tuple[tuple[float, float], ...]:

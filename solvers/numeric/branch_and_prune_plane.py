@@ -70,6 +70,10 @@ _EXCLUDED, _CERTIFIED, _UNDECIDED, _NEAR = 0, 1, 2, 3
 #: box, e.g. of a box drawn about a mode, would lie on the boundary of both halves, and
 #: the Krawczyk test certifies a root in a box's interior only).
 SPLIT_AT = 0.4921875
+#: The narrowest box narrowed again, relative to the smallest box split: a box narrowed
+#: towards a point (a squared distance's 0, where a slider chain's domain may start) would
+#: otherwise shrink by halves down to underflow (90 000 boxes of width 2e-300, measured).
+NARROWEST = 2.0**-10
 #: Edge symbols of the models (:func:`~baranov.closure.interval_program._edge_root`): the
 #: roots at the first domain edges a box holds, each a symbol of its own.
 EDGE_SYMBOLS = 2
@@ -229,15 +233,16 @@ def _searched(stack, unresolved, box, k, outcome, status, narrowed, domain, mini
 
 @numba.njit(**_COMPILE)
 def _split(stack, unresolved, box, k, status, narrowed, domain, minimum_width):  # pragma: no cover - compiled
-    """An undecided box: searched again as ``narrowed`` where that is less than half of it,
-    else split across its wider side (relative to the domain) at SPLIT_AT, or left
-    unresolved below ``minimum_width``."""
+    """An undecided box: searched again as ``narrowed`` where that is less than half of it
+    (down to NARROWEST × ``minimum_width``), else split across its wider side (relative to
+    the domain) at SPLIT_AT, or left unresolved below ``minimum_width``."""
     widths = np.array([box[1] - box[0], box[3] - box[2]])
     kept = np.array([narrowed[1] - narrowed[0], narrowed[3] - narrowed[2]])
-    if kept[0] * kept[1] < 0.5 * widths[0] * widths[1]:
+    relative = kept / (domain[1::2] - domain[0::2])
+    smallest = max(relative[0], relative[1]) <= NARROWEST * minimum_width
+    if kept[0] * kept[1] < 0.5 * widths[0] * widths[1] and not smallest:
         stack.append((narrowed.copy(), k, _SEARCH, narrowed.copy(), 0))
         return
-    relative = kept / (domain[1::2] - domain[0::2])
     if relative[0] <= minimum_width and relative[1] <= minimum_width:
         unresolved.append((box.copy(), k, AT_EDGE if status == models.EDGE else FLAT_DERIVATIVE))
         return
@@ -347,21 +352,22 @@ def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_r
 def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
                          domain: tuple[tuple[float, float], tuple[float, float]], exact_known=None,
                          minimum_width: float = MINIMUM_WIDTH, budget: int = EVALUATION_BUDGET,
-                         order: int = 2, edge_symbols: int = EDGE_SYMBOLS) -> PrunedRoots:
+                         order: int = 2, edge_symbols: int = EDGE_SYMBOLS, slider_values=()) -> PrunedRoots:
     """Every real root of a coupling-2 plan's two closure conditions in ``domain`` (one
     interval per parameter holding every mode: :func:`~.branch_and_prune.searched_box`)
     on each of ``branches`` (B, m), certified or left in a named undecided box (module
     docstring). ``exact_known``: the known squared distances as exact numbers (pair →
     int, Fraction, …); ``budget``: box evaluations allowed on each branch (a branch past
-    it leaves its boxes undecided, the others go on). Not for plans with slider joints.
-    Cost O(boxes × instructions).
+    it leaves its boxes undecided, the others go on). With slider joints, ``slider_values``
+    the exact numbers of their geometry, and the domain is that of the parameters the
+    program takes (a slider's t, not its searched value). Cost O(boxes × instructions).
 
     Rows of the result: ``roots`` (lower ends (2), upper ends (2), branch index);
     ``unresolved`` the same and the reason.
     """
     program = compiled.straight_line_program()
     reduced = models.interval_program(program)
-    inputs = instance_inputs(program, {**compiled.known, **(exact_known or {})}, compiled.fixed_signs)
+    inputs = instance_inputs(program, {**compiled.known, **(exact_known or {})}, compiled.fixed_signs, slider_values)
     base_c, base_e, start = models.instance_registers(reduced, *inputs)
     box = np.array([float(end) for interval in domain for end in interval])
     derivatives = np.ascontiguousarray(reduced.residual_derivatives, dtype=np.int64)
