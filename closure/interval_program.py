@@ -596,11 +596,7 @@ def _interval_root(c, g, h, e, d, radius, scratch, parameters, r, j):  # pragma:
     (:func:`_edge_root`, whose range is [L/r, r + r/4]) where −L > U: over a box that the
     edge crosses near its feasible corner, the chord's slope carries the radicand's values
     on the infeasible part (on 9/B28's whole box, 43 989 → 41 707 boxes)."""
-    for k in range(g.shape[0]):
-        g[k, d, j] = 0.0
-    if h is not None:
-        for q in range(h.shape[0]):
-            h[q, d, j] = 0.0
+    _unbounded(c, g, h, e, d, j)  # no slopes, no quadratic terms; c and e set below
     half = 0.5 * r  # exact
     rest = half
     k = _taken_symbol(h, radius, scratch, parameters, j)

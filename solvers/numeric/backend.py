@@ -54,7 +54,6 @@ from .branch_and_prune import (
     instance_inputs,
     prune_one_parameter,
     searched_box,
-    searched_domain,
     slider_searched_domain,
 )
 from .branch_and_prune_plane import prune_two_parameters
@@ -171,22 +170,32 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     which boxes are left to the searches; and the branches left to the searches: those
     with an undecided box (all of them where the branch-and-prune did not run or a root
     did not verify). Before ``deadline`` (time.monotonic()), in as many evaluations as fit."""
-    slider_values: list = []
-    if scene.sliders:
-        box, slider_values, reason = _slider_inputs(scene, plan, compiled)
-        if reason:
-            return (), Certificate(False, None, (reason,)), branches
-        domain, searched = box[0], distinct_branches(compiled.straight_line_program(), branches)
-    else:
-        domain, searched = searched_domain(scene, plan), branches
-    remaining = deadline - time.monotonic()
-    if remaining <= 0:
-        return (), Certificate(False, None, ("the time limit passed before the branch-and-prune ran",)), branches
-    pruned = prune_one_parameter(compiled, searched, domain, scene.known,
+    box, slider_values, searched, remaining, reason = _pruning_inputs(scene, plan, compiled, branches, deadline)
+    if reason:
+        return (), Certificate(False, None, (reason,)), branches
+    pruned = prune_one_parameter(compiled, searched, box[0], scene.known,
                                  budget=int(min(evaluation_budget(len(searched)), remaining / SECONDS_PER_BOX)),
                                  slider_values=slider_values)
     modes, certificate = modes_of_pruned(scene, compiled, searched, pruned)
     return modes, certificate, _branches_left(branches, searched, modes, pruned, branch_column=2)
+
+
+def _pruning_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
+                    deadline: float) -> tuple[tuple, list, np.ndarray, float, str]:
+    """What a branch-and-prune of either kind runs on: the searched box (one interval per
+    parameter, as the program takes it), the slider geometry's exact numbers (none without
+    sliders), the branches to search (a slider chain's distinct ones), the seconds left
+    before ``deadline``, and why it cannot run (else "")."""
+    slider_values: list = []
+    if scene.sliders:
+        box, slider_values, reason = _slider_inputs(scene, plan, compiled)
+        searched = distinct_branches(compiled.straight_line_program(), branches)
+    else:
+        box, searched, reason = searched_box(scene, plan), branches, ""
+    remaining = deadline - time.monotonic()
+    if not reason and remaining <= 0:
+        reason = "the time limit passed before the branch-and-prune ran"
+    return box, slider_values, searched, remaining, reason
 
 
 def _branches_left(branches: np.ndarray, searched: np.ndarray, modes: tuple, pruned: PrunedRoots,
@@ -209,17 +218,9 @@ def _certified_plane(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     branches left to the searches: those with an undecided box (all of them where the
     branch-and-prune did not run or a root did not verify)."""
     names = ", ".join(compiled.parameter_names)
-    slider_values: list = []
-    if scene.sliders:
-        box, slider_values, reason = _slider_inputs(scene, plan, compiled)
-        if reason:
-            return (), Certificate(False, None, (reason,)), branches
-        searched = distinct_branches(compiled.straight_line_program(), branches)
-    else:
-        box, searched = searched_box(scene, plan), branches
-    remaining = deadline - time.monotonic()
-    if remaining <= 0:
-        return (), Certificate(False, None, ("the time limit passed before the branch-and-prune ran",)), branches
+    box, slider_values, searched, remaining, reason = _pruning_inputs(scene, plan, compiled, branches, deadline)
+    if reason:
+        return (), Certificate(False, None, (reason,)), branches
     budget = SLIDER_PLANE_BUDGET if scene.sliders else PLANE_BUDGET
     pruned = prune_two_parameters(compiled, searched, box, scene.known, slider_values=slider_values,
                                   budget=int(min(budget, remaining / SECONDS_PER_BOX / len(searched))))
@@ -274,7 +275,7 @@ def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem) -> tuple[
     exact = exact_slider_constants(compiled.straight_line_program().slider_constants,
                                    slider_geometry(scene, number=lambda pair: pair), compiled.sliders)
     if exact is None:
-        return None, [], ("a slider frame is irrational in world units: its numbers are not enclosed exactly, so the "
+        return (), [], ("a slider frame is irrational in world units: its numbers are not enclosed exactly, so the "
                           "interval branch-and-prune does not run")
     return box, exact, ""
 
