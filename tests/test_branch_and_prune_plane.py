@@ -141,3 +141,27 @@ def test_a_slider_chain_of_coupling_two_is_certified_by_the_plane_pruner():
     missed, spurious, _ = compare_modes([mode.joints for mode in numeric.assembly_modes],
                                         [mode.joints for mode in expected.assembly_modes])
     assert len(numeric.assembly_modes) == 2 and (missed, spurious) == (0, 0)
+
+
+@pytest.mark.skipif(find_msolve() is None, reason="msolve binary not installed (make installs it)")
+def test_boxes_where_a_parameter_s_joints_coincide_are_left_without_searching_the_branches(monkeypatch):
+    """A slider chain's squared distance s1,11 is searched from 0, where the plan divides
+    by it: the boxes there are never decided (they used to take the whole budget of every
+    branch, bisected along s1,9 down to 2e-300 wide). They are left as one reason, every
+    other box decided, no branch handed to the sampling searches (which sample no closer
+    to 0), and the 12 modes are msolve's."""
+    scene = load_scene(Path(__file__).parent / "scenes" / "9-slider-chain-coincidence.json")
+
+    def no_search(*arguments, **keywords):
+        raise AssertionError("a branch was handed to the sampling searches")
+
+    monkeypatch.setattr(backend, "two_parameter_roots", no_search)
+    numeric = solve(scene)
+    assert not numeric.certificate.complete
+    assert "s1,10 × s1,11 in [" in numeric.certificate.gaps[0] and "× [0, " in numeric.certificate.gaps[0]
+    assert "joints nearly coincide" in numeric.certificate.gaps[0]
+    assert "every other box is decided" in numeric.certificate.gaps[-1]
+    expected = solve(scene, method="msolve")
+    missed, spurious, _ = compare_modes([mode.joints for mode in numeric.assembly_modes],
+                                        [mode.joints for mode in expected.assembly_modes])
+    assert len(numeric.assembly_modes) == 12 and (missed, spurious) == (0, 0)

@@ -48,6 +48,7 @@ from ..placement import NEARLY_FLAT, compile_scene, placed_from_ground, polished
 from ..polish import polish_configurations, polish_on_constraints
 from ..verification import RESIDUAL_TOLERANCE, distance_bound, placement_residuals
 from .branch_and_prune import (
+    AT_COINCIDENCE,
     REASONS,
     PrunedRoots,
     evaluation_budget,
@@ -88,7 +89,8 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
     certified, certificate, searched = _certified(scene, plan, compiled, branches, deadline)
     if certificate.complete:
         return Solution.of_plan("numeric", scene, plan, certified, certificate=certificate)
-    candidates, polished, undecided = _searched(scene, plan, compiled, searched, samples, deadline)
+    candidates, polished, undecided = _searched(scene, plan, compiled, searched, samples, deadline) \
+        if len(searched) else ([], None, [])
     candidates += _candidates_of(compiled, certified)
     modes = assembly_modes(scene, compiled, candidates, polished)
     if degree > 0 and coincidences:
@@ -206,7 +208,8 @@ def _branches_left(branches: np.ndarray, searched: np.ndarray, modes: tuple, pru
     distinct ``modes``."""
     if len(modes) != len(pruned.roots):
         return branches
-    return searched[np.unique(pruned.unresolved[:, branch_column].astype(int))]
+    searchable = pruned.unresolved[pruned.unresolved[:, -1] != AT_COINCIDENCE]  # below the searches' own floor
+    return searched[np.unique(searchable[:, branch_column].astype(int))]
 
 
 def _certified_plane(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
@@ -236,11 +239,21 @@ def _certified_plane(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     if len(pruned.unresolved):
         return modes, Certificate(False, None, (*_plane_gaps(compiled, searched, pruned.unresolved),
                                                 f"interval branch-and-prune of {where}: these boxes are not decided; "
-                                                "the modes on their branches come from the sampling searches")
+                                                + _what_follows(pruned.unresolved))
                                   ), left
     proof = (f"interval branch-and-prune of {where}, {len(searched)} branches: each root alone in its box "
              f"(Krawczyk), the rest excluded; {pruned.evaluations} boxes")
     return modes, Certificate(True, None, (), proof), left
+
+
+def _what_follows(unresolved: np.ndarray) -> str:
+    """What becomes of a branch-and-prune's undecided boxes (rows ending in their reason):
+    the sampling searches take their branches, except where every box is at a squared
+    distance's 0 (below where the searches sample)."""
+    if np.all(unresolved[:, -1] == AT_COINCIDENCE):
+        return ("every other box is decided; no search samples that close to 0, and the modes where those joints "
+                "coincide come from another plan")
+    return "the modes on their branches come from the sampling searches"
 
 
 def _plane_gaps(compiled: CompiledSystem, branches: np.ndarray, unresolved: np.ndarray) -> tuple[str, ...]:
@@ -303,8 +316,8 @@ def modes_of_pruned(scene: Scene, compiled: CompiledSystem, branches: np.ndarray
     gaps = tuple(f"{name} in [{low:.10g}, {high:.10g}] on branch {signs_text(branches[int(k)])}: {REASONS[int(why)]}"
                  for low, high, k, why in pruned.unresolved)
     if gaps:
-        return modes, Certificate(False, None, (*gaps, "these boxes are not decided by the branch-and-prune: the "
-                                                "modes on their branches come from the sampling searches"))
+        return modes, Certificate(False, None, (*gaps, "these boxes are not decided by the branch-and-prune: "
+                                                + _what_follows(pruned.unresolved)))
     return modes, certificate_of_pruned(compiled, branches, pruned, modes)
 
 

@@ -72,11 +72,14 @@ from baranov.closure.straight_line import StraightLineProgram
 #: A box's status where f's model (or a triangle) excludes it.
 EXCLUDED = 3
 #: Why a box was left undecided (:attr:`PrunedRoots.unresolved`'s last column).
-AT_EDGE, FLAT_DERIVATIVE, OVER_BUDGET = 1, 2, 3
+AT_EDGE, FLAT_DERIVATIVE, OVER_BUDGET, AT_COINCIDENCE = 1, 2, 3, 4
 REASONS = {AT_EDGE: "a domain edge of the branch (a triangle flat) lies in it",
            FLAT_DERIVATIVE: "the closure condition's derivative may vanish or is unbounded there (a double root, "
                             "or joints the plan divides by at one point)",
-           OVER_BUDGET: "not examined within the evaluation budget"}
+           OVER_BUDGET: "not examined within the evaluation budget",
+           AT_COINCIDENCE: "a squared distance searched is within the smallest width of 0 there (its joints "
+                           "nearly coincide, where the plan divides by it); the modes where they coincide come "
+                           "from another plan"}
 #: Boxes narrower than this fraction of the domain are not bisected further.
 MINIMUM_WIDTH = 1e-12
 #: ... times this within two widths of the domain's ends (:func:`_smallest_width`).
@@ -449,8 +452,21 @@ def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: 
         unresolved[:, 2] -= i * count
         mine = boxes[boxes[:, 2] // count == i]
         mine[:, 2] -= i * count
+        unresolved = _at_coincidence(unresolved, low[i], high[i], minimum_width)
         pruned.append(PrunedRoots(_distinct(roots), _merged(unresolved), int(evaluations[i]), (low[i], high[i]), mine))
     return pruned
+
+
+def _at_coincidence(boxes: np.ndarray, low: float, high: float, minimum_width: float) -> np.ndarray:
+    """Undecided boxes (rows: ends, branch, reason) at a squared distance's 0 — the
+    domain starts at 0 and the box ends within ``minimum_width`` × ``high`` of it —
+    given the reason AT_COINCIDENCE: the plan divides by the parameter there, so no box
+    at 0 is ever decided, and the modes where its joints coincide come from another plan
+    (:mod:`baranov.solvers.coincidence`)."""
+    if low == 0.0:
+        boxes[(boxes[:, 0] == 0.0) & (boxes[:, 1] <= minimum_width * high) & (boxes[:, 3] != OVER_BUDGET), 3] \
+            = AT_COINCIDENCE
+    return boxes
 
 
 def instance_inputs(program: StraightLineProgram, known: Mapping, fixed_signs: Mapping, slider_values=()

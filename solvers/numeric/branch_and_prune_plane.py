@@ -53,6 +53,7 @@ from baranov.closure import CompiledSystem
 from baranov.closure import interval_program as models
 
 from .branch_and_prune import (
+    AT_COINCIDENCE,
     AT_EDGE,
     CONTRACTIONS,
     EVALUATION_BUDGET,
@@ -239,6 +240,10 @@ def _split(stack, unresolved, box, k, status, narrowed, domain, minimum_width): 
     widths = np.array([box[1] - box[0], box[3] - box[2]])
     kept = np.array([narrowed[1] - narrowed[0], narrowed[3] - narrowed[2]])
     relative = kept / (domain[1::2] - domain[0::2])
+    for side in range(2):  # the plan divides by a squared distance at its 0: no box there is ever decided
+        if domain[2 * side] == 0.0 and narrowed[2 * side] == 0.0 and relative[side] <= minimum_width:
+            unresolved.append((narrowed.copy(), k, AT_COINCIDENCE))
+            return
     smallest = max(relative[0], relative[1]) <= NARROWEST * minimum_width
     if kept[0] * kept[1] < 0.5 * widths[0] * widths[1] and not smallest:
         stack.append((narrowed.copy(), k, _SEARCH, narrowed.copy(), 0))
