@@ -232,8 +232,7 @@ class CompiledSystem:
         try:
             return self._placed(parameter_values, signs, profile, paired)
         finally:
-            if not self.sliders:
-                count_numpy_seconds(time.perf_counter() - started)
+            count_numpy_seconds(time.perf_counter() - started)
 
     def _placed(self, parameter_values: np.ndarray, signs: np.ndarray, profile: bool, paired: bool):
         """:meth:`_evaluate`'s placement."""
