@@ -494,6 +494,19 @@ def _polished_on_links(scene: Scene, joints: list[str], points: np.ndarray) -> t
     return points, residual
 
 
+def _distinct_configurations(scene: Scene, points: np.ndarray) -> np.ndarray:
+    """``points`` (complex (K, J)) without the rows equal to an earlier one to 1e-9 of the
+    linkage's size: many starts (boundary samples of neighbouring cells) polish onto the
+    same mode, and polishing it again and verifying it once per start only costs time
+    (9-link slider chain, seed 1's second of coupling 2: 806 polished onto 4 modes)."""
+    if len(points) < 2:
+        return points
+    grain = 1e-9 * distance_bound(scene)
+    keys = np.round(np.concatenate([points.real, points.imag], axis=1) / grain)
+    _, first = np.unique(keys, axis=0, return_index=True)
+    return points[np.sort(first)]
+
+
 def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs: np.ndarray):
     """Configurations ``(joints, points (K, J) complex, parameters, branches)`` from
     approximate roots, polished on the link constraints (:func:`polish_configurations`),
@@ -516,8 +529,8 @@ def _polished(scene: Scene, compiled: CompiledSystem, values: np.ndarray, signs:
     # the link dimensions cannot see a joint leave the line of a link with joints in line
     # (a cost of δ² only); the rigid-link model can: on issue 25's 9/N27 (seed 41, link L3
     # P8 P1 P7 in line) a mode polished on the dimensions alone stood 3e-7 from msolve's
-    points, _ = polish_on_constraints(scene, joints, points[residual < RESIDUAL_TOLERANCE], RIGID_POLISH_STEPS,
-                                      model=placement_residuals)
+    points, _ = polish_on_constraints(scene, joints, _distinct_configurations(scene, points[residual < RESIDUAL_TOLERANCE]),
+                                      RIGID_POLISH_STEPS, model=placement_residuals)
     at = {j: points[:, n] for n, j in enumerate(joints)}
     parameters, branch = read_back(compiled, at, scene=scene)
     # at a double root on the domain's edge the polished joints are right to ~√ε only, a
