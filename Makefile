@@ -58,7 +58,7 @@ test-slow: $(STAMP)  ## long checks (not timed as a whole; docs/development.md g
 fuzz: $(STAMP)  ## the long fuzz run of the scene loader, the solvers and the scene re-encodings (tests/test_fuzz.py, tests/test_reencoding.py; FUZZ cases per test, default 10⁴)
 	BARANOV_FUZZ_EXAMPLES=$(FUZZ) $(BIN)/pytest -q -n 2 tests/test_fuzz.py tests/test_reencoding.py --hypothesis-show-statistics
 
-bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (21 min 32 s measured on 2026-11-27 beside a niced catalog job, 2 cores, msolve and the homotopy included)
+bench: $(STAMP)  ## speed vs accuracy of every method + stability study: regenerates docs/bench/, docs/benchmarks.md, docs/stability.md (about 25 min: 1335 s and 147 s measured on 2026-11-29, 2 cores, msolve and the homotopy included)
 	$(BIN)/python bench/speed_vs_accuracy.py
 	$(BIN)/python bench/stability.py
 
