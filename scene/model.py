@@ -59,7 +59,7 @@ from baranov.topology import (
 
 from .inputs import INPUT_KEYS, SceneInput
 from .numbers import Number, rational_sqrt
-from .sliders import SLIDER_KEYS, AngleError, SliderAxis, SliderJoint, angle_direction, slider_loop
+from .sliders import SLIDER_KEYS, AngleError, SliderAxis, SliderJoint, angle_direction, axis_frame, axis_turn, slider_loop
 from .tracers import TRACER_KEYS, TracerPoint, tracer_from_frame
 
 #: A link triangle whose area is below this fraction of the link's squared size is flat
@@ -163,6 +163,24 @@ class Scene:
         kind slider)."""
         chain = chain_from_links([link.joints for link in self.links], [link.name for link in self.links])
         return chain.with_joint_kinds(slider.joint for slider in self.sliders) if self.sliders else chain
+
+    @cached_property
+    def axis_frames(self) -> dict[tuple[str, str], dict[str, tuple[Number, Number]]]:
+        """Each slider's frame on each of its two links, in world units, keyed by (slider
+        joint, link name): :func:`~baranov.scene.sliders.axis_frame`, computed once (it is
+        exact arithmetic, most of a 7-link slider chain's solve when made at every use)."""
+        return {(slider.joint, axis.link): axis_frame(slider, self.link_of(axis.link))
+                for slider in self.sliders for axis in slider.axes}
+
+    @cached_property
+    def axis_turns(self) -> dict[tuple[str, str, str], tuple[Number, Number]]:
+        """The turn from one slider's axis to another's on a link they share, in world
+        units, keyed by (slider joint, other slider joint, link name):
+        :func:`~baranov.scene.sliders.axis_turn`, computed once."""
+        sliders = {slider.joint: slider for slider in self.sliders}
+        return {(slider.joint, other, axis.link): axis_turn(slider, sliders[other], self.link_of(axis.link))
+                for slider in self.sliders for axis in slider.axes
+                for other in self.link_of(axis.link).joints if other in sliders and other != slider.joint}
 
     @cached_property
     def known(self) -> dict[frozenset[str], Number]:

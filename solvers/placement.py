@@ -77,13 +77,15 @@ def slider_geometry(scene: Scene, number: Callable[[tuple], Any] = lambda pair: 
     geometry = {}
     for slider in scene.sliders:
         links = tuple(axis.link for axis in slider.axes)
-        frames = {link: axis_frame(slider, scene.link_of(link), unit[slider.joint]) for link in links}
+        frames = {link: scene.axis_frames[slider.joint, link] if unit[slider.joint] == 1
+                  else axis_frame(slider, scene.link_of(link), unit[slider.joint]) for link in links}
         offsets = {link: {joint: number(z) for joint, z in frame.items() if joint not in sliders}
                    for link, frame in frames.items()}
         slider_offsets = {link: {joint: number(z) for joint, z in frame.items() if joint in sliders}
                           for link, frame in frames.items()}
-        turns = {other: number(axis_turn(slider, sliders[other], scene.link_of(link),
-                                         (unit[slider.joint], unit[other])))
+        turns = {other: number(scene.axis_turns[slider.joint, other, link] if unit[slider.joint] == unit[other] == 1
+                               else axis_turn(slider, sliders[other], scene.link_of(link),
+                                              (unit[slider.joint], unit[other])))
                  for link in links for other in scene.link_of(link).joints if other in sliders and other != slider.joint}
         geometry[slider.joint] = SliderGeometry(links, offsets, turns, slider_offsets, unit[slider.joint])
     return geometry
