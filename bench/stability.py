@@ -590,6 +590,26 @@ mode for mode against msolve. Certified by the numeric backend's branch-and-prun
 71–84 % of the seven-link small-box, collinear and coincident instances and 56–71 % of the
 nine-link ones (seed 57: 57–76 % over both), none of the domain-edge and double-root ones.
 
+**Seed 59** (solving code 84da1a205f0b, commit 76afa0b, `adversarial-76afa0b` below), at
+the certified coupling-2 path: 560 nine-link and 600 seven-link instances, 1156 finite and
+four movable, said so by both backends. **Both backends: 0 missed and 0 spurious modes.**
+Certified by the branch-and-prune alone: 69–80 % of the seven-link small-box, collinear and
+coincident instances, 56–76 % of the nine-link ones (coupling-2 trusses included now).
+
+**Seed 60** (solving code a1009259c625, the code of a520b2c, `adversarial-a5f816a` and
+`adversarial-sliders-a5f816a` below), a check of the boxes at a squared distance's 0, the
+compiled kernel on slider chains and the deduplicated polish, not a full count: 140
+nine-link trusses (one per truss and kind) and 150 seven-link ones, all finite. **Both
+backends: 0 missed and 0 spurious modes**; certified by the branch-and-prune: 67–87 % of
+the seven-link small-box, collinear and coincident instances, 54–71 % of the nine-link
+ones. On 155 slider chains of the same kinds (154 finite, one movable, said so by both),
+the exact backend 0 / 0 with every list certified; **the numeric backend missed one mode**
+of a nine-link double-root chain (9/N18, coupling 2), with its answer *not* certified: its
+parameter s2,5 has no bound of link dimensions, so only the sampling searches ran, and
+they miss the mode at the double root (at 35fcb6a too). Saved as
+tests/regressions/sliders/open/adversarial-9-N18-double-root-unbounded-parameter-seed60.json.
+The branch-and-prune certified 11 of 15 seven-link and 74 of 139 nine-link slider chains.
+
 **Slider chains** (`bench/adversarial.py --sliders`: each kind's configuration with a random
 admissible slider set and axes of rational length; rows in
 bench/results/adversarial-sliders.jsonl, reports `adversarial-sliders-*` below; docs/sliders.md).
