@@ -498,7 +498,7 @@ def _distinct_configurations(scene: Scene, points: np.ndarray) -> np.ndarray:
     """``points`` (complex (K, J)) without the rows equal to an earlier one to 1e-9 of the
     linkage's size: many starts (boundary samples of neighbouring cells) polish onto the
     same mode, and polishing it again and verifying it once per start only costs time
-    (9-link slider chain, seed 1's second of coupling 2: 806 polished onto 4 modes)."""
+    (9-link slider chain, seed 1's second of coupling 2: 806 polished onto one mode)."""
     if len(points) < 2:
         return points
     grain = 1e-9 * distance_bound(scene)

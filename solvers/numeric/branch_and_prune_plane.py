@@ -71,10 +71,6 @@ _EXCLUDED, _CERTIFIED, _UNDECIDED, _NEAR = 0, 1, 2, 3
 #: box, e.g. of a box drawn about a mode, would lie on the boundary of both halves, and
 #: the Krawczyk test certifies a root in a box's interior only).
 SPLIT_AT = 0.4921875
-#: The narrowest box narrowed again, relative to the smallest box split: a box narrowed
-#: towards a point (a squared distance's 0, where a slider chain's domain may start) would
-#: otherwise shrink by halves down to underflow (90 000 boxes of width 2e-300, measured).
-NARROWEST = 2.0**-10
 #: Edge symbols of the models (:func:`~baranov.closure.interval_program._edge_root`): the
 #: roots at the first domain edges a box holds, each a symbol of its own.
 EDGE_SYMBOLS = 2
@@ -234,9 +230,12 @@ def _searched(stack, unresolved, box, k, outcome, status, narrowed, domain, mini
 
 @numba.njit(**_COMPILE)
 def _split(stack, unresolved, box, k, status, narrowed, domain, minimum_width):  # pragma: no cover - compiled
-    """An undecided box: searched again as ``narrowed`` where that is less than half of it
-    (down to NARROWEST × ``minimum_width``), else split across its wider side (relative to
-    the domain) at SPLIT_AT, or left unresolved below ``minimum_width``."""
+    """An undecided box: left unresolved (AT_COINCIDENCE) where it lies within
+    ``minimum_width`` of a squared distance's 0 — the plan divides by it there, and
+    narrowing towards that point shrank boxes to 2e-300 wide (90 000 boxes on one slider
+    chain) —, else searched again as ``narrowed`` where that is less than half of it, else
+    split across its wider side (relative to the domain) at SPLIT_AT, or left unresolved
+    below ``minimum_width``."""
     widths = np.array([box[1] - box[0], box[3] - box[2]])
     kept = np.array([narrowed[1] - narrowed[0], narrowed[3] - narrowed[2]])
     relative = kept / (domain[1::2] - domain[0::2])
@@ -244,8 +243,7 @@ def _split(stack, unresolved, box, k, status, narrowed, domain, minimum_width): 
         if domain[2 * side] == 0.0 and narrowed[2 * side] == 0.0 and relative[side] <= minimum_width:
             unresolved.append((narrowed.copy(), k, AT_COINCIDENCE))
             return
-    smallest = max(relative[0], relative[1]) <= NARROWEST * minimum_width
-    if kept[0] * kept[1] < 0.5 * widths[0] * widths[1] and not smallest:
+    if kept[0] * kept[1] < 0.5 * widths[0] * widths[1]:
         stack.append((narrowed.copy(), k, _SEARCH, narrowed.copy(), 0))
         return
     if relative[0] <= minimum_width and relative[1] <= minimum_width:
