@@ -165,3 +165,30 @@ def test_boxes_where_a_parameter_s_joints_coincide_are_left_without_searching_th
     missed, spurious, _ = compare_modes([mode.joints for mode in numeric.assembly_modes],
                                         [mode.joints for mode in expected.assembly_modes])
     assert len(numeric.assembly_modes) == 12 and (missed, spurious) == (0, 0)
+
+
+@pytest.mark.skipif(find_msolve() is None, reason="msolve binary not installed (make installs it)")
+def test_parameters_no_path_of_link_dimensions_bounds_are_pruned_out_to_a_reach(monkeypatch):
+    """Adversarial seed 60, 9/N18 with five sliders: no path of link dimensions bounds
+    s2,5 or s2,9, so the branch-and-prune used not to run, and the sampling searches
+    missed the mode (4.721978, 3.176008) on branch -++-. Both are now searched out to
+    UNBOUNDED_REACH times the linkage's size: every box there is decided but those at
+    s = 0, no branch goes to the searches, and the 6 modes are msolve's. The certificate
+    is not complete: it says how far out the parameters were searched."""
+    scene = load_scene(Path(__file__).parent / "regressions" / "sliders" /
+                       "adversarial-9-N18-unbounded-parameters-seed60.json")
+
+    def no_search(*arguments, **keywords):
+        raise AssertionError("a branch was handed to the sampling searches")
+
+    monkeypatch.setattr(backend, "two_parameter_roots", no_search)
+    numeric = solve(scene)
+    assert not numeric.certificate.complete
+    assert numeric.certificate.gaps[-1].startswith("no path of link dimensions bounds s2,5, s2,9: the branch-and-prune "
+                                                   "searched s2,5 in [0, 1.18365e+10], s2,9 in [0, 1.18365e+10]")
+    assert any(mode.signs == (-1, 1, 1, -1) and abs(mode.parameters["s2,5"] - 4.721978) < 1e-6
+               for mode in numeric.assembly_modes)
+    expected = solve(scene, method="msolve")
+    missed, spurious, _ = compare_modes([mode.joints for mode in numeric.assembly_modes],
+                                        [mode.joints for mode in expected.assembly_modes])
+    assert len(numeric.assembly_modes) == 6 and (missed, spurious) == (0, 0)

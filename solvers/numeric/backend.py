@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -50,12 +51,14 @@ from ..verification import RESIDUAL_TOLERANCE, distance_bound, placement_residua
 from .branch_and_prune import (
     AT_COINCIDENCE,
     REASONS,
+    UNBOUNDED_REACH,
     PrunedRoots,
     evaluation_budget,
     instance_inputs,
     prune_one_parameter,
     searched_box,
     slider_searched_domain,
+    unbounded_slider_domain,
 )
 from .branch_and_prune_plane import prune_two_parameters
 from .one_parameter import critical_values, one_parameter_roots, roots_at_critical_values
@@ -172,32 +175,56 @@ def _certified_modes(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     which boxes are left to the searches; and the branches left to the searches: those
     with an undecided box (all of them where the branch-and-prune did not run or a root
     did not verify). Before ``deadline`` (time.monotonic()), in as many evaluations as fit."""
-    box, slider_values, searched, remaining, reason = _pruning_inputs(scene, plan, compiled, branches, deadline)
-    if reason:
-        return (), Certificate(False, None, (reason,)), branches
-    pruned = prune_one_parameter(compiled, searched, box[0], scene.known,
-                                 budget=int(min(evaluation_budget(len(searched)), remaining / SECONDS_PER_BOX)),
-                                 slider_values=slider_values)
+    inputs = _pruning_inputs(scene, plan, compiled, branches, deadline)
+    if inputs.reason:
+        return (), Certificate(False, None, (inputs.reason,)), branches
+    searched = inputs.branches
+    pruned = prune_one_parameter(compiled, searched, inputs.box[0], scene.known,
+                                 budget=int(min(evaluation_budget(len(searched)), inputs.remaining / SECONDS_PER_BOX)),
+                                 slider_values=inputs.slider_values, reference=inputs.reference[0])
     modes, certificate = modes_of_pruned(scene, compiled, searched, pruned)
-    return modes, certificate, _branches_left(branches, searched, modes, pruned, branch_column=2)
+    left = _branches_left(branches, searched, modes, pruned, branch_column=2)
+    return modes, _within_reach(certificate, inputs, compiled.parameter_names), left
+
+
+@dataclass(frozen=True)
+class _PruningInputs:
+    """What a branch-and-prune of either kind runs on (:func:`_pruning_inputs`)."""
+
+    box: tuple  # one interval per parameter, as the program takes it (a slider's t)
+    reference: tuple  # the intervals its smallest widths are relative to
+    slider_values: list  # the exact numbers of the slider geometry (none without sliders)
+    branches: np.ndarray  # the branches to search (a slider chain's distinct ones)
+    remaining: float  # seconds left before the deadline
+    reason: str = ""  # why it cannot run
+    unbounded: tuple[int, ...] = ()  # the parameters no path of link dimensions bounds (UNBOUNDED_REACH)
 
 
 def _pruning_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
-                    deadline: float) -> tuple[tuple, list, np.ndarray, float, str]:
-    """What a branch-and-prune of either kind runs on: the searched box (one interval per
-    parameter, as the program takes it), the slider geometry's exact numbers (none without
-    sliders), the branches to search (a slider chain's distinct ones), the seconds left
-    before ``deadline``, and why it cannot run (else "")."""
-    slider_values: list = []
-    if scene.sliders:
-        box, slider_values, reason = _slider_inputs(scene, plan, compiled)
-        searched = distinct_branches(compiled.straight_line_program(), branches)
-    else:
-        box, searched, reason = searched_box(scene, plan), branches, ""
+                    deadline: float) -> _PruningInputs:
+    """What a branch-and-prune of either kind runs on, before ``deadline``."""
     remaining = deadline - time.monotonic()
-    if not reason and remaining <= 0:
-        reason = "the time limit passed before the branch-and-prune ran"
-    return box, slider_values, searched, remaining, reason
+    if not scene.sliders:
+        box = searched_box(scene, plan)
+        reason = "" if remaining > 0 else "the time limit passed before the branch-and-prune ran"
+        return _PruningInputs(box, box, [], branches, remaining, reason)
+    inputs = _slider_inputs(scene, plan, compiled, distinct_branches(compiled.straight_line_program(), branches),
+                            remaining)
+    if not inputs.reason and remaining <= 0:
+        return replace(inputs, reason="the time limit passed before the branch-and-prune ran")
+    return inputs
+
+
+def _within_reach(certificate: Certificate, inputs: _PruningInputs, names: tuple[str, ...]) -> Certificate:
+    """A branch-and-prune's certificate where some parameters had no bound: not complete,
+    and a last gap says how far out they were searched (:data:`UNBOUNDED_REACH`)."""
+    if not inputs.unbounded:
+        return certificate
+    searched = ", ".join(f"{names[n]} in [{inputs.box[n][0]:.6g}, {inputs.box[n][1]:.6g}]" for n in inputs.unbounded)
+    sentence = (f"no path of link dimensions bounds {', '.join(names[n] for n in inputs.unbounded)}: the "
+                f"branch-and-prune searched {searched} ({UNBOUNDED_REACH:g} times the linkage's size); a mode "
+                "beyond is not excluded (the sampling searches look there only on the branches left to them)")
+    return Certificate(False, certificate.probabilistic, (*certificate.gaps, sentence), certificate.proof)
 
 
 def _branches_left(branches: np.ndarray, searched: np.ndarray, modes: tuple, pruned: PrunedRoots,
@@ -220,30 +247,39 @@ def _certified_plane(scene: Scene, plan: Plan, compiled: CompiledSystem, branche
     box was decided and every certified root verified as a distinct mode); and the
     branches left to the searches: those with an undecided box (all of them where the
     branch-and-prune did not run or a root did not verify)."""
-    names = ", ".join(compiled.parameter_names)
-    box, slider_values, searched, remaining, reason = _pruning_inputs(scene, plan, compiled, branches, deadline)
-    if reason:
-        return (), Certificate(False, None, (reason,)), branches
+    inputs = _pruning_inputs(scene, plan, compiled, branches, deadline)
+    if inputs.reason:
+        return (), Certificate(False, None, (inputs.reason,)), branches
+    searched = inputs.branches
     budget = SLIDER_PLANE_BUDGET if scene.sliders else PLANE_BUDGET
-    pruned = prune_two_parameters(compiled, searched, box, scene.known, slider_values=slider_values,
-                                  budget=int(min(budget, remaining / SECONDS_PER_BOX / len(searched))))
+    pruned = prune_two_parameters(compiled, searched, inputs.box, scene.known, slider_values=inputs.slider_values,
+                                  budget=int(min(budget, inputs.remaining / SECONDS_PER_BOX / len(searched))),
+                                  reference=inputs.reference)
     candidates = [(_searched_values(compiled, 0.5 * (row[0:2] + row[2:4])), searched[int(row[4])])
                   for row in pruned.roots]
     modes = assembly_modes(scene, compiled, candidates, distinct=True)
+    certificate = _within_reach(_plane_certificate(compiled, searched, pruned, modes), inputs,
+                                compiled.parameter_names)
+    return modes, certificate, _branches_left(branches, searched, modes, pruned, branch_column=4)
+
+
+def _plane_certificate(compiled: CompiledSystem, searched: np.ndarray, pruned: PrunedRoots,
+                       modes: tuple[AssemblyMode, ...]) -> Certificate:
+    """The certificate of a two-parameter branch-and-prune over the branches ``searched``
+    whose certified roots verified as ``modes``: complete where every box was decided and
+    every root verified as a distinct mode; else its gaps name the undecided boxes."""
     (low_s, high_s), (low_t, high_t) = pruned.domain
-    where = f"({names}) in [{low_s:.6g}, {high_s:.6g}] × [{low_t:.6g}, {high_t:.6g}]"
-    left = _branches_left(branches, searched, modes, pruned, branch_column=4)
+    where = f"({', '.join(compiled.parameter_names)}) in [{low_s:.6g}, {high_s:.6g}] × [{low_t:.6g}, {high_t:.6g}]"
     if len(modes) != len(pruned.roots):
-        return modes, Certificate(False, None, (f"{len(pruned.roots)} roots certified, {len(modes)} verified as "
-                                                "distinct modes: every branch searched by sampling",)), left
+        return Certificate(False, None, (f"{len(pruned.roots)} roots certified, {len(modes)} verified as "
+                                         "distinct modes: every branch searched by sampling",))
     if len(pruned.unresolved):
-        return modes, Certificate(False, None, (*_plane_gaps(compiled, searched, pruned.unresolved),
-                                                f"interval branch-and-prune of {where}: these boxes are not decided; "
-                                                + _what_follows(pruned.unresolved))
-                                  ), left
+        return Certificate(False, None, (*_plane_gaps(compiled, searched, pruned.unresolved),
+                                         f"interval branch-and-prune of {where}: these boxes are not decided; "
+                                         + _what_follows(pruned.unresolved)))
     proof = (f"interval branch-and-prune of {where}, {len(searched)} branches: each root alone in its box "
              f"(Krawczyk), the rest excluded; {pruned.evaluations} boxes")
-    return modes, Certificate(True, None, (), proof), left
+    return Certificate(True, None, (), proof)
 
 
 def _what_follows(unresolved: np.ndarray) -> str:
@@ -274,23 +310,25 @@ def _plane_gaps(compiled: CompiledSystem, branches: np.ndarray, unresolved: np.n
     return tuple(sentences)
 
 
-def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem) -> tuple[tuple, list, str]:
-    """For a slider chain's branch-and-prune: the searched domain of each parameter, the
-    exact numbers of its slider geometry, and why it cannot run (else \"\"): a parameter
-    no path of link dimensions bounds, or a slider frame that is irrational in world units
-    (its numbers then have no exact enclosure here)."""
-    box = tuple(slider_searched_domain(scene, plan, compiled.searched, index)
-                for index in range(plan.number_of_parameters))
-    for name, domain in zip(compiled.parameter_names, box, strict=True):
+def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
+                   remaining: float) -> _PruningInputs:
+    """For a slider chain's branch-and-prune: the searched domain of each parameter (out
+    to UNBOUNDED_REACH times the linkage's size where no path of link dimensions bounds
+    it), the exact numbers of its slider geometry, and why it cannot run: a slider frame
+    that is irrational in world units (its numbers then have no exact enclosure here)."""
+    box, reference, unbounded = [], [], []
+    for index in range(plan.number_of_parameters):
+        domain = widths_of = slider_searched_domain(scene, plan, compiled.searched, index)
         if domain is None:
-            return (), [], (f"{name} is bounded by no path of link dimensions: the branch-and-prune searches "
-                            "bounded domains only")
+            unbounded.append(index)
+            domain, widths_of = unbounded_slider_domain(scene, plan, compiled.searched, index)
+        box.append(domain)
+        reference.append(widths_of)
     exact = exact_slider_constants(compiled.straight_line_program().slider_constants,
                                    slider_geometry(scene, number=lambda pair: pair), compiled.sliders)
-    if exact is None:
-        return (), [], ("a slider frame is irrational in world units: its numbers are not enclosed exactly, so the "
-                          "interval branch-and-prune does not run")
-    return box, exact, ""
+    reason = "" if exact is not None else ("a slider frame is irrational in world units: its numbers are not "
+                                           "enclosed exactly, so the interval branch-and-prune does not run")
+    return _PruningInputs(tuple(box), tuple(reference), exact or [], branches, remaining, reason, tuple(unbounded))
 
 
 def _searched_values(compiled: CompiledSystem, values: np.ndarray) -> np.ndarray:

@@ -211,17 +211,23 @@ def _evaluated(instructions, values, registers, h, feasible, status, starts, res
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _smallest_width(a, b, low, high, minimum_width):  # pragma: no cover - compiled
-    """How narrow the box [a, b] of the domain [low, high] may be bisected: END_WIDTH ×
-    ``minimum_width`` within two widths of an end of the domain, else ``minimum_width``.
+def _smallest_width(a, b, low, high, minimum_width, reference_low, reference_high):  # pragma: no cover - compiled
+    """How narrow the box [a, b] of the domain [low, high] may be bisected: a width w =
+    ``minimum_width`` × (``reference_high`` + the box's distance from the reference
+    interval), END_WIDTH × w within two widths of an end of the domain, else w. The
+    reference is the domain itself, except where a slider chain's parameter has no bound
+    and the domain reaches far past the linkage's size: beyond it the width grows with
+    the box's distance, a relative precision, so that the far boxes cost no more than the
+    near ones.
     The domain ends where a triangle with the parameter as a side flattens; the root of
     that triangle's radicand R varies there like √(hi − s), so f varies by about
     |∂f/∂√R| √(R's range) across a box at the end: excluding it when f is 1e-2 and that
     derivative 3 takes R below 1e-5, a box 1e-14 of the domain's end wide (every
     coupling-1 truss of 11 links, seed 5: four instances decided that were not at 1e-12).
     Boxes at an end are few at each width, so the deeper bisection costs little."""
+    width = minimum_width * (reference_high + max(0.0, reference_low - b, a - reference_high))
     near = 2.0 * (b - a)
-    return END_WIDTH * minimum_width if a - low <= near or high - b <= near else minimum_width
+    return END_WIDTH * width if a - low <= near or high - b <= near else width
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -240,11 +246,13 @@ def _split(stack, unresolved, a, b, k, status, z0, z1, minimum_width):  # pragma
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def _prune(instructions, values, instance_c, instance_e, starts, instance_outputs, parameter, sign_registers, branches,
-           residual, derivative, low, high, minimum_width, budget, columns, record, h):  # pragma: no cover - compiled
+           residual, derivative, low, high, reference_low, reference_high, minimum_width, budget, columns, record, h
+           ):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_instances` over every branch of every
     instance (the first ``values`` instructions compute the values, the rest the
     derivatives; instance i's registers ``instance_c[i]``, ``instance_e[i]``, its status
-    ``starts[i]``, its domain [low[i], high[i]]): rounds of up to ``columns`` boxes of any
+    ``starts[i]``, its domain [low[i], high[i]], the reference of its smallest widths
+    [reference_low[i], reference_high[i]]: :func:`_smallest_width`): rounds of up to ``columns`` boxes of any
     instances, each round one evaluation of the program side by side. A box's branch
     index k stands for branch k mod B of instance k // B. With ``record``, every box
     evaluated is logged: (low, high, branch index, work kind, decision, f monotone, status)."""
@@ -304,6 +312,7 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
         for n in range(len(batch)):
             j = slots[n]
             a, b, k, kind, u0, u1, z0, z1, steps = batch[n]
+            i = k // count
             decision, center, slope, rest, g0, g1 = out[j, 0], out[j, 1], out[j, 2], out[j, 3], out[j, 4], out[j, 5]
             monotone = decision == FEASIBLE and (g0 > 0.0 or g1 < 0.0)  # one root at most
             if record:
@@ -313,11 +322,11 @@ def _prune(instructions, values, instance_c, instance_e, starts, instance_output
                           out[j, 6], out[j, 7])
             elif kind == CERTIFY:
                 _certify(stack, unresolved, a, b, k, u0, u1, z0, z1, decision, monotone, out[j + 1, 1], out[j + 1, 3],
-                         g0, g1, _smallest_width(u0, u1, low[k // count], high[k // count], minimum_width[k // count]))
+                         g0, g1, _smallest_width(u0, u1, low[i], high[i], minimum_width, reference_low[i], reference_high[i]))
             elif decision != EXCLUDED:
                 _search(stack, unresolved, a, b, k, decision, monotone, center, slope, rest, g0, g1,
-                        out[j, 6], out[j, 7], _smallest_width(a, b, low[k // count], high[k // count],
-                                                              minimum_width[k // count]))
+                        out[j, 6], out[j, 7], _smallest_width(a, b, low[i], high[i], minimum_width,
+                                                              reference_low[i], reference_high[i]))
     found = np.empty((len(roots), 5))
     for n in range(len(roots)):
         found[n, 0], found[n, 1], found[n, 2], found[n, 3], found[n, 4] = roots[n]
@@ -402,7 +411,8 @@ def _contract(stack, roots, n0, n1, k, u0, u1, steps, monotone, center, rest, g0
 
 def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: tuple[float, float],
                         exact_known=None, minimum_width: float = MINIMUM_WIDTH,
-                        budget: int = EVALUATION_BUDGET, slider_values=()) -> PrunedRoots:
+                        budget: int = EVALUATION_BUDGET, slider_values=(),
+                        reference: tuple[float, float] | None = None) -> PrunedRoots:
     """Every real root of a coupling-1 plan's closure condition in ``domain`` (an
     interval of the parameter holding every mode: :func:`parameter_domain`) on each of
     ``branches`` (B, m), certified or left in a named undecided box (module
@@ -410,29 +420,35 @@ def prune_one_parameter(compiled: CompiledSystem, branches: np.ndarray, domain: 
     int, Fraction, …), so that the boxes are decided for them and not for their floats;
     with slider joints, ``slider_values`` the exact numbers of their geometry
     (:func:`~baranov.closure.traced_sliders.exact_slider_constants`), and the domain is
-    that of the parameter the program takes (a slider's t, not its searched value). Cost:
-    O(boxes × instructions); the boxes are about the roots' and edges' number times the
-    bisections to isolate them.
+    that of the parameter the program takes (a slider's t, not its searched value);
+    ``reference``: the part of the domain the smallest widths are relative to (the
+    domain where None; :func:`_smallest_width`). Cost: O(boxes × instructions); the boxes
+    are about the roots' and edges' number times the bisections to isolate them.
     """
     inputs = instance_inputs(compiled.straight_line_program(), {**compiled.known, **(exact_known or {})},
                              compiled.fixed_signs, slider_values)
-    return prune_instances(compiled.straight_line_program(), branches, [inputs], [domain], minimum_width, budget)[0]
+    return prune_instances(compiled.straight_line_program(), branches, [inputs], [domain], minimum_width, budget,
+                           references=None if reference is None else [reference])[0]
 
 
 def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: Sequence[tuple], domains: Sequence,
                     minimum_width: float = MINIMUM_WIDTH, budget: int = EVALUATION_BUDGET,
-                    record: bool = False) -> list[PrunedRoots]:
+                    record: bool = False, references: Sequence | None = None) -> list[PrunedRoots]:
     """:func:`prune_one_parameter` for many instances of one coupling-1 plan at once
     (``inputs``: each instance's :func:`instance_inputs`; ``domains``: its searched
     interval), their boxes side by side in the same rounds (a sweep fills every column,
     where one instance of a 7-link truss fills a few). The same boxes, decisions and
     roots as one instance at a time; ``budget`` is per instance. Cost
     O(instances × boxes × instructions), without Python work per box. ``record``: each
-    result's ``boxes`` lists the boxes evaluated (a diagnostic: where the boxes go)."""
+    result's ``boxes`` lists the boxes evaluated (a diagnostic: where the boxes go);
+    ``references``: each instance's reference interval of the smallest widths (its domain
+    where None)."""
     reduced = interval_program(program)
     source = reduced.program  # the program traced for intervals: its own registers
     registers = [instance_registers(reduced, *arguments) for arguments in inputs]
     low, high = (np.array([float(domain[end]) for domain in domains]) for end in (0, 1))
+    reference_low, reference_high = (low, high) if references is None else (
+        np.array([float(reference[end]) for reference in references]) for end in (0, 1))
     count = len(branches)
     columns = min(COLUMNS if len(inputs) == 1 else MANY_COLUMNS, max(8, 4 * count * len(inputs)))
     found, left, evaluations, boxes = _prune(reduced.instructions, reduced.values,
@@ -442,7 +458,8 @@ def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: 
                                       reduced.instance_outputs, int(source.parameter_registers[0]),
                                       source.sign_registers, np.ascontiguousarray(branches, dtype=float),
                                       int(source.residual_registers[0]), int(reduced.residual_derivatives[0, 0]),
-                                      low, high, minimum_width * high, budget, columns, record,
+                                      low, high, reference_low, reference_high, minimum_width, budget, columns,
+                                      record,
                                       quadratic_terms(ORDER, 1, len(registers[0][0]), columns))
     owner_found, owner_left = found[:, 2] // count, left[:, 2] // count
     pruned = []
@@ -452,14 +469,15 @@ def prune_instances(program: StraightLineProgram, branches: np.ndarray, inputs: 
         unresolved[:, 2] -= i * count
         mine = boxes[boxes[:, 2] // count == i]
         mine[:, 2] -= i * count
-        unresolved = _at_coincidence(unresolved, low[i], high[i], minimum_width)
+        unresolved = _at_coincidence(unresolved, low[i], reference_high[i], minimum_width)
         pruned.append(PrunedRoots(_distinct(roots), _merged(unresolved), int(evaluations[i]), (low[i], high[i]), mine))
     return pruned
 
 
 def _at_coincidence(boxes: np.ndarray, low: float, high: float, minimum_width: float) -> np.ndarray:
     """Undecided boxes (rows: ends, branch, reason) at a squared distance's 0 — the
-    domain starts at 0 and the box ends within ``minimum_width`` × ``high`` of it —
+    domain starts at 0 and the box ends within ``minimum_width`` × ``high`` (the reference
+    interval's upper end) of it —
     given the reason AT_COINCIDENCE: the plan divides by the parameter there, so no box
     at 0 is ever decided, and the modes where its joints coincide come from another plan
     (:mod:`baranov.solvers.coincidence`)."""
@@ -575,16 +593,47 @@ def slider_searched_domain(scene, plan, searched, index: int = 0) -> tuple[float
     most the shortest path of link dimensions to the nearer of the slider's points
     (:meth:`~baranov.scene.Scene.largest_distance`: the distance to the axis is at most
     that to a point of it); for a squared distance, :func:`parameter_domain` below the
-    square of that path. Rounded outward. None where no path bounds it (``searched``:
-    the compiled system's :class:`~baranov.closure.sliders.SearchedParameter` maps)."""
+    square of that path, or where there is none, below the triangles' bounds alone. Rounded
+    outward. None where nothing bounds it (``searched``: the compiled system's
+    :class:`~baranov.closure.sliders.SearchedParameter` maps;
+    :func:`unbounded_slider_domain` then)."""
     pair = tuple(plan.parameters[index])
     bound = scene.largest_distance(*pair) * (1 + FLOAT_BOUND_SLACK)
-    if not math.isfinite(bound):
-        return None
     mapping = searched.get(frozenset(pair))
+    if not math.isfinite(bound):
+        if mapping is not None and mapping.signed:
+            return None
+        domain = parameter_domain(scene, plan, math.inf, index)
+        return domain if math.isfinite(domain[1]) else None
     if mapping is not None:
         return (-bound, bound) if mapping.signed else None
     return parameter_domain(scene, plan, math.nextafter(bound * bound, math.inf), index)
+
+
+#: Where no path of link dimensions bounds a slider chain's parameter, the
+#: branch-and-prune searches it out to this many times the linkage's size (a slider's t)
+#: or its square (a squared distance). The sampling searches' first grid looks little past
+#: 40 times the size. On the 57 such chains among 300 random 7- and 9-link slider chains
+#: (seed 5), the modes were msolve's on every one both solve; on the 32 nine-link
+#: coupling-2 ones, reaches 30, 1e3, 1e6 took 18.0, 21.0, 22.1 s (docs/numeric.md).
+UNBOUNDED_REACH = 1e3
+
+
+def unbounded_slider_domain(scene, plan, searched, index: int = 0
+                            ) -> tuple[tuple[float, float], tuple[float, float]]:
+    """For a slider chain's parameter ``index`` that no path of link dimensions bounds
+    (:func:`slider_searched_domain` is None): the domain the branch-and-prune searches,
+    UNBOUNDED_REACH times the linkage's size R out (|t| ≤ that; a squared distance
+    :func:`parameter_domain` below its square), and the reference interval its smallest
+    widths are relative to (|t| ≤ R, s ≤ R²): near the linkage the boxes are as narrow as
+    on a bounded domain, far out they are relative to their distance. No mode beyond the
+    domain is excluded: the certificate says so."""
+    mapping = searched[frozenset(plan.parameters[index])]
+    reach = math.nextafter(UNBOUNDED_REACH * mapping.scale, math.inf)
+    if mapping.signed:
+        return (-reach, reach), (-mapping.scale, mapping.scale)
+    low, high = parameter_domain(scene, plan, math.nextafter(reach * reach, math.inf), index)
+    return (low, high), (low, min(high, max(low, mapping.scale**2)))
 
 
 def searched_box(scene, plan) -> tuple[tuple[float, float], ...]:

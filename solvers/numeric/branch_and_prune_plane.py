@@ -212,7 +212,8 @@ def _evaluate_round(instructions, values, registers, h, parameters, residuals, d
 
 
 @numba.njit(**_COMPILE)
-def _searched(stack, unresolved, box, k, outcome, status, narrowed, domain, minimum_width):  # pragma: no cover - compiled
+def _searched(stack, unresolved, box, k, outcome, status, narrowed, domain, reference, minimum_width
+              ):  # pragma: no cover - compiled
     """What follows from a searched box's outcome (not certified, not excluded): a
     certification about the roots its Krawczyk image left (a box half as wide again about
     them, which may reach past this one: a root found twice is merged by its uniqueness
@@ -225,20 +226,26 @@ def _searched(stack, unresolved, box, k, outcome, status, narrowed, domain, mini
             uniqueness[n] = narrowed[n] + (narrowed[n] - narrowed[n ^ 1]) * 0.25
         stack.append((uniqueness, k, _CERTIFY, box.copy(), 0))
         return
-    _split(stack, unresolved, box, k, status, narrowed, domain, minimum_width)
+    _split(stack, unresolved, box, k, status, narrowed, domain, reference, minimum_width)
 
 
 @numba.njit(**_COMPILE)
-def _split(stack, unresolved, box, k, status, narrowed, domain, minimum_width):  # pragma: no cover - compiled
+def _split(stack, unresolved, box, k, status, narrowed, domain, reference, minimum_width
+           ):  # pragma: no cover - compiled
     """An undecided box: left unresolved (AT_COINCIDENCE) where it lies within
     ``minimum_width`` of a squared distance's 0 — the plan divides by it there, and
     narrowing towards that point shrank boxes to 2e-300 wide (90 000 boxes on one slider
     chain) —, else searched again as ``narrowed`` where that is less than half of it, else
     split across its wider side (relative to the domain) at SPLIT_AT, or left unresolved
-    below ``minimum_width``."""
+    below ``minimum_width``. Widths are relative to the ``reference`` box (the domain,
+    except where a slider chain's parameter has no bound), grown by the box's distance
+    from it: a relative precision far past the linkage's size."""
     widths = np.array([box[1] - box[0], box[3] - box[2]])
     kept = np.array([narrowed[1] - narrowed[0], narrowed[3] - narrowed[2]])
-    relative = kept / (domain[1::2] - domain[0::2])
+    relative = np.empty(2)
+    for side in range(2):
+        beyond = max(0.0, reference[2 * side] - narrowed[2 * side + 1], narrowed[2 * side] - reference[2 * side + 1])
+        relative[side] = kept[side] / (reference[2 * side + 1] - reference[2 * side] + beyond)
     for side in range(2):  # the plan divides by a squared distance at its 0: no box there is ever decided
         if domain[2 * side] == 0.0 and narrowed[2 * side] == 0.0 and relative[side] <= minimum_width:
             unresolved.append((narrowed.copy(), k, AT_COINCIDENCE))
@@ -258,7 +265,7 @@ def _split(stack, unresolved, box, k, status, narrowed, domain, minimum_width): 
 
 
 @numba.njit(**_COMPILE)
-def _decided(stack, roots, unresolved, item, outcome, status, narrowed, domain, minimum_width
+def _decided(stack, roots, unresolved, item, outcome, status, narrowed, domain, reference, minimum_width
              ):  # pragma: no cover - compiled
     """Act on one box's outcome by its work: a searched box is dropped, certified (then
     contracted), or followed up (:func:`_searched`); a certification's box certified about
@@ -271,14 +278,14 @@ def _decided(stack, roots, unresolved, item, outcome, status, narrowed, domain, 
         if outcome == _CERTIFIED:
             stack.append((narrowed.copy(), k, _CONTRACT, box, 0))
         elif outcome != _EXCLUDED:
-            _searched(stack, unresolved, box, k, outcome, status, narrowed, domain, minimum_width)
+            _searched(stack, unresolved, box, k, outcome, status, narrowed, domain, reference, minimum_width)
     elif work == _CERTIFY:
         searched = other
         if outcome == _CERTIFIED and not (narrowed[1] < searched[0] or narrowed[0] > searched[1]
                                           or narrowed[3] < searched[2] or narrowed[2] > searched[3]):
             stack.append((narrowed.copy(), k, _CONTRACT, box, 0))
         elif outcome != _CERTIFIED and outcome != _EXCLUDED:
-            _split(stack, unresolved, searched, k, status, searched, domain, minimum_width)
+            _split(stack, unresolved, searched, k, status, searched, domain, reference, minimum_width)
     elif outcome != _CERTIFIED:
         roots.append((box, k, other))
     else:
@@ -292,7 +299,7 @@ def _decided(stack, roots, unresolved, item, outcome, status, narrowed, domain, 
 
 @numba.njit(**_COMPILE)
 def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_registers, branches, residuals, derivatives,
-                 domain, minimum_width, budget, h, symbols):  # pragma: no cover - compiled
+                 domain, reference, minimum_width, budget, h, symbols):  # pragma: no cover - compiled
     """The branch-and-prune loop of :func:`prune_two_parameters` over every branch: rounds
     of up to COLUMNS boxes of any branch and work, each one evaluation side by side; at
     most ``budget`` evaluations on each branch."""
@@ -338,7 +345,8 @@ def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_r
         _evaluate_round(instructions, values, registers, h, parameters, residuals, derivatives, boxes, statuses,
                         len(batch), narrowed, outcomes, centers, rests)
         for j in range(len(batch)):
-            _decided(stack, roots, unresolved, batch[j], outcomes[j], statuses[j], narrowed[j], domain, minimum_width)
+            _decided(stack, roots, unresolved, batch[j], outcomes[j], statuses[j], narrowed[j], domain, reference,
+                     minimum_width)
     found = np.empty((len(roots), 9))
     for n in range(len(roots)):
         enclosure, k, uniqueness = roots[n]
@@ -355,7 +363,8 @@ def _prune_plane(instructions, values, base_c, base_e, start, parameters, sign_r
 def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
                          domain: tuple[tuple[float, float], tuple[float, float]], exact_known=None,
                          minimum_width: float = MINIMUM_WIDTH, budget: int = EVALUATION_BUDGET,
-                         order: int = 2, edge_symbols: int = EDGE_SYMBOLS, slider_values=()) -> PrunedRoots:
+                         order: int = 2, edge_symbols: int = EDGE_SYMBOLS, slider_values=(),
+                         reference: tuple[tuple[float, float], tuple[float, float]] | None = None) -> PrunedRoots:
     """Every real root of a coupling-2 plan's two closure conditions in ``domain`` (one
     interval per parameter holding every mode: :func:`~.branch_and_prune.searched_box`)
     on each of ``branches`` (B, m), certified or left in a named undecided box (module
@@ -363,7 +372,9 @@ def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
     int, Fraction, …); ``budget``: box evaluations allowed on each branch (a branch past
     it leaves its boxes undecided, the others go on). With slider joints, ``slider_values``
     the exact numbers of their geometry, and the domain is that of the parameters the
-    program takes (a slider's t, not its searched value). Cost O(boxes × instructions).
+    program takes (a slider's t, not its searched value); ``reference``: the part of the
+    domain the smallest widths are relative to (the domain where None; :func:`_split`).
+    Cost O(boxes × instructions).
 
     Rows of the result: ``roots`` (lower ends (2), upper ends (2), branch index);
     ``unresolved`` the same and the reason.
@@ -373,12 +384,13 @@ def prune_two_parameters(compiled: CompiledSystem, branches: np.ndarray,
     inputs = instance_inputs(program, {**compiled.known, **(exact_known or {})}, compiled.fixed_signs, slider_values)
     base_c, base_e, start = models.instance_registers(reduced, *inputs)
     box = np.array([float(end) for interval in domain for end in interval])
+    widths_of = box if reference is None else np.array([float(end) for interval in reference for end in interval])
     derivatives = np.ascontiguousarray(reduced.residual_derivatives, dtype=np.int64)
     source = reduced.program  # the program traced for intervals: its own registers
     found, left, evaluations = _prune_plane(
         reduced.instructions, reduced.values, base_c, base_e, start, np.ascontiguousarray(source.parameter_registers),
         source.sign_registers, np.ascontiguousarray(branches, dtype=float),
-        np.ascontiguousarray(source.residual_registers), derivatives, box, minimum_width, budget,
+        np.ascontiguousarray(source.residual_registers), derivatives, box, widths_of, minimum_width, budget,
         models.quadratic_terms(order, 2 + edge_symbols, len(base_c), COLUMNS), 2 + edge_symbols)
     return PrunedRoots(_distinct(found), left, evaluations, tuple(map(tuple, box.reshape(2, 2))))
 
