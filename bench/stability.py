@@ -606,9 +606,23 @@ ones. On 155 slider chains of the same kinds (154 finite, one movable, said so b
 the exact backend 0 / 0 with every list certified; **the numeric backend missed one mode**
 of a nine-link double-root chain (9/N18, coupling 2), with its answer *not* certified: its
 parameter s2,5 has no bound of link dimensions, so only the sampling searches ran, and
-they miss the mode at the double root (at 35fcb6a too). Saved as
-tests/regressions/sliders/open/adversarial-9-N18-double-root-unbounded-parameter-seed60.json.
+they missed the mode (4.721978, 3.176008) on branch -++- (the double root itself, (9, 4),
+was found; missed at 35fcb6a too). Saved as
+tests/regressions/sliders/adversarial-9-N18-unbounded-parameters-seed60.json, fixed at
+9144e15 (the branch-and-prune searches such parameters out to 1000 times the linkage's size).
 The branch-and-prune certified 11 of 15 seven-link and 74 of 139 nine-link slider chains.
+
+**Seed 61** (solving code 4ce6050e8373, the code of 9144e15, `adversarial-9144e15` and
+`adversarial-sliders-9144e15` below), after unbounded slider parameters were given to the
+branch-and-prune: 140 nine-link trusses (one per truss and kind) and 150 seven-link ones
+(288 finite, 2 movable, said so by both). **Both backends: 0 missed and 0 spurious
+modes**; certified by the branch-and-prune: 70–87 % of the seven-link small-box, collinear
+and coincident instances, 54–89 % of the nine-link ones. On 155 slider chains (153 finite,
+2 movable, said so by both): **both backends 0 / 0**; the numeric backend certified 12 of
+15 seven-link and 81 of 138 nine-link chains; one exact list is not certified, a chain no
+bilateration plan suits (9/N5 small-box, sliders P4 P5 P6 P9 P11 P12), whose 3 modes are
+msolve's, verified, in both backends, which say that msolve's Cartesian system has 3
+complex solutions where a generic instance has 4.
 
 **Slider chains** (`bench/adversarial.py --sliders`: each kind's configuration with a random
 admissible slider set and axes of rational length; rows in
