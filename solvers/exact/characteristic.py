@@ -326,9 +326,20 @@ def dimension_inputs(scene: Scene, context, prime: int | None, parameter_of: dic
     return constant, known
 
 
-def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, along_root) -> SliderPlacement:
+def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, along_root,
+                      geometry: dict | None = None) -> SliderPlacement:
     """The slider constructions (:mod:`baranov.closure.sliders`) over ``ring`` (a
-    :class:`Homogeneous` arithmetic), with the scene's axis frames exact; raises
+    :class:`Homogeneous` arithmetic), with the scene's axis frames exact (``geometry``, or
+    :func:`_exact_slider_geometry`)."""
+    def parameter(u: str, v: str):
+        value = parameters.get(frozenset((u, v)))
+        return None if value is None else Homogeneous.of(value, **ring)
+
+    return SliderPlacement(geometry or _exact_slider_geometry(scene, plan, ring), parameter, along_root)
+
+
+def _exact_slider_geometry(scene: Scene, plan: Plan, ring: dict) -> dict:
+    """:func:`~baranov.solvers.placement.slider_geometry` over ``ring``, exact; raises
     :class:`ExactMethodError` where a place or turn is irrational."""
     def number(pair):
         if not all(isinstance(c, Fraction) for c in pair):
@@ -344,10 +355,6 @@ def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, al
             raise ExactMethodError(f"slider {slider.joint}: its axis frames are {shown}; the exact method needs "
                                    "them rational in one unit √q (docs/sliders.md); the numeric method takes the scene")
 
-    def parameter(u: str, v: str):
-        value = parameters.get(frozenset((u, v)))
-        return None if value is None else Homogeneous.of(value, **ring)
-
     geometry = slider_geometry(scene, number, units=True)
     for pair in plan.parameters:
         for slider in set(pair) & geometry.keys():
@@ -355,7 +362,7 @@ def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, al
                 raise ExactMethodError(f"slider {slider}: the parameter t is its axis's oriented distance, and its "
                                        f"axis frames are rational only in units of √{geometry[slider].unit}; the "
                                        "exact method needs a plan whose parameters avoid it (docs/sliders.md)")
-    return SliderPlacement(geometry, parameter, along_root)
+    return geometry
 
 
 def _slider_closure(sliders: SliderPlacement, u: str, v: str, points: dict, reference, ring: dict) -> Homogeneous:
@@ -654,6 +661,23 @@ _BALLS = {"constant": exact_ball,
 _SLIDERS = "<sliders>"
 
 
+#: The last few ball slider geometries, by (scene, plan, precision): the ball placements
+#: of one solve (the curve and factor tests) make the same geometry thousands of times
+#: (a nine-link chain: 8930 times, 28 of 119 s, cProfile). Each entry keeps its scene and
+#: plan, so their ids are not reused while it is here.
+_BALL_GEOMETRIES: dict = {}
+
+
+def _ball_slider_geometry(scene: Scene, plan: Plan) -> dict:
+    """:func:`_exact_slider_geometry` in balls at the current precision, cached."""
+    key = (id(scene), id(plan), flint.ctx.prec)
+    if key not in _BALL_GEOMETRIES:
+        if len(_BALL_GEOMETRIES) >= 16:
+            del _BALL_GEOMETRIES[next(iter(_BALL_GEOMETRIES))]
+        _BALL_GEOMETRIES[key] = (scene, plan, _exact_slider_geometry(scene, plan, _BALLS))
+    return _BALL_GEOMETRIES[key][2]
+
+
 def _ball_sliders(scene: Scene, plan: Plan, values: dict, signs, real_only: bool):
     """The slider placement of :func:`placed_points` and its kernel hooks, in balls."""
     free_index = {index: n for n, index in enumerate(i for i, step in enumerate(plan.steps) if step.free_sign)}
@@ -664,7 +688,7 @@ def _ball_sliders(scene: Scene, plan: Plan, values: dict, signs, real_only: bool
             raise _Undefined(None)
         return Homogeneous(signs[free_index[index]] * _square_root(value), flint.acb(0), flint.acb(1), **_BALLS)
 
-    sliders = _slider_placement(scene, plan, _BALLS, values, along_root)
+    sliders = _slider_placement(scene, plan, _BALLS, values, along_root, _ball_slider_geometry(scene, plan))
     slider_step, slider_frame = sliders.kernel_hooks(
         plan.reference, lambda point: Homogeneous(*(flint.acb(c) for c in point), **_BALLS),
         lambda number: (number.x / number.w, number.y / number.w, 1),
