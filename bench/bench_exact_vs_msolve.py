@@ -4,8 +4,10 @@ instances, in one run; and whether the exact backend's modes are msolve's, mode 
 
 Rows: one random instance of each 7-link truss, of four 9-link trusses of coupling degree
 1, of each of the four of coupling degree 2 (9/B25–B28), of three 11-link trusses of each
-coupling degree, and the 13-link Watt–Baranov example (§3.6.2.2). One solve per method
-and instance (the plan searched beforehand), one process, msolve on one thread.
+coupling degree, the 13-link Watt–Baranov example (§3.6.2.2), and random slider chains of
+7- and 9-link trusses (a random admissible slider set, axes of rational length:
+``bench_numeric.random_slider_scenes``). One solve per method and instance (the plan
+searched beforehand), one process, msolve on one thread.
 
     python bench/bench_exact_vs_msolve.py [--seed 1] [--out docs/bench/exact-vs-msolve.md]
 """
@@ -38,12 +40,17 @@ def rows(seed: int) -> dict[str, list]:
         chosen = pool if every else [pool[int(k)] for k in rng.choice(len(pool), count, replace=False)]
         return [scene_of(t, generic_integer_configuration(t, rng)) for t in chosen]
 
+    from bench_numeric import random_slider_scenes  # a sibling script: bench/ is on the path
+
     return {"7-link trusses": drawn(7, 1, 3, every=True),
             "9-link coupling 1": drawn(9, 1, 4),
             "9-link coupling 2 (9/B25–B28)": drawn(9, 2, 4, every=True),
             "11-link coupling 1": drawn(11, 1, 3),
             "11-link coupling 2": drawn(11, 2, 3),
-            "13-link Watt–Baranov example": [load_scene(ROOT / "examples" / "13-watt-baranov.json")]}
+            "13-link Watt–Baranov example": [load_scene(ROOT / "examples" / "13-watt-baranov.json")],
+            "7-link slider chains": random_slider_scenes(7, 1, 6, seed),
+            "9-link slider chains, coupling 1": random_slider_scenes(9, 1, 6, seed),
+            "9-link slider chains, coupling 2": random_slider_scenes(9, 2, 6, seed)}
 
 
 def timed(scene, method: str):
