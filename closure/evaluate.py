@@ -427,8 +427,8 @@ class _Placement(NamedTuple):
         broadcast)."""
         with np.errstate(invalid="ignore"):  # an unplaced joint (x or y NaN or ∞) stays NaN
             at = {joint: x + 1j * y for joint, (x, y, _) in self.points.items()}
-        if self.sliders is not None:
-            with np.errstate(invalid="ignore"):
+        if self.sliders is not None:  # two parallel axes meet at no point: ∞ or NaN, not a warning
+            with np.errstate(invalid="ignore", divide="ignore"):
                 at.update(self.sliders.slider_points(at, self.s_ref))
         return {joint: np.broadcast_to(np.asarray(value, complex), self.shape) for joint, value in at.items()}
 

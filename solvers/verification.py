@@ -159,8 +159,9 @@ def _slider_columns(scene: Scene, at: dict[str, np.ndarray]) -> list[np.ndarray]
     for slider in scene.sliders:
         (foot, direction), (other_foot, other_direction) = (slider_axis(scene, slider, axis.link, at)
                                                             for axis in slider.axes)
-        columns.append((direction.conjugate() * other_direction).imag)
-        columns.append((direction.conjugate() * (other_foot - foot)).imag / size)
+        with np.errstate(invalid="ignore"):  # a point at ∞ (two parallel axes) gives NaN: not a mode
+            columns.append((direction.conjugate() * other_direction).imag)
+            columns.append((direction.conjugate() * (other_foot - foot)).imag / size)
     return columns
 
 

@@ -787,3 +787,17 @@ def test_published_slider_chains_are_certified(example, parameter):
     interval branch-and-prune, with the published modes."""
     solution = solve(load_scene(EXAMPLES / f"{example}.json"))
     assert solution.certificate.complete and f"branch-and-prune of {parameter}" in solution.certificate.proof
+
+
+def test_two_parallel_slider_axes_give_no_numpy_warning():
+    """tests/regressions/sliders/open/robot-RrR-rPP-pPR.json, a locked robot that moves
+    (msolve: a positive-dimensional solution set): where two slider axes the plan crosses
+    are parallel, the point where they meet is ∞ or NaN and no mode, and numpy's
+    divide-by-zero and invalid-value warnings reached the command line's stderr. The
+    solve says nothing is proven and warns of nothing."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        solution = solve(load_scene(SLIDER_REGRESSIONS / "open" / "robot-RrR-rPP-pPR.json"))
+    assert not solution.certificate.complete
