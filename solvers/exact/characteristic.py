@@ -335,7 +335,9 @@ def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, al
         value = parameters.get(frozenset((u, v)))
         return None if value is None else Homogeneous.of(value, **ring)
 
-    return SliderPlacement(geometry or _exact_slider_geometry(scene, plan, ring), parameter, along_root)
+    if geometry is None:
+        geometry = _exact_slider_geometry(scene, plan, ring)
+    return SliderPlacement(geometry, parameter, along_root)
 
 
 def _exact_slider_geometry(scene: Scene, plan: Plan, ring: dict) -> dict:

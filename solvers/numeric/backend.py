@@ -195,24 +195,23 @@ class _PruningInputs:
     reference: tuple  # the intervals its smallest widths are relative to
     slider_values: list  # the exact numbers of the slider geometry (none without sliders)
     branches: np.ndarray  # the branches to search (a slider chain's distinct ones)
-    remaining: float  # seconds left before the deadline
     reason: str = ""  # why it cannot run
     unbounded: tuple[int, ...] = ()  # the parameters no path of link dimensions bounds (UNBOUNDED_REACH)
+    remaining: float = math.inf  # seconds left before the deadline
 
 
 def _pruning_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
                     deadline: float) -> _PruningInputs:
     """What a branch-and-prune of either kind runs on, before ``deadline``."""
-    remaining = deadline - time.monotonic()
-    if not scene.sliders:
+    if scene.sliders:
+        inputs = _slider_inputs(scene, plan, compiled, distinct_branches(compiled.straight_line_program(), branches))
+    else:
         box = searched_box(scene, plan)
-        reason = "" if remaining > 0 else "the time limit passed before the branch-and-prune ran"
-        return _PruningInputs(box, box, [], branches, remaining, reason)
-    inputs = _slider_inputs(scene, plan, compiled, distinct_branches(compiled.straight_line_program(), branches),
-                            remaining)
+        inputs = _PruningInputs(box, box, [], branches)
+    remaining = deadline - time.monotonic()
     if not inputs.reason and remaining <= 0:
-        return replace(inputs, reason="the time limit passed before the branch-and-prune ran")
-    return inputs
+        return replace(inputs, remaining=remaining, reason="the time limit passed before the branch-and-prune ran")
+    return replace(inputs, remaining=remaining)
 
 
 def _within_reach(certificate: Certificate, inputs: _PruningInputs, names: tuple[str, ...]) -> Certificate:
@@ -310,8 +309,7 @@ def _plane_gaps(compiled: CompiledSystem, branches: np.ndarray, unresolved: np.n
     return tuple(sentences)
 
 
-def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray,
-                   remaining: float) -> _PruningInputs:
+def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem, branches: np.ndarray) -> _PruningInputs:
     """For a slider chain's branch-and-prune: the searched domain of each parameter (out
     to UNBOUNDED_REACH times the linkage's size where no path of link dimensions bounds
     it), the exact numbers of its slider geometry, and why it cannot run: a slider frame
@@ -328,7 +326,7 @@ def _slider_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem, branches:
                                    slider_geometry(scene, number=lambda pair: pair), compiled.sliders)
     reason = "" if exact is not None else ("a slider frame is irrational in world units: its numbers are not "
                                            "enclosed exactly, so the interval branch-and-prune does not run")
-    return _PruningInputs(tuple(box), tuple(reference), exact or [], branches, remaining, reason, tuple(unbounded))
+    return _PruningInputs(tuple(box), tuple(reference), exact or [], branches, reason, tuple(unbounded))
 
 
 def _searched_values(compiled: CompiledSystem, values: np.ndarray) -> np.ndarray:
