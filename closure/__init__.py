@@ -17,7 +17,7 @@ from .conditions import (
     closure_system,
     sympy_condition,
 )
-from .evaluate import CompiledSystem, compile_from_coordinates, sign_branches
+from .evaluate import CompiledSystem, compile_from_coordinates, distinct_branches, sign_branches
 from .notation import parse_matrix_expression
 from .symmetry import (
     SymmetricFormulation,
@@ -36,6 +36,7 @@ __all__ = [
     "parse_matrix_expression",
     "permute_condition",
     "permute_plan",
+    "distinct_branches",
     "sign_branches",
     "SymmetricFormulation",
     "symmetric_formulation",

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import functools
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from itertools import product
 from typing import NamedTuple
 
@@ -30,7 +30,7 @@ from .bilateration import (
     small_term_radicand,
 )
 from .conditions import ClosureSystem, DistanceCondition, MatrixExpression
-from .sliders import SearchedParameter, SliderGeometry, SliderPlacement, turn_residual
+from .sliders import SearchedParameter, SliderGeometry, SliderPlacement, takes_root, turn_residual
 from .straight_line import StraightLineProgram, compiled_kernel_in_use, count_numpy_seconds, run_program, trace_plan
 from .traced_sliders import slider_constant_values
 
@@ -45,6 +45,20 @@ def sign_branches(count: int) -> np.ndarray:
     [[1, 1], [1, -1], [-1, 1], [-1, -1]]
     """
     return np.array(list(product((1, -1), repeat=count)), dtype=int).reshape(2**count, count)
+
+
+def distinct_branches(plan, sliders: Collection[str]) -> list[tuple[int, ...]]:
+    """The sign branches of ``plan`` that can place differently when the joints
+    ``sliders`` are sliders: ±1 for each free-sign step that takes a square root of its
+    own (:func:`~.sliders.takes_root`), +1 alone for one whose slider construction reads
+    no sign (a turned axis, a point on two axes): the other sign would place every joint
+    alike, and evaluating it repeated the work (eight branches for one on a nine-link
+    slider chain). In :func:`sign_branches`' order; all of them without sliders.
+
+    Cost: O(2^m) tuples, m the free-sign steps that take a root.
+    """
+    return list(product(*(((1, -1) if takes_root(step, sliders) else (1,))
+                          for step in plan.steps if step.free_sign)))
 
 
 class CompiledSystem:

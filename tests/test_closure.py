@@ -256,3 +256,28 @@ def test_every_eleven_link_truss_once():
     rng = np.random.default_rng(562)
     for truss in ELEVEN:
         check_system_at(closure_system(best_plan(truss)), truss, random_configuration(truss, rng))
+
+
+def test_distinct_branches_fix_the_signs_no_slider_construction_reads():
+    """A free-sign step whose slider construction takes no root of its own (a point on two
+    axes, a turned axis) keeps +1; every other free sign takes both values. Without
+    sliders: all of sign_branches."""
+    from pathlib import Path
+
+    from baranov.closure import distinct_branches, sign_branches
+    from baranov.closure.sliders import takes_root
+    from baranov.scene import load_scene
+    from baranov.solvers.coincidence import solvable_plan
+
+    path = Path(__file__).parent / "regressions" / "sliders" / "issue-55-ground-by-squared-length.json"
+    scene = load_scene(path)
+    plan, sliders = solvable_plan(scene), [slider.joint for slider in scene.sliders]
+    reads = [takes_root(step, sliders) for step in plan.steps if step.free_sign]
+    assert reads.count(False) == 1 and len(reads) == 3
+    branches = distinct_branches(plan, sliders)
+    assert len(branches) == 4 and len(set(branches)) == 4
+    assert all(signs[reads.index(False)] == 1 for signs in branches)
+    assert set(branches) <= {tuple(int(s) for s in row) for row in sign_branches(3)}
+    truss_plan = best_plan(thesis_truss("7/B1").chain())
+    assert distinct_branches(truss_plan, []) == [tuple(int(s) for s in row)
+                                                 for row in sign_branches(len(truss_plan.free_sign_triangles))]

@@ -35,7 +35,7 @@ from collections.abc import Sequence
 import flint
 import numpy as np
 
-from baranov.closure import sign_branches
+from baranov.closure import distinct_branches, sign_branches
 from baranov.planner import Plan, parameter_name, plans_avoiding
 from baranov.scene import Scene
 
@@ -61,6 +61,7 @@ from .characteristic import (
     closure_residuals,
     exact_plan,
     residual_verdict,
+    with_slider_points,
 )
 from .coupling_two import characteristic_polynomial_two, common_points
 from .fibers import Fiber
@@ -90,12 +91,13 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
         described, modes, certificate = modes_without_plan(scene, error)
         return ExactSolution.of_plan("exact", scene, described, modes, certificate=certificate)
-    branches = sign_branches(len(plan.free_sign_triangles))
+    branches = distinct_branches(plan, [slider.joint for slider in scene.sliders])
     polynomial: CharacteristicPolynomial | None = None
     gaps: tuple[str, ...] = ()
     notes: list[str] = []  # the Monte Carlo steps taken
     if plan.number_of_parameters == 0:
-        modes = assembly_modes(scene, compile_scene(scene, plan), [(np.zeros(0), branch) for branch in branches])
+        modes = assembly_modes(scene, compile_scene(scene, plan),
+                               [(np.zeros(0), branch) for branch in sign_branches(len(plan.free_sign_triangles))])
     elif plan.number_of_parameters == 1:
         report_stage("exact: deriving the characteristic polynomial")
         polynomial = characteristic_polynomial(scene, plan)
@@ -210,7 +212,8 @@ def _undecided_factors(scene: Scene, plan: Plan, polynomial: CharacteristicPolyn
     return tuple(gaps)
 
 
-def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial, branches: np.ndarray,
+def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPolynomial,
+                        branches: Sequence[Sequence[int]],
                         fibers: Sequence[Fiber] | None = None) -> tuple[tuple[AssemblyMode, ...], tuple[str, ...]]:
     """The verified assembly modes at the positive real roots of ``polynomial``; for
     coupling degree 2, at the real common points (u, v > 0) of the two genuine curves
@@ -324,7 +327,7 @@ def _ball_configuration(scene: Scene, points: dict, parameters: tuple[flint.acb,
     """The configuration from the plan's points placed in ball arithmetic
     (:func:`~baranov.solvers.exact.characteristic.placed_points`) at ``parameters``."""
     matrices = {joint: np.array([complex(float(x.real.mid()), float(y.real.mid()))])
-                for joint, (x, y) in points.items()}
+                for joint, (x, y) in with_slider_points(points).items()}
     placed = {joint: complex(value[0]) for joint, value in placed_from_ground(scene, matrices).items()}
     if not all(math.isfinite(p.real) and math.isfinite(p.imag) for p in placed.values()):
         return AssemblyMode({}, signs, {}, math.inf)

@@ -37,11 +37,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
-from itertools import combinations, product
+from itertools import combinations
 
 import flint
 
 from baranov.closure.bilateration import dehomogenised, place_joints, squared_distance, triangle_radicand
+from baranov.closure.evaluate import distinct_branches
 from baranov.closure.homogeneous import Homogeneous
 from baranov.closure.sliders import SliderPlacement, takes_root
 from baranov.planner import Plan, SliderPlanError, parameter_name, slider_plan
@@ -555,7 +556,7 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
     if factor.degree() < 1:
         return False
     previous = flint.ctx.prec
-    undecided = list(product((1, -1), repeat=len(plan.free_sign_triangles)))
+    undecided = distinct_branches(plan, [slider.joint for slider in scene.sliders])
     try:
         for bits in TEST_BITS:
             flint.ctx.prec = bits
@@ -593,7 +594,9 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
     certainly negative the triangle does not exist, and (None, reference, None) is
     returned; without it, a radicand on the negative real axis is a square root taken
     across flint's branch cut, a ball as wide as the root itself at every precision
-    (9/N24 of the collinear-joints sweep: undecided at 1024 bits).
+    (9/N24 of the collinear-joints sweep: undecided at 1024 bits). With sliders, the
+    slider placement (its axes) and s_{a,b} under a key of their own, for the closures
+    and :func:`with_slider_points`.
 
     Cost: O(steps) ball operations."""
     values = {frozenset(pair): value for pair, value in zip(plan.parameters, parameters, strict=True)}
@@ -630,11 +633,24 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
         return None, reference, undefined.pair
     points = {joint: (flint.acb(x), flint.acb(y)) for joint, (x, y, _) in placed.items()}
     if sliders is not None:
-        at = {joint: Homogeneous(x, y, flint.acb(1), **_BALLS) for joint, (x, y) in points.items()}
-        points.update({name: (point.x / point.w, point.y / point.w)
-                       for name, point in sliders.slider_points(at, reference).items()})
-        points[_SLIDERS] = sliders
+        points[_SLIDERS] = (sliders, reference)
     return points, reference, None
+
+
+def with_slider_points(points: dict) -> dict[str, tuple[flint.acb, flint.acb]]:
+    """The joints' points of :func:`placed_points` with each slider's point on each of its
+    links added (``P9'``, ``P9''``: what a configuration shows). Made only for the
+    configurations built: the closures need the axes alone, and making these points at
+    every placement took half the exact backend's time on nine-link slider chains
+    (cProfile)."""
+    placed = {joint: point for joint, point in points.items() if joint != _SLIDERS}
+    if _SLIDERS not in points:
+        return placed
+    sliders, reference = points[_SLIDERS]
+    at = {joint: Homogeneous(x, y, flint.acb(1), **_BALLS) for joint, (x, y) in placed.items()}
+    placed.update({name: (point.x / point.w, point.y / point.w)
+                   for name, point in sliders.slider_points(at, reference).items()})
+    return placed
 
 
 def exact_ball(value) -> flint.acb:
@@ -647,8 +663,18 @@ def exact_ball(value) -> flint.acb:
     >>> exact_ball(Fraction(9, 4))
     2.25000000000000
     """
+    if type(value) is int and -256 <= value <= 256:  # the constants 0, 1, 2 of the constructions: no Fraction
+        key = (value, flint.ctx.prec)
+        ball = _INTEGER_BALLS.get(key)
+        if ball is None:
+            ball = _INTEGER_BALLS[key] = _rational_ball(Fraction(value), flint.ctx.prec)
+        return ball
     value = value if isinstance(value, Fraction) else Fraction(value)
     return _rational_ball(value, flint.ctx.prec)
+
+
+#: exact_ball of small integers, by (value, precision): bounded by 513 values per precision.
+_INTEGER_BALLS: dict[tuple[int, int], flint.acb] = {}
 
 
 @lru_cache(maxsize=8192)
@@ -757,7 +783,7 @@ def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb],
     points, reference, pair = placed_points(scene, plan, parameters, signs, real_only)
     if points is None:
         return None, None, pair
-    sliders = points.pop(_SLIDERS, None)
+    sliders = points[_SLIDERS][0] if _SLIDERS in points else None
     residuals = []
     for u, v in plan.closure_pairs:
         if sliders is not None and {u, v} & sliders.geometry.keys():

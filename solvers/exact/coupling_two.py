@@ -25,10 +25,10 @@ from __future__ import annotations
 import math
 import random
 from collections.abc import Callable, Sequence
-from itertools import product
 
 import flint
 
+from baranov.closure.evaluate import distinct_branches
 from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
@@ -60,7 +60,7 @@ def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditi
     ``coincident``. ``real_only``: only real configurations count (a branch whose
     triangle does not exist rules itself out)."""
     undecided = False
-    for signs in product((1, -1), repeat=len(plan.free_sign_triangles)):
+    for signs in distinct_branches(plan, [slider.joint for slider in scene.sliders]):
         residuals, _, pair = closure_residuals(scene, plan, values, signs, real_only)
         if residuals is None:
             if pair is None:  # real_only: a triangle of this branch does not exist
