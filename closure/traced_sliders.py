@@ -24,8 +24,6 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any, NamedTuple
 
-import numpy as np
-
 from .sliders import SliderGeometry, SliderPlacement, turn_residual
 from .straight_line import GUARDED_ROOT, Recorder, Traced, TracedComplex
 
@@ -154,19 +152,3 @@ def exact_slider_constants(paths: tuple[ConstantPath, ...], exact: Mapping[str, 
             return None
         values.append(component)
     return values
-
-
-def used_signs(program) -> np.ndarray:
-    """Which of a program's free signs an instruction reads: a slider construction takes
-    no root at some free-sign steps (two lines meet once), and there both signs place the
-    same configuration."""
-    read = set(program.instructions[:, 2].tolist()) | set(program.instructions[:, 3].tolist())
-    return np.array([register in read for register in program.sign_registers.tolist()], dtype=bool)
-
-
-def distinct_branches(program, branches: np.ndarray) -> np.ndarray:
-    """``branches`` with every free sign the program does not read set to +1, repeats
-    dropped (in their first order)."""
-    reduced = np.where(used_signs(program)[None, :], branches, 1.0)
-    _, first = np.unique(reduced, axis=0, return_index=True)
-    return reduced[np.sort(first)]

@@ -459,8 +459,10 @@ def bilateration_plans(
     count: int = 1,
     reference: tuple[str, str] | None = None,
     parameters: Iterable[tuple[str, str]] | None = None,
+    extra_parameters: int = 0,
 ) -> list[Plan]:
-    """The ``count`` best plans with the fewest parameters, best first.
+    """The ``count`` best plans with the fewest parameters (``extra_parameters`` more than
+    the fewest, if given), best first.
 
     Parameters
     ----------
@@ -474,6 +476,12 @@ def bilateration_plans(
         allow only these joint pairs as parameters (the reference pair
         included when it is not a link dimension), e.g. ``[("P1", "P6")]`` for the
         thesis's formulation of 5/B1. The minimum is then taken over such plans.
+    extra_parameters
+        plans with this many parameters more than the fewest: where no plan of the
+        fewest suits a constraint the search does not know (slider joints,
+        :func:`~baranov.planner.sliders.slider_plan`), one more parameter gives the
+        search room (every nine-link slider chain sampled that no plan of coupling
+        degree 1 suits has one of degree 2).
 
     Raises :class:`~baranov.topology.TopologyError` for a chain that is not rigid or is
     over-constrained, or naming a constraint no plan can meet.
@@ -490,7 +498,7 @@ def bilateration_plans(
     P5: Z6,4,5 (link L1, fixed sign)
     closure s2,5
     """
-    return _ranked_plans(_checked(chain), count, reference, parameters)
+    return _ranked_plans(_checked(chain), count, reference, parameters, extra_parameters)
 
 
 #: How many (chain, count, constraints) searches the plan cache keeps: a solve of a
@@ -499,7 +507,7 @@ def bilateration_plans(
 PLAN_CACHE_SIZE = 1024
 
 
-def _ranked_plans(chain: KinematicChain, count: int, reference, parameters) -> list[Plan]:
+def _ranked_plans(chain: KinematicChain, count: int, reference, parameters, extra_parameters: int = 0) -> list[Plan]:
     """:func:`_searched_plans`, cached on the exact chain (its joint and link names
     included: a relabelled chain is searched again) and the constraints. Plans are frozen,
     so the cached ones are shared; the list is the caller's."""
@@ -508,9 +516,9 @@ def _ranked_plans(chain: KinematicChain, count: int, reference, parameters) -> l
     if parameters is not None:
         parameters = tuple(tuple(p) if isinstance(p, list) else p for p in parameters)
     try:
-        return list(_cached_plans(chain, count, reference, parameters))
+        return list(_cached_plans(chain, count, reference, parameters, extra_parameters))
     except TypeError:  # an unhashable constraint: searched, and refused there if malformed
-        return list(_searched_plans(chain, count, reference, parameters))
+        return list(_searched_plans(chain, count, reference, parameters, extra_parameters))
 
 
 def clear_plan_cache() -> None:
@@ -520,20 +528,23 @@ def clear_plan_cache() -> None:
 
 
 @lru_cache(maxsize=PLAN_CACHE_SIZE)
-def _cached_plans(chain: KinematicChain, count: int, reference, parameters) -> tuple[Plan, ...]:
-    return _searched_plans(chain, count, reference, parameters)
+def _cached_plans(chain: KinematicChain, count: int, reference, parameters, extra_parameters: int) -> tuple[Plan, ...]:
+    return _searched_plans(chain, count, reference, parameters, extra_parameters)
 
 
-def _searched_plans(chain: KinematicChain, count: int, reference, parameters) -> tuple[Plan, ...]:
+def _searched_plans(chain: KinematicChain, count: int, reference, parameters,
+                    extra_parameters: int = 0) -> tuple[Plan, ...]:
     if count < 1:
         raise ValueError(f"count={count}: ask for at least one plan")
+    if extra_parameters < 0:
+        raise ValueError(f"extra_parameters={extra_parameters}: 0 or more")
     constraints = _constraints(chain, reference, parameters)
     tables = _Tables.of(chain)
     cache: dict[int, int] = {}
     degree = _minimum_parameters(tables, constraints, cache)
     if degree is None:
         raise TopologyError("no bilateration plan meets the given reference/parameter constraints")
-    ranked = _branch_and_bound(tables, constraints, degree, count)
+    ranked = _branch_and_bound(tables, constraints, degree + extra_parameters, count)
     if not ranked:
         raise TopologyError("no bilateration plan meets the given reference/parameter constraints")
     return tuple(ranked)

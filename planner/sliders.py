@@ -59,13 +59,17 @@ def slider_plan_obstacle(plan: Plan, sliders: Collection[str]) -> str | None:
 
 
 def slider_plan(chain: KinematicChain, sliders: Collection[str], count: int = ALTERNATIVE_PLANS,
-                parameters: Collection[tuple[str, str]] | None = None) -> Plan:
+                parameters: Collection[tuple[str, str]] | None = None, extra_parameters: int = 0) -> Plan:
     """The best plan of ``chain`` (with ``sliders`` taken as revolute joints), among its
     ``count`` best, that the slider constructions can run (:func:`slider_plan_obstacle`);
     raises :class:`SliderPlanError` naming the best plan's obstacle if none can. The best
     plan itself when there are no sliders. ``parameters``: only plans whose parameters are
-    among these pairs (thesis §5.2.2 works in s1,6). Cost: that of
-    :func:`~baranov.planner.bilateration_plans` with ``count`` plans.
+    among these pairs (thesis §5.2.2 works in s1,6). ``extra_parameters``: where none of
+    the fewest parameters suits, the ``count`` best with one more, and so on up to this
+    many more (a nine-link chain of coupling degree 1 with sliders P1, P6, P8, P9, P10,
+    P11, P12: none of its 1000 best plans of one parameter suits, its best of two does).
+    Cost: that of :func:`~baranov.planner.bilateration_plans` with ``count`` plans, once
+    per number of parameters tried.
 
     >>> from baranov.literature.trusses import thesis_truss
     >>> from baranov.planner import best_plan
@@ -73,11 +77,20 @@ def slider_plan(chain: KinematicChain, sliders: Collection[str], count: int = AL
     >>> slider_plan(truss, ["P1"]) == best_plan(truss)  # a slider in the reference: the frame on its axis
     True
     """
-    plans = bilateration_plans(chain, count if sliders else 1, parameters=parameters)
-    if not plans:
-        raise SliderPlanError(f"no plan of the chain has its parameters among {sorted(parameters or ())}")
-    for plan in plans:
-        if slider_plan_obstacle(plan, sliders) is None:
-            return plan
-    raise SliderPlanError(f"sliders {', '.join(sorted(sliders))}: none of the {len(plans)} best plans suits them "
-                          f"(the best: {slider_plan_obstacle(plans[0], sliders)})")
+    first = None
+    for extra in range(extra_parameters + 1 if sliders else 1):
+        try:
+            plans = bilateration_plans(chain, count if sliders else 1, parameters=parameters, extra_parameters=extra)
+        except TopologyError:
+            if not extra:
+                raise
+            break  # no plan with that many parameters meets ``parameters``
+        if not plans:
+            raise SliderPlanError(f"no plan of the chain has its parameters among {sorted(parameters or ())}")
+        first = first or plans
+        for plan in plans:
+            if slider_plan_obstacle(plan, sliders) is None:
+                return plan
+    more = f", nor of their best with up to {extra_parameters} more parameters" if extra_parameters else ""
+    raise SliderPlanError(f"sliders {', '.join(sorted(sliders))}: none of the {len(first)} best plans suits them "
+                          f"(the best: {slider_plan_obstacle(first[0], sliders)}){more}")

@@ -63,13 +63,17 @@ class NoPlanError(SolverError):
     a base of every plan tried."""
 
 
-def solvable_plan(scene: Scene) -> Plan:
+def solvable_plan(scene: Scene, extra_parameters: int = 0) -> Plan:
     """The best plan with no joint pair at known distance 0 as its reference or a base;
     raises :class:`NoPlanError` (naming the pair) if none of the ALTERNATIVE_PLANS best
-    has that property (:class:`MovableLinkageError` if msolve finds the linkage moves)."""
+    has that property (:class:`MovableLinkageError` if msolve finds the linkage moves).
+    ``extra_parameters``: for a slider chain, plans with up to that many parameters more
+    than the fewest are tried where no plan of the fewest suits its sliders
+    (:func:`~baranov.planner.sliders.slider_plan`)."""
     if scene.sliders:
         try:
-            plan = slider_plan(scene.chain, [slider.joint for slider in scene.sliders])
+            plan = slider_plan(scene.chain, [slider.joint for slider in scene.sliders],
+                               extra_parameters=extra_parameters)
         except SliderPlanError as error:
             raise NoPlanError(str(error)) from None
         undefined = slider_plan_undefined(scene, plan)

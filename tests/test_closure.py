@@ -281,3 +281,26 @@ def test_distinct_branches_fix_the_signs_no_slider_construction_reads():
     truss_plan = best_plan(thesis_truss("7/B1").chain())
     assert distinct_branches(truss_plan, []) == [tuple(int(s) for s in row)
                                                  for row in sign_branches(len(truss_plan.free_sign_triangles))]
+
+
+@pytest.mark.parametrize("name", ["issue-55-ground-by-squared-length", "9-N27-eight-sliders-extraneous-factor",
+                                  "9-N28-seven-sliders-near-duplicates", "adversarial-7-N2-collinear-moves"])
+def test_distinct_branches_vary_exactly_the_signs_the_compiled_program_reads(name):
+    """Oracle: the straight-line program of the numeric evaluation, whose instructions
+    name the sign registers they read."""
+    from pathlib import Path
+
+    from baranov.closure import distinct_branches
+    from baranov.scene import load_scene
+    from baranov.solvers.coincidence import solvable_plan
+    from baranov.solvers.numeric.backend import compile_scene
+
+    scene = load_scene(Path(__file__).parent / "regressions" / "sliders" / f"{name}.json")
+    plan = solvable_plan(scene)
+    program = compile_scene(scene, plan).straight_line_program()
+    read = set(program.instructions[:, 2].tolist()) | set(program.instructions[:, 3].tolist())
+    reads = [register in read for register in program.sign_registers.tolist()]
+    branches = distinct_branches(plan, [slider.joint for slider in scene.sliders])
+    assert len(branches) == 2 ** sum(reads)
+    varied = [len({signs[n] for signs in branches}) == 2 for n in range(len(reads))]
+    assert varied == reads

@@ -173,3 +173,17 @@ def test_grubler_chains_with_fixed_inputs():
     values, signs = true_parameters_and_signs(system, coordinates)
     residuals = compile_from_coordinates(system, fixed, coordinates).residuals(values, signs)
     assert np.all(np.abs(residuals) < 1e-9)
+
+
+def test_plans_with_one_more_parameter_have_one_more_closure_condition():
+    """``extra_parameters=1``: plans with the fewest parameters plus one, each with as many
+    closure conditions as parameters (the chain stays rigid); the search refuses a negative
+    count."""
+    chain = thesis_truss("7/B1").chain()
+    fewest = bilateration_plans(chain, 5)
+    more = bilateration_plans(chain, 5, extra_parameters=1)
+    assert {plan.number_of_parameters for plan in fewest} == {1}
+    assert len(more) == 5 and {plan.number_of_parameters for plan in more} == {2}
+    assert all(len(plan.closure_pairs) == 2 for plan in more)
+    with pytest.raises(ValueError, match="extra_parameters"):
+        bilateration_plans(chain, 1, extra_parameters=-1)

@@ -509,11 +509,20 @@ def _no_plan_slider_chain(by_length: bool = False):
     return scene_from_dict(data)
 
 
+def _without_plans_of_two_parameters(monkeypatch) -> None:
+    """The exact backend as where no plan of two parameters certifies either: msolve's
+    route (this chain has a plan of two, by which it is solved otherwise)."""
+    from baranov.solvers.exact import backend
+
+    monkeypatch.setattr(backend, "by_one_more_parameter", lambda scene: None)
+
+
 @needs_msolve
-def test_msolves_list_without_a_plan_is_certified_by_its_count():
+def test_msolves_list_without_a_plan_is_certified_by_its_count(monkeypatch):
     """Issue 55: where no plan is defined the modes are msolve's; the exact backend
     certifies them only when msolve's count of complex solutions is the chain's generic
     count (the model lost none), as on this generic instance."""
+    _without_plans_of_two_parameters(monkeypatch)
     solution = solve(_no_plan_slider_chain(), method="exact")
     assert len(solution.assembly_modes) == 4 and solution.certificate.complete
     assert "has 4 complex solutions, the chain's generic count" in solution.certificate.probabilistic
@@ -526,6 +535,7 @@ def test_a_model_that_loses_solutions_gives_no_certificate(monkeypatch):
     count says so: no certificate (it had printed "certified complete" over no mode)."""
     import baranov.solvers.msolve as msolve
 
+    _without_plans_of_two_parameters(monkeypatch)
     scene = _no_plan_slider_chain(by_length=True)
     assert not msolve.exact_ground(scene)
     faithful = msolve.cartesian_system
@@ -801,3 +811,27 @@ def test_two_parallel_slider_axes_give_no_numpy_warning():
         warnings.simplefilter("error", RuntimeWarning)
         solution = solve(load_scene(SLIDER_REGRESSIONS / "open" / "robot-RrR-rPP-pPR.json"))
     assert not solution.certificate.complete
+
+
+@needs_msolve
+def test_a_chain_no_one_parameter_plan_suits_is_solved_by_a_plan_of_two():
+    """9/N24 with seven sliders: none of the 50 best one-parameter plans suits them (both
+    backends used to hand such chains, 3095 of the nine-link catalog's, to msolve); the
+    exact backend solves it by the best plan of two parameters, certified, with msolve's
+    modes."""
+    from baranov.planner import SliderPlanError, slider_plan
+    from baranov.solvers.coincidence import NoPlanError, solvable_plan
+    from baranov.solvers.exact.backend import solve_exact
+
+    scene = load_scene(Path(__file__).parent / "scenes" / "9-slider-chain-no-one-parameter-plan.json")
+    sliders = [slider.joint for slider in scene.sliders]
+    with pytest.raises(SliderPlanError):
+        slider_plan(scene.chain, sliders)
+    assert slider_plan(scene.chain, sliders, extra_parameters=1).number_of_parameters == 2
+    with pytest.raises(NoPlanError):
+        solvable_plan(scene)
+    exact = solve_exact(scene)
+    assert exact.coupling_degree == 2 and exact.certificate.complete
+    reference = msolve_modes(scene)
+    assert reference.status == "finite" and len(reference.configurations) == len(exact.assembly_modes) == 2
+    assert compare_modes([mode.joints for mode in exact.assembly_modes], list(reference.configurations))[:2] == (0, 0)

@@ -29,9 +29,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from baranov.closure import CompiledSystem, sign_branches
+from baranov.closure import CompiledSystem, distinct_branches
 from baranov.closure.interval_program import EDGE, FEASIBLE, evaluate_boxes, interval_program
-from baranov.closure.traced_sliders import distinct_branches, exact_slider_constants
+from baranov.closure.traced_sliders import exact_slider_constants
 from baranov.planner import Plan, parameter_name
 from baranov.scene import Scene
 
@@ -79,7 +79,9 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         described, modes, certificate = modes_without_plan(scene, error)
         return Solution.of_plan("numeric", scene, described, modes, certificate=certificate)
     compiled = compile_scene(scene, plan)
-    branches = sign_branches(len(plan.free_sign_triangles))
+    # a slider chain's distinct branches only: where no construction reads a sign, both place alike
+    branches = np.array(distinct_branches(plan, [slider.joint for slider in scene.sliders]), dtype=int).reshape(
+        -1, len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
     if time_limit is not None and not time_limit >= 0:
         raise SolverError(f"time_limit {time_limit}: must be a number of seconds, 0 or more")
@@ -204,7 +206,7 @@ def _pruning_inputs(scene: Scene, plan: Plan, compiled: CompiledSystem, branches
                     deadline: float) -> _PruningInputs:
     """What a branch-and-prune of either kind runs on, before ``deadline``."""
     if scene.sliders:
-        inputs = _slider_inputs(scene, plan, compiled, distinct_branches(compiled.straight_line_program(), branches))
+        inputs = _slider_inputs(scene, plan, compiled, branches)
     else:
         box = searched_box(scene, plan)
         inputs = _PruningInputs(box, box, [], branches)
