@@ -23,7 +23,14 @@ from collections.abc import Collection
 from baranov.topology import KinematicChain, TopologyError
 
 from .plan import Plan, StepKind
-from .search import ALTERNATIVE_PLANS, bilateration_plans
+from .search import bilateration_plans
+
+
+#: How many of the best plans of each number of parameters :func:`slider_plan` tries: all
+#: those of a nine-link truss of coupling degree 1 (at most 132), and, on 9/B25–B28, the
+#: suitable plan of 73 slider chains of the catalog that the 50 best lacked
+#: (bench/slider_plans_with_more_parameters.py). The search costs ≤ 0.1 s a truss, cached.
+SLIDER_PLANS = 300
 
 
 class SliderPlanError(TopologyError):
@@ -58,7 +65,7 @@ def slider_plan_obstacle(plan: Plan, sliders: Collection[str]) -> str | None:
     return None
 
 
-def slider_plan(chain: KinematicChain, sliders: Collection[str], count: int = ALTERNATIVE_PLANS,
+def slider_plan(chain: KinematicChain, sliders: Collection[str], count: int = SLIDER_PLANS,
                 parameters: Collection[tuple[str, str]] | None = None, extra_parameters: int = 0) -> Plan:
     """The best plan of ``chain`` (with ``sliders`` taken as revolute joints), among its
     ``count`` best, that the slider constructions can run (:func:`slider_plan_obstacle`);

@@ -815,7 +815,7 @@ def test_two_parallel_slider_axes_give_no_numpy_warning():
 
 @needs_msolve
 def test_a_chain_no_one_parameter_plan_suits_is_solved_by_a_plan_of_two():
-    """9/N24 with seven sliders: none of the 50 best one-parameter plans suits them (both
+    """9/N24 with seven sliders: none of the 300 best one-parameter plans suits them (both
     backends used to hand such chains, 3095 of the nine-link catalog's, to msolve); the
     exact backend solves it by the best plan of two parameters, certified, with msolve's
     modes."""
