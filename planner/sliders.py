@@ -25,7 +25,6 @@ from baranov.topology import KinematicChain, TopologyError
 from .plan import Plan, StepKind
 from .search import bilateration_plans
 
-
 #: How many of the best plans of each number of parameters :func:`slider_plan` tries: all
 #: those of a nine-link truss of coupling degree 1 (at most 132), and, on 9/B25–B28, the
 #: suitable plan of 73 slider chains of the catalog that the 50 best lacked
