@@ -305,9 +305,8 @@ def takes_root(step, sliders: Collection[str]) -> bool:
 
 class _ConvertedPoints(dict):
     """The kernel's points as numbers of the slider constructions, each converted when a
-    construction first reads it: a step reads two or three of them, and converting every
-    placed point at every slider step made O(steps²) numbers (in balls, 389 068
-    constructions for six nine-link chains, a fifth of the exact backend's time)."""
+    construction first reads it: a step reads two or three of them, where converting every
+    placed point at every slider step made O(steps²) numbers."""
 
     def __init__(self, points: Mapping[str, Any], to_number: Callable):
         super().__init__()

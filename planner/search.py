@@ -480,8 +480,8 @@ def bilateration_plans(
         plans with this many parameters more than the fewest: where no plan of the
         fewest suits a constraint the search does not know (slider joints,
         :func:`~baranov.planner.sliders.slider_plan`), one more parameter gives the
-        search room (every nine-link slider chain sampled that no plan of coupling
-        degree 1 suits has one of degree 2).
+        search room (3020 of the 3095 nine-link slider chains that no plan of their
+        coupling degree suited have one with one parameter more).
 
     Raises :class:`~baranov.topology.TopologyError` for a chain that is not rigid or is
     over-constrained, or naming a constraint no plan can meet.

@@ -72,8 +72,8 @@ def slider_plan(chain: KinematicChain, sliders: Collection[str], count: int = SL
     plan itself when there are no sliders. ``parameters``: only plans whose parameters are
     among these pairs (thesis §5.2.2 works in s1,6). ``extra_parameters``: where none of
     the fewest parameters suits, the ``count`` best with one more, and so on up to this
-    many more (a nine-link chain of coupling degree 1 with sliders P1, P6, P8, P9, P10,
-    P11, P12: none of its 1000 best plans of one parameter suits, its best of two does).
+    many more (9/N24 with sliders P1, P2, P4, P6, P8, P10, P11: none of its 300 best plans
+    of one parameter suits, its best of two does; tests/test_sliders.py).
     Cost: that of :func:`~baranov.planner.bilateration_plans` with ``count`` plans, once
     per number of parameters tried.
 

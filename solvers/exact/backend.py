@@ -35,7 +35,7 @@ from collections.abc import Sequence
 import flint
 import numpy as np
 
-from baranov.closure import distinct_branches, sign_branches
+from baranov.closure import distinct_branches
 from baranov.planner import Plan, coupling_degree, parameter_name, plans_avoiding
 from baranov.scene import Scene
 
@@ -90,7 +90,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     try:
         plan = plan or exact_plan(scene)
     except NoPlanError as error:  # no plan is defined: msolve's modes, verified
-        by_more = by_one_more_parameter(scene) if chosen else None
+        by_more = by_one_more_parameter(scene)  # only a chosen plan raises here
         if by_more is not None:
             return by_more
         described, modes, certificate = modes_without_plan(scene, error)
@@ -101,7 +101,7 @@ def solve_exact(scene: Scene, plan: Plan | None = None, *, coincidences: bool = 
     notes: list[str] = []  # the Monte Carlo steps taken
     if plan.number_of_parameters == 0:
         modes = assembly_modes(scene, compile_scene(scene, plan),
-                               [(np.zeros(0), branch) for branch in sign_branches(len(plan.free_sign_triangles))])
+                               [(np.zeros(0), np.array(branch, dtype=int)) for branch in branches])
     elif plan.number_of_parameters == 1:
         report_stage("exact: deriving the characteristic polynomial")
         polynomial = characteristic_polynomial(scene, plan)
@@ -193,21 +193,19 @@ def by_one_more_parameter(scene: Scene) -> ExactSolution | None:
     solution by the best slider plan of two parameters, if it is defined for the scene and
     its solve leaves no gap; else None (msolve's checked answer is then the route).
 
-    Of the 47 702 nine-link slider chains, 3095 have no plan of their coupling degree; each
-    of a random sample of 50 has one of degree 2 (among the 300 best). On six random
-    instances of such chains this solve certified five (msolve's modes, 0.2–1.7 s against
-    msolve's 0.05–0.12 s); the sixth, whose characteristic polynomial in that plan has no
-    factor but powers of the parameter, went to msolve.
+    Of the 3095 nine-link slider chains of the catalog counted by msolve, 3020 have such a
+    plan (docs/bench/slider-plans-with-more-parameters.md; twelve of them solved there, all
+    certified with msolve's modes). Of six other random instances, four were certified this
+    way; one plan of two was undefined for the dimensions, and one characteristic
+    polynomial had no factor but powers of the parameter: those two went to msolve.
 
     Cost: one exact solve of coupling degree 2."""
     if not scene.sliders or coupling_degree(scene.chain) != 1:
         return None
-    try:
+    try:  # the plan of one parameter raised NoPlanError already, so this one has two
         plan = solvable_plan(scene, extra_parameters=1)
     except NoPlanError:
         return None
-    if plan.number_of_parameters != 2:
-        return None  # the one-parameter plan again, undefined for these dimensions
     try:
         solution = solve_exact(scene, plan)
     except SolverError:

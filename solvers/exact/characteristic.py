@@ -641,7 +641,7 @@ def with_slider_points(points: dict) -> dict[str, tuple[flint.acb, flint.acb]]:
     """The joints' points of :func:`placed_points` with each slider's point on each of its
     links added (``P9'``, ``P9''``: what a configuration shows). Made only for the
     configurations built: the closures need the axes alone, and making these points at
-    every placement took half the exact backend's time on nine-link slider chains
+    every placement took 0.50 of 1.10 s of five exact solves of one nine-link slider chain
     (cProfile)."""
     placed = {joint: point for joint, point in points.items() if joint != _SLIDERS}
     if _SLIDERS not in points:

@@ -80,8 +80,8 @@ def solve_numeric(scene: Scene, plan: Plan | None = None, samples: int = 4000, *
         return Solution.of_plan("numeric", scene, described, modes, certificate=certificate)
     compiled = compile_scene(scene, plan)
     # a slider chain's distinct branches only: where no construction reads a sign, both place alike
-    branches = np.array(distinct_branches(plan, [slider.joint for slider in scene.sliders]), dtype=int).reshape(
-        -1, len(plan.free_sign_triangles))
+    rows = distinct_branches(plan, [slider.joint for slider in scene.sliders])
+    branches = np.array(rows, dtype=int).reshape(len(rows), len(plan.free_sign_triangles))
     degree = plan.number_of_parameters
     if time_limit is not None and not time_limit >= 0:
         raise SolverError(f"time_limit {time_limit}: must be a number of seconds, 0 or more")
