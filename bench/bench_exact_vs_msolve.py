@@ -75,10 +75,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--out", help="write the markdown table to this file")
+    parser.add_argument("--rows", help="only the rows whose name contains this text (e.g. 'slider'); with --out, "
+                        "the file holds those rows alone")
     args = parser.parse_args()
     lines = ["| instances | modes | msolve s | exact s | exact ÷ msolve (median) | numeric s | numeric ÷ msolve "
              "| mode for mode = msolve's: exact, numeric |", "|---|---|---|---|---|---|---|---|"]
     for name, scenes in rows(args.seed).items():
+        if args.rows and args.rows not in name:
+            continue
         times = {method: [] for method in METHODS}
         modes, agreeing = [], {"exact": 0, "numeric": 0}
         for scene in scenes:

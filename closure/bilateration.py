@@ -210,6 +210,8 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
                  slider_step: Callable[[int, Any, dict, Fraction2, Callable], Point | None] | None = None,
                  slider_frame: Callable[[], tuple[dict[str, Point], Fraction2] | None] | None = None,
                  radicand: Callable = triangle_radicand,
+                 steps: tuple[int, int] | None = None,
+                 start: tuple[dict[str, Point], Fraction2] | None = None,
                  ) -> tuple[dict[str, Point], Fraction2, Callable[[str, str], Fraction2]]:
     """Every joint of ``plan`` placed by bilateration, one step after another (thesis
     §2.5), in one arithmetic: the single kernel that numeric residuals, ball placements,
@@ -245,6 +247,11 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
         ``radicand(s_ij, s_ik, s_jk, multiply)``: a step's 16 A² from its sides,
         :func:`triangle_radicand` (every arithmetic but the interval program's
         source, which takes :func:`small_term_radicand`).
+    steps, start
+        place only the steps ``range(*steps)``, going on from ``start``: the
+        points and reference distance that the steps before left (placed into,
+        not copied). Sign branches that share their first steps place them once
+        (:func:`~baranov.solvers.exact.characteristic.placed_on_branches`).
 
     Returns
     -------
@@ -255,12 +262,13 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
     reduced_point = reduced_point or (lambda point: point)
     reduced_distance = reduced_distance or (lambda pair: pair)
     a, b = plan.reference
-    started = slider_frame() if slider_frame is not None else None
+    started = start if start is not None else slider_frame() if slider_frame is not None else None
     if started is None:
         points: dict[str, Point] = {a: (0, 0, 1), b: (1, 0, 1)}
         reference = known(a, b)  # a link's pair or a parameter: nothing is computed yet
     else:
         points, reference = started
+    first, last = steps if steps is not None else (0, len(plan.steps))
 
     def distance(u: str, v: str, computed: bool = False) -> Fraction2:
         value = None if computed else known(u, v)
@@ -268,7 +276,8 @@ def place_joints(plan, known: Callable[[str, str], Fraction2 | None], signed_roo
             return value
         return reduced_distance(squared_distance(points[u], points[v], reference, multiply))
 
-    for index, step in enumerate(plan.steps):
+    for index in range(first, last):
+        step = plan.steps[index]
         i, j = step.base
         k = step.joint
         placed = slider_step(index, step, points, reference, distance) if slider_step is not None else None

@@ -342,6 +342,14 @@ class SliderPlacement:
         self.along_root = along_root
         self.axes: dict[str, Axis] = {}
 
+    def copy(self) -> SliderPlacement:
+        """This placement with the axes placed so far, its own from here on (a sign
+        branch keeps its axes while the next branch replaces the steps after their
+        common ones)."""
+        copied = SliderPlacement(self.geometry, self.parameter, self.along_root)
+        copied.axes = dict(self.axes)
+        return copied
+
     def height(self, slider: str, joint: str, points: Mapping[str, Any], reference) -> Any:
         """P_joint's oriented distance to ``slider``'s axis: a link constant, the
         parameter t, or computed from the placed axis."""

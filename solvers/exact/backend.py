@@ -59,9 +59,9 @@ from .characteristic import (
     CharacteristicPolynomial,
     ExactMethodError,
     characteristic_polynomial,
-    closure_residuals,
     exact_plan,
     residual_verdict,
+    residuals_on_branches,
     with_slider_points,
 )
 from .coupling_two import characteristic_polynomial_two, common_points
@@ -314,8 +314,7 @@ def _modes_at_root(scene: Scene, plan: Plan, points: list | None, signs_list: li
         return set(signs_list)
     still = set()
     for point in points:
-        for signs in signs_list:
-            residuals, placed, _ = closure_residuals(scene, plan, point, signs, real_only=True)
+        for signs, residuals, placed, _ in residuals_on_branches(scene, plan, point, signs_list, real_only=True):
             verdict = residual_verdict(residuals, BRANCH_TOLERANCE)
             if verdict is False:
                 continue

@@ -33,7 +33,7 @@ dimensions.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import lru_cache
@@ -43,7 +43,7 @@ import flint
 
 from baranov.closure.bilateration import dehomogenised, place_joints, squared_distance, triangle_radicand
 from baranov.closure.evaluate import distinct_branches
-from baranov.closure.homogeneous import Homogeneous
+from baranov.closure.homogeneous import FieldComplex, Homogeneous
 from baranov.closure.sliders import SliderPlacement, takes_root
 from baranov.planner import Plan, SliderPlanError, parameter_name, slider_plan
 from baranov.scene import Scene, rational_sqrt
@@ -327,6 +327,16 @@ def dimension_inputs(scene: Scene, context, prime: int | None, parameter_of: dic
     return constant, known
 
 
+def _ring_number(ring: dict) -> type[Homogeneous]:
+    """The number class of ``ring``: :class:`FieldComplex` for balls, else :class:`Homogeneous`."""
+    return ring.get("number", Homogeneous)
+
+
+def _arithmetic(ring: dict) -> dict:
+    """``ring``'s keyword arguments of its number class."""
+    return {key: value for key, value in ring.items() if key != "number"}
+
+
 def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, along_root,
                       geometry: dict | None = None) -> SliderPlacement:
     """The slider constructions (:mod:`baranov.closure.sliders`) over ``ring`` (a
@@ -334,7 +344,7 @@ def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, al
     :func:`_exact_slider_geometry`)."""
     def parameter(u: str, v: str):
         value = parameters.get(frozenset((u, v)))
-        return None if value is None else Homogeneous.of(value, **ring)
+        return None if value is None else _ring_number(ring).of(value, **_arithmetic(ring))
 
     if geometry is None:
         geometry = _exact_slider_geometry(scene, plan, ring)
@@ -348,7 +358,7 @@ def _exact_slider_geometry(scene: Scene, plan: Plan, ring: dict) -> dict:
         if not all(isinstance(c, Fraction) for c in pair):
             raise ExactMethodError("slider axes: a joint's place in an axis frame, or the turn between two axes, is "
                                    "irrational; the exact method needs them rational (docs/sliders.md)")
-        return Homogeneous.of(pair, **ring)
+        return _ring_number(ring).of(pair, **_arithmetic(ring))
 
     for slider in scene.sliders:
         units = axis_units(slider, [scene.link_of(axis.link) for axis in slider.axes])
@@ -375,8 +385,9 @@ def _slider_closure(sliders: SliderPlacement, u: str, v: str, points: dict, refe
     mismatch r − 1, whose imaginary part is the condition and which is 0 as a whole only
     where the axis keeps its sense."""
     slider, joint = (u, v) if u in sliders.geometry else (v, u)
-    at = {joint: Homogeneous(*points[joint], **ring)} if joint in points else {}
-    scale = Homogeneous(reference[0], ring["constant"](0), reference[1], **ring)
+    number, arithmetic = _ring_number(ring), _arithmetic(ring)
+    at = {joint: number(*points[joint], **arithmetic)} if joint in points else {}
+    scale = number(reference[0], ring["constant"](0), reference[1], **arithmetic)
     return sliders.closure(slider, joint, at, scale)
 
 
@@ -562,8 +573,7 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
             flint.ctx.prec = bits
             root = factor.complex_roots()[0][0]
             still, coincident = [], set()
-            for signs in undecided:
-                residuals, _, pair = closure_residuals(scene, plan, (root,), signs)
+            for signs, residuals, _, pair in residuals_on_branches(scene, plan, (root,), undecided):
                 if residuals is None:  # a base distance's ball contains 0: try more bits
                     coincident.add(pair)
                     still.append(signs)
@@ -599,6 +609,22 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
     and :func:`with_slider_points`.
 
     Cost: O(steps) ball operations."""
+    (_, *placed), = placed_on_branches(scene, plan, parameters, [tuple(signs)], real_only)
+    return tuple(placed)
+
+
+def placed_on_branches(scene: Scene, plan: Plan, parameters: Sequence[flint.acb],
+                       branches: Sequence[tuple[int, ...]], real_only: bool = False) -> Iterator[tuple]:
+    """:func:`placed_points` on each sign branch of ``branches`` (a tuple of ±1 per
+    free-sign step), as (signs, points, reference, pair), in that order: the steps
+    before a branch's first differing sign are placed once for all branches that share
+    them, a depth-first walk of the sign tree. On a nine-link slider chain's ten-step
+    plan with free signs at steps 2, 4, 6 and 8, the 16 branches take 62 step placements
+    instead of 160. A branch's points are its own (later branches do not change them);
+    a step undefined on a shared prefix is undefined on every branch below it.
+
+    Cost: O(steps · branches) ball operations at most, O(steps + branches) when the
+    free signs come last."""
     values = {frozenset(pair): value for pair, value in zip(plan.parameters, parameters, strict=True)}
 
     def distance(u: str, v: str):
@@ -608,6 +634,7 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
         return (values[pair], 1) if pair in values else None
 
     a, b = plan.reference
+    signs = list(branches[0]) if branches else []  # the branch being placed: what the roots read
     sliders, hooks = None, {}
     if scene.sliders:  # the slider constructions in balls; the frame may sit on an axis
         sliders, hooks = _ball_sliders(scene, plan, values, signs, real_only)
@@ -615,8 +642,10 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
     # a frame on a slider's axis is in its axis units: s_ref = q (closure/sliders.py)
     reference = flint.acb(sliders.geometry[on_axis[0]].unit) if on_axis else distance(a, b)[0]
     if reference.contains(0):
-        return None, reference, frozenset((a, b))
-    free_index = {index: n for n, index in enumerate(i for i, step in enumerate(plan.steps) if step.free_sign)}
+        yield from ((branch, None, reference, frozenset((a, b))) for branch in branches)
+        return
+    free_steps = [i for i, step in enumerate(plan.steps) if step.free_sign]
+    free_index = {index: n for n, index in enumerate(free_steps)}
 
     def signed_root(index, step, sides, radicand):
         s_ij = sides[0]
@@ -627,14 +656,38 @@ def placed_points(scene: Scene, plan: Plan, parameters: Sequence[flint.acb], sig
         sign = signs[free_index[index]] if step.free_sign else scene.orientation(step.triangle)
         return sign * _square_root(radicand)
 
-    try:
-        placed, _, _ = place_joints(plan, distance, signed_root, reduced_point=dehomogenised, **hooks)
-    except _Undefined as undefined:
-        return None, reference, undefined.pair
+    bounds = [0, *free_steps, len(plan.steps)]
+
+    def placed(level: int, state, group: list[tuple[int, ...]]):
+        """The branches of ``group`` (sharing their first ``level`` signs) from ``state``
+        (None at the start): the points, reference and slider axes after the steps
+        before free step ``level``."""
+        for sign in dict.fromkeys(branch[level - 1] for branch in group) if level else (None,):
+            below = [branch for branch in group if not level or branch[level - 1] == sign]
+            signs[:] = below[0]
+            if sliders is not None:
+                sliders.axes = dict(state[2]) if state else {}
+            try:
+                points, kernel_reference, _ = place_joints(
+                    plan, distance, signed_root, reduced_point=dehomogenised, steps=(bounds[level], bounds[level + 1]),
+                    start=(dict(state[0]), state[1]) if state else None, **hooks)
+            except _Undefined as undefined:
+                yield from ((branch, None, reference, undefined.pair) for branch in below)
+                continue
+            if level < len(free_steps):
+                yield from placed(level + 1, (points, kernel_reference, dict(sliders.axes) if sliders else {}), below)
+            else:
+                yield from ((branch, _ball_points(points, sliders, reference), reference, None) for branch in below)
+
+    yield from placed(0, None, list(branches))
+
+
+def _ball_points(placed: dict, sliders: SliderPlacement | None, reference: flint.acb) -> dict:
+    """The kernel's placed points as (x, y) balls, with a copy of the slider placement."""
     points = {joint: (flint.acb(x), flint.acb(y)) for joint, (x, y, _) in placed.items()}
     if sliders is not None:
-        points[_SLIDERS] = (sliders, reference)
-    return points, reference, None
+        points[_SLIDERS] = (sliders.copy(), reference)
+    return points
 
 
 def with_slider_points(points: dict) -> dict[str, tuple[flint.acb, flint.acb]]:
@@ -647,10 +700,31 @@ def with_slider_points(points: dict) -> dict[str, tuple[flint.acb, flint.acb]]:
     if _SLIDERS not in points:
         return placed
     sliders, reference = points[_SLIDERS]
-    at = {joint: Homogeneous(x, y, flint.acb(1), **_BALLS) for joint, (x, y) in placed.items()}
+    at = {joint: FieldComplex(x, y, flint.acb(1), constant=exact_ball) for joint, (x, y) in placed.items()}
     placed.update({name: (point.x / point.w, point.y / point.w)
                    for name, point in sliders.slider_points(at, reference).items()})
     return placed
+
+
+def real_configuration(points: dict) -> bool:
+    """Whether the placement of :func:`placed_points` is real: every coordinate of every
+    joint, and every slider axis, an exactly real ball (the square root of a negative
+    radicand, or of a ball around 0, leaves an imaginary part). Only there do the slider
+    constructions, which conjugate, compute what the closure conditions are over the
+    radical tower (:func:`~baranov.solvers.exact.coupling_two.branch_solves`)."""
+    def real(value) -> bool:
+        if isinstance(value, Homogeneous):
+            return real(value.x) and real(value.y) and real(value.w)
+        return not isinstance(value, flint.acb) or (value.imag.is_exact() and value.imag == 0)
+
+    for joint, point in points.items():
+        if joint == _SLIDERS:
+            axes = point[0].axes.values()
+            if not all(real(part) for axis in axes for part in (axis.direction, axis.anchor, axis.height)):
+                return False
+        elif not (real(point[0]) and real(point[1])):
+            return False
+    return True
 
 
 def exact_ball(value) -> flint.acb:
@@ -683,8 +757,7 @@ def _rational_ball(value: Fraction, bits: int) -> flint.acb:
 
 
 #: Ball arithmetic for :class:`Homogeneous` (divided through after every operation).
-_BALLS = {"constant": exact_ball,
-          "reduce": lambda number: Homogeneous(number.x / number.w, number.y / number.w, flint.acb(1), **_BALLS)}
+_BALLS = {"constant": exact_ball, "number": FieldComplex}
 #: The key under which :func:`placed_points` leaves its slider placement for the closures.
 _SLIDERS = "<sliders>"
 
@@ -714,14 +787,14 @@ def _ball_sliders(scene: Scene, plan: Plan, values: dict, signs, real_only: bool
         value = radicand.x / radicand.w
         if real_only and value.real < 0:
             raise _Undefined(None)
-        return Homogeneous(signs[free_index[index]] * _square_root(value), flint.acb(0), flint.acb(1), **_BALLS)
+        return FieldComplex(signs[free_index[index]] * _square_root(value), flint.acb(0), flint.acb(1), constant=exact_ball)
 
     sliders = _slider_placement(scene, plan, _BALLS, values, along_root, _ball_slider_geometry(scene, plan))
     slider_step, slider_frame = sliders.kernel_hooks(
-        plan.reference, lambda point: Homogeneous(*(flint.acb(c) for c in point), **_BALLS),
+        plan.reference, lambda point: FieldComplex(*(flint.acb(c) for c in point), constant=exact_ball),
         lambda number: (number.x / number.w, number.y / number.w, 1),
-        reference_of=lambda pair: Homogeneous(flint.acb(pair[0]), flint.acb(0), flint.acb(pair[1]), **_BALLS),
-        distance_of=lambda pair: Homogeneous(flint.acb(pair[0]), flint.acb(0), flint.acb(pair[1]), **_BALLS))
+        reference_of=lambda pair: FieldComplex(flint.acb(pair[0]), flint.acb(0), flint.acb(pair[1]), constant=exact_ball),
+        distance_of=lambda pair: FieldComplex(flint.acb(pair[0]), flint.acb(0), flint.acb(pair[1]), constant=exact_ball))
 
     def defined_step(index, step, points, reference, distance):
         # an axis through two joints divides by their distance, two axes crossed by the
@@ -780,21 +853,30 @@ def closure_residuals(scene: Scene, plan: Plan, parameters: Sequence[flint.acb],
     (:func:`placed_points`, done once for all pairs); where a bilateration is undefined,
     (None, None, the base's joint pair), and with ``real_only`` where a triangle does not
     exist, (None, None, None)."""
-    points, reference, pair = placed_points(scene, plan, parameters, signs, real_only)
-    if points is None:
-        return None, None, pair
-    sliders = points[_SLIDERS][0] if _SLIDERS in points else None
-    residuals = []
-    for u, v in plan.closure_pairs:
-        if sliders is not None and {u, v} & sliders.geometry.keys():
-            at = {joint: (x, y, flint.acb(1)) for joint, (x, y) in points.items()}
-            value = _slider_closure(sliders, u, v, at, (reference, flint.acb(1)), _BALLS)
-            # a height over the link's, relative to 1; or r − 1 of two axes, 0 only with the sense kept
-            residuals.append(((value.x + flint.acb(0, 1) * value.y) / value.w, flint.arb(1)))
+    (_, *residuals), = residuals_on_branches(scene, plan, parameters, [tuple(signs)], real_only)
+    return tuple(residuals)
+
+
+def residuals_on_branches(scene: Scene, plan: Plan, parameters: Sequence[flint.acb],
+                          branches: Sequence[tuple[int, ...]], real_only: bool = False) -> Iterator[tuple]:
+    """:func:`closure_residuals` on each branch of ``branches``, as (signs, residuals,
+    points, pair), the branches' common steps placed once (:func:`placed_on_branches`)."""
+    for signs, points, reference, pair in placed_on_branches(scene, plan, parameters, branches, real_only):
+        if points is None:
+            yield signs, None, None, pair
             continue
-        target = exact_ball(scene.known[frozenset((u, v))]).real
-        residuals.append((computed_distance(points, u, v, reference) - target, target))
-    return residuals, points, None
+        sliders = points[_SLIDERS][0] if _SLIDERS in points else None
+        residuals = []
+        for u, v in plan.closure_pairs:
+            if sliders is not None and {u, v} & sliders.geometry.keys():
+                at = {joint: (x, y, flint.acb(1)) for joint, (x, y) in points.items() if joint != _SLIDERS}
+                value = _slider_closure(sliders, u, v, at, (reference, flint.acb(1)), _BALLS)
+                # a height over the link's, relative to 1; or r − 1 of two axes, 0 only with the sense kept
+                residuals.append(((value.x + flint.acb(0, 1) * value.y) / value.w, flint.arb(1)))
+                continue
+            target = exact_ball(scene.known[frozenset((u, v))]).real
+            residuals.append((computed_distance(points, u, v, reference) - target, target))
+        yield signs, residuals, points, None
 
 
 def residual_verdict(residuals: list[tuple[flint.acb, flint.arb]] | None, tolerance) -> bool | None:

@@ -37,12 +37,13 @@ from .characteristic import (
     TEST_BITS,
     CharacteristicPolynomial,
     RadicalTower,
-    closure_residuals,
     eliminate_radicals,
     radical_tower,
+    real_configuration,
     residual_verdict,
+    residuals_on_branches,
 )
-from .fibers import Fiber, column_over_field, common_fiber, isolated_roots
+from .fibers import Fiber, column_over_field, common_fiber
 from .modular import denominator_parts, lifted_characteristic_polynomial
 from .msolve_images import characteristic_by_msolve
 from .newton_lifting import candidate_by_newton
@@ -51,39 +52,58 @@ from .resultant import coefficients_in_v, resultant_by_primes
 
 
 def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditions: Sequence[int],
-                  bits: int, coincident: set | None = None, real_only: bool = False) -> bool | None:
+                  bits: int, coincident: set | None = None, real_only: bool = False,
+                  real_rules_out: bool = False, too_wide: set | None = None) -> bool | None:
     """Whether on some sign branch every closure condition in ``conditions`` holds at the
     parameter values ``values`` (:func:`~baranov.solvers.exact.characteristic.residual_verdict`
     with tolerance 2^(-bits/8)): True if one branch confirms, False if every branch rules
     itself out, None (undecided) otherwise. A branch on which the plan is undefined (a
     base distance's ball contains 0) is undecided, and its joint pair is added to
     ``coincident``. ``real_only``: only real configurations count (a branch whose
-    triangle does not exist rules itself out)."""
+    triangle does not exist rules itself out). ``real_rules_out``: a branch rules itself
+    out only where its configuration is real (:func:`~baranov.solvers.exact.characteristic.real_configuration`;
+    a slider chain's curve test at a real point, :func:`_some_point_solves`). ``too_wide``
+    gets True where a branch is undecided for want of precision (a ball too wide, or one
+    around 0 where the plan divides)."""
     undecided = False
-    for signs in distinct_branches(plan, [slider.joint for slider in scene.sliders]):
-        residuals, _, pair = closure_residuals(scene, plan, values, signs, real_only)
+    branches = distinct_branches(plan, [slider.joint for slider in scene.sliders])
+    for _, residuals, points, pair in residuals_on_branches(scene, plan, values, branches, real_only):
         if residuals is None:
             if pair is None:  # real_only: a triangle of this branch does not exist
                 continue
             if coincident is not None:
                 coincident.add(pair)
+            if too_wide is not None:
+                too_wide.add(True)
             undecided = True
             continue
         verdict = residual_verdict([residuals[i] for i in conditions], flint.arb(2) ** (-bits // 8))
         if verdict:
             return True
-        undecided |= verdict is None
+        if verdict is None and too_wide is not None:
+            too_wide.add(True)
+        undecided |= verdict is None or (real_rules_out and not real_configuration(points))
     return None if undecided else False
 
 
 def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan,
-                       conditions: Sequence[int]) -> bool | frozenset:
+                       conditions: Sequence[int], one_point_rules_out: bool = False) -> bool | frozenset:
     """Whether one of the parameter points ``points_at()`` (computed afresh at each
     precision of TEST_BITS; None where they cannot be isolated at that precision) solves
     ``conditions`` on some branch: True once one does,
-    False once every point rules itself out on every branch; otherwise (no precision
-    decides, or the plan is undefined at a point) the set of joint pairs found
-    coincident, possibly empty."""
+    False once every point rules itself out on every branch (``one_point_rules_out``:
+    once one point does, as one generic point of an irreducible curve decides it);
+    otherwise (no precision decides, or the plan is undefined at a point) the set of
+    joint pairs found coincident, possibly empty. With ``one_point_rules_out``, points
+    left undecided only by complex configurations are not tried at more bits: another
+    line is (:func:`_curve_is_genuine`).
+
+    A slider construction conjugates (closure/sliders.py): its residuals vanish at real
+    configurations only, so on a slider chain a point rules a branch out only where the
+    point is real (its coordinates exactly real: a rational line's real roots, as flint
+    isolates them) and the branch's configuration too (every triangle built); a complex
+    point can only confirm (commit 173e0c5: at the complex points of genuine curves every
+    branch looked ruled out)."""
     previous = flint.ctx.prec
     coincident: set = set()
     try:
@@ -93,18 +113,28 @@ def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan,
             points = points_at()
             if points is None:  # not isolated at this precision
                 continue
-            verdicts = [branch_solves(scene, plan, point, conditions, bits, coincident) for point in points]
-            # a slider construction conjugates (closure/sliders.py): its residuals vanish at
-            # real points only, so a complex point cannot rule a branch out there
-            verdicts = [None if verdict is False and scene.sliders and not all(value.imag.contains(0) for value in point)
-                        else verdict for verdict, point in zip(verdicts, points, strict=True)]
+            too_wide: set = set()
+            verdicts = [_point_solves(scene, plan, point, conditions, bits, coincident, too_wide) for point in points]
             if True in verdicts:
                 return True
-            if None not in verdicts:
+            if None not in verdicts or (one_point_rules_out and False in verdicts):
                 return False
+            if one_point_rules_out and not too_wide:  # undecided at complex configurations: bits do not help
+                break
         return frozenset(coincident)
     finally:
         flint.ctx.prec = previous
+
+
+def _point_solves(scene: Scene, plan: Plan, point: Sequence[flint.acb], conditions: Sequence[int], bits: int,
+                  coincident: set, too_wide: set) -> bool | None:
+    """:func:`branch_solves` at one point, where on a slider chain only a real point with
+    a real configuration can rule a branch out (:func:`_some_point_solves`)."""
+    if not scene.sliders:
+        return branch_solves(scene, plan, point, conditions, bits, coincident, too_wide=too_wide)
+    real = all(value.imag.is_exact() and value.imag == 0 for value in point)
+    verdict = branch_solves(scene, plan, point, conditions, bits, coincident, real_rules_out=True, too_wide=too_wide)
+    return None if verdict is False and not real else verdict
 
 
 def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, condition: int, seed: int = 0) -> bool:
@@ -127,7 +157,7 @@ def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, conditi
     (12, 12) extraneous curve's test, 12 points on every branch, took 0.115 s)."""
     rng = random.Random(seed)
     for _ in range(10):
-        value = flint.fmpq(rng.randrange(1, 10**6), rng.randrange(1, 10**3))
+        value = _test_line(rng, scene, plan, curve)
         # a slider construction's residuals vanish at real points only (_some_point_solves)
         some = not scene.sliders and conjugate_points(curve, value)
 
@@ -135,12 +165,30 @@ def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, conditi
             found = points_on_line(curve, value)
             return found[:1] if some and found else found
 
-        verdict = _some_point_solves(points, scene, plan, (condition,))
+        verdict = _some_point_solves(points, scene, plan, (condition,), one_point_rules_out=True)
         if verdict is True:
             return True
         if verdict is False or verdict:  # ruled out, or the plan is undefined along the curve
             return False
     return True
+
+
+def _test_line(rng: random.Random, scene: Scene, plan: Plan, curve: flint.fmpz_mpoly) -> flint.fmpq:
+    """A random rational line u = value (v = value for a curve free of v) for
+    :func:`_curve_is_genuine`. On a slider chain it crosses the parameter's range of real
+    configurations (below its bound :meth:`~baranov.scene.Scene.largest_distance`,
+    squared for a squared distance, of either sign for a slider's t), where the curve's
+    points are real often enough to rule a curve out (:func:`_some_point_solves`): drawn
+    anywhere up to 10⁶, the points of the 9-link chain whose curve tests took 18.6 of
+    29.6 s were complex on nearly every line, and each line escalated through every
+    precision."""
+    if not scene.sliders:
+        return flint.fmpq(rng.randrange(1, 10**6), rng.randrange(1, 10**3))
+    pair = plan.parameters[0 if curve.degrees()[1] > 0 else 1]
+    signed = bool(set(pair) & {slider.joint for slider in scene.sliders})
+    bound = scene.largest_distance(*pair)
+    upper = (bound if signed else bound**2) if math.isfinite(bound) else 10.0**3
+    return flint.fmpq(round(rng.uniform(-upper if signed else 0.0, upper) * 1000) or 1, 1000)
 
 
 def conjugate_points(curve: flint.fmpz_mpoly, value: flint.fmpq) -> bool:
@@ -164,9 +212,12 @@ def points_on_line(curve: flint.fmpz_mpoly, value: flint.fmpq) -> list[tuple[fli
     """The points (u, v) of ``curve`` on the line u = ``value`` (on v = ``value`` for a
     vertical line, a curve free of v), at the current precision; None if they cannot be
     isolated there."""
-    if curve.degrees()[1] > 0:
-        roots = isolated_roots(column_over_field(curve, flint.fmpz_poly([-value.p, value.q])), flint.acb(value))
-        return None if roots is None else [(flint.acb(value), v) for v in roots]
+    if curve.degrees()[1] > 0:  # a column over Q: flint isolates its real roots as exactly real
+        column = column_over_field(curve, flint.fmpz_poly([-value.p, value.q]))
+        if len(column) <= 1:
+            return []
+        line = flint.fmpq_poly([coefficient[0] for coefficient in column])
+        return [(flint.acb(value), root) for root, _ in line.complex_roots()]
     terms = coefficients_in_v(curve)[0]  # a vertical line: a polynomial in u only
     line = flint.fmpz_poly([terms.get(k, 0) for k in range(max(terms) + 1)])
     return [(root, flint.acb(value)) for root, _ in line.complex_roots()]
