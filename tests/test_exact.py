@@ -204,3 +204,56 @@ def test_plane_factors_survive_python_flint_sort_overflow():
     first, second = 2**40 * u * v + 3 * u + 5, 2**40 * u * v + 7 * u - 1
     factors = plane_factors(first * second * (u - v) ** 2)
     assert sorted((str(f), m) for f, m in factors) == sorted([(str(first), 1), (str(second), 1), (str(u - v), 2)])
+
+
+@pytest.mark.parametrize("path", ["examples/7-B1.json", "examples/7-B3-sliders-P8-P9.json",
+                                  "tests/scenes/9-slider-chain-coupling-2.json"])
+def test_branches_placed_together_are_placed_as_alone(path):
+    """placed_on_branches places the steps that sign branches share once; each branch's
+    points, and whether its placement is real, are those of placing it alone."""
+    import flint
+
+    from baranov.closure import distinct_branches
+    from baranov.solvers.exact.characteristic import (
+        exact_plan,
+        placed_on_branches,
+        placed_points,
+        real_configuration,
+    )
+
+    scene = load_scene(EXAMPLES.parent / path)
+    plan = exact_plan(scene)
+    branches = distinct_branches(plan, [slider.joint for slider in scene.sliders])
+    rng = np.random.default_rng(3)
+    values = [flint.acb(flint.fmpq(int(rng.integers(1, 4000)), 100)) for _ in plan.parameters]
+    together = list(placed_on_branches(scene, plan, values, branches))
+    assert [signs for signs, *_ in together] == branches
+    for signs, points, reference, pair in together:
+        alone, alone_reference, alone_pair = placed_points(scene, plan, values, signs)
+        assert (pair, str(reference)) == (alone_pair, str(alone_reference))
+        assert (points is None) == (alone is None)
+        if points is not None:
+            assert {joint: str(point) for joint, point in points.items() if not joint.startswith("<")} == \
+                {joint: str(point) for joint, point in alone.items() if not joint.startswith("<")}
+            assert real_configuration(points) == real_configuration(alone)
+
+
+def test_a_real_configuration_is_told_from_a_complex_one():
+    """real_configuration: every coordinate exactly real; a branch whose triangle does not
+    exist (a square root of a negative radicand) is not."""
+    import flint
+
+    from baranov.solvers.exact.characteristic import exact_plan, placed_points, real_configuration
+
+    scene = load_scene(EXAMPLES / "7-B1.json")
+    plan = exact_plan(scene)
+    mode = solve(scene, method="exact").assembly_modes[0]
+    at_mode = placed_points(scene, plan, [flint.acb(next(iter(mode.parameters.values())))], mode.signs)[0]
+    assert real_configuration(at_mode)
+    unbuilt = []
+    for value in (1, 10, 100, 1000, 10000):
+        points, _, _ = placed_points(scene, plan, [flint.acb(value)], mode.signs)
+        real_points, _, _ = placed_points(scene, plan, [flint.acb(value)], mode.signs, real_only=True)
+        assert real_configuration(points) == (real_points is not None)
+        unbuilt.append(real_points is None)
+    assert any(unbuilt)
