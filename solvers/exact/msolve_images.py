@@ -54,16 +54,19 @@ MSOLVE_PRIME_BITS = 30
 MOST_PRIMES = 1 << 12
 
 
-def msolve_images_apply(scene: Scene) -> bool:
+def msolve_images_apply(scene: Scene, plan: Plan | None = None) -> bool:
     """Whether msolve's eliminating polynomial is the characteristic polynomial's image.
-    That needs the msolve binary and a scene without sliders (the plan's slider parameters
-    are not distances) whose link areas are rational. An irrational area needs an auxiliary
+    That needs the msolve binary, a first parameter of ``plan`` that is a distance (no
+    slider in its pair: a slider's parameter is an oriented distance to its axis) and
+    rational link areas. An irrational area needs an auxiliary
     root in the Cartesian system, which then also solves the linkage with that link
     mirrored. The ground's world coordinates must be exact too: a scene given by distances
     places its ground in floats (the 9/B28 example: √6610/3), and the Cartesian system then
     places it by its distances with an auxiliary root (it was a nearby instance in rounded
     coordinates, with another polynomial, before issue 55)."""
-    return not scene.sliders and find_msolve() is not None and exact_ground(scene)
+    sliders = {slider.joint for slider in scene.sliders}
+    distance = plan is None and not sliders or plan is not None and not set(plan.parameters[0]) & sliders
+    return distance and find_msolve() is not None and exact_ground(scene)
 
 
 def msolve_images(scene: Scene, plan: Plan, seed: int = 0) -> Iterator[flint.nmod_poly | None]:
@@ -89,7 +92,7 @@ def characteristic_by_msolve(scene: Scene, plan: Plan, curves: Sequence[flint.fm
     :func:`~baranov.solvers.exact.lifting_by_primes.lifted_from_images`. None where msolve's images do
     not apply (:func:`msolve_images_apply`), msolve gives no image at the first two
     primes, or the lifting fails; the caller then uses the resultants' images."""
-    if not msolve_images_apply(scene):
+    if not msolve_images_apply(scene, plan):
         return None
     images = msolve_images(scene, plan, seed)
     first, second = next(images, None), next(images, None)
