@@ -87,17 +87,13 @@ def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditi
 
 
 def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan,
-                       conditions: Sequence[int], one_point_rules_out: bool = False) -> bool | frozenset:
+                       conditions: Sequence[int]) -> bool | frozenset:
     """Whether one of the parameter points ``points_at()`` (computed afresh at each
     precision of TEST_BITS; None where they cannot be isolated at that precision) solves
-    ``conditions`` on some branch: True once one does,
-    False once every point rules itself out on every branch (``one_point_rules_out``:
-    once one point does, as one generic point of an irreducible curve decides it);
-    otherwise (no precision decides, or the plan is undefined at a point) the set of
-    joint pairs found coincident, possibly empty. Real points are tried first, and the
-    first point that decides ends the test. With ``one_point_rules_out``, points
-    left undecided only by complex configurations are not tried at more bits: another
-    line is (:func:`_curve_is_genuine`).
+    ``conditions`` on some branch: True once one does, False once every point rules
+    itself out on every branch; otherwise (no precision decides, or the plan is undefined
+    at a point) the set of joint pairs found coincident, possibly empty. Real points are
+    tried first.
 
     A slider construction conjugates (closure/sliders.py): its residuals vanish at real
     configurations only, so on a slider chain a point rules a branch out only where the
@@ -114,21 +110,64 @@ def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan,
             points = points_at()
             if points is None:  # not isolated at this precision
                 continue
-            too_wide: set = set()
             verdicts = []
-            for point in sorted(points, key=lambda point: not all(value.imag == 0 for value in point)):
-                verdicts.append(_point_solves(scene, plan, point, conditions, bits, coincident, too_wide))
+            for point in _real_first(points):
+                verdicts.append(_point_solves(scene, plan, point, conditions, bits, coincident, set()))
                 if verdicts[-1] is True:
                     return True
-                if verdicts[-1] is False and one_point_rules_out:
-                    return False
             if None not in verdicts:
                 return False
-            if one_point_rules_out and not too_wide:  # undecided at complex configurations: bits do not help
-                break
         return frozenset(coincident)
     finally:
         flint.ctx.prec = previous
+
+
+def _curve_point_decides(points_at: Callable[[], list], scene: Scene, plan: Plan, condition: int) -> bool | frozenset:
+    """For :func:`_curve_is_genuine`: the points of a curve on one line (``points_at()``,
+    at the current precision), real ones first, each taken to more bits of TEST_BITS
+    until it decides. One generic point of an irreducible curve decides the curve: True
+    where some branch solves the condition there, False where every branch rules itself
+    out, and the joint pairs found coincident where the plan is undefined there at every
+    precision (the plan is undefined along the curve). A point left undecided only by
+    complex configurations (a slider chain, :func:`_point_solves`) is not taken to more
+    bits: the next point is. Returns an empty set where no point decides."""
+    previous = flint.ctx.prec
+    isolated: dict[int, list | None] = {}
+
+    def points(bits: int) -> list | None:
+        if bits not in isolated:
+            found = points_at()
+            isolated[bits] = None if found is None else _real_first(found)
+        return isolated[bits]
+
+    try:
+        flint.ctx.prec = TEST_BITS[0]
+        first = points(TEST_BITS[0])
+        for index in range(len(first) if first is not None else 1):
+            coincident: set = set()
+            for bits in TEST_BITS:
+                flint.ctx.prec = bits
+                found = points(bits)
+                if found is None or index >= len(found):  # not isolated at this precision
+                    continue
+                too_wide: set = set()
+                verdict = _point_solves(scene, plan, found[index], (condition,), bits, coincident, too_wide)
+                if verdict is not None:
+                    return verdict
+                if not too_wide:  # undecided at complex configurations: bits do not help
+                    break
+            else:
+                if coincident:
+                    return frozenset(coincident)
+        return frozenset()
+    finally:
+        flint.ctx.prec = previous
+
+
+def _real_first(points: list) -> list:
+    """``points`` with the exactly real ones first (a slider chain's branches are ruled
+    out at those only), each group in its order."""
+    return sorted(points, key=lambda point: not all(value.imag == 0 for value in point))
 
 
 def _point_solves(scene: Scene, plan: Plan, point: Sequence[flint.acb], conditions: Sequence[int], bits: int,
@@ -170,7 +209,7 @@ def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, conditi
             found = points_on_line(curve, value)
             return found[:1] if some and found else found
 
-        verdict = _some_point_solves(points, scene, plan, (condition,), one_point_rules_out=True)
+        verdict = _curve_point_decides(points, scene, plan, condition)
         if verdict is True:
             return True
         if verdict is False or verdict:  # ruled out, or the plan is undefined along the curve
