@@ -45,7 +45,11 @@ class Homogeneous:
             re, im = constant(value.real), constant(value.imag)
         else:
             re, im = value, constant(0)
-        return cls(re, im, constant(1), **ring)
+        return cls._of_parts(re, im, ring)
+
+    @classmethod
+    def _of_parts(cls, re, im, ring: dict) -> Homogeneous:
+        return cls(re, im, ring.get("constant", lambda v: v)(1), **ring)
 
     def _new(self, x, y, w) -> Homogeneous:
         made = Homogeneous(x, y, w, self.multiply, self.constant, self.reduce)
@@ -124,21 +128,31 @@ class FieldComplex(Homogeneous):
 
     def __init__(self, x, y, w=None, multiply: Callable[[Any, Any], Any] = operator.mul,
                  constant: Callable[[Any], Any] = lambda value: value, reduce: Callable | None = None):
-        one = constant(1)
-        if w is not None and w is not one:  # a triple from elsewhere: divided through once
+        if w is not None:  # a triple from elsewhere: divided through once
             x, y = x / w, y / w
-        super().__init__(x, y, one, multiply, constant, None)
+        self.x, self.y = x, y
+        self.multiply, self.constant, self.reduce = multiply, constant, None
+
+    @property
+    def w(self):
+        """1 in the field (made when read: the constant of every number made cost as much
+        as its arithmetic)."""
+        return self.constant(1)
+
+    @classmethod
+    def _of_parts(cls, re, im, ring: dict) -> FieldComplex:
+        return cls(re, im, None, **ring)
 
     def _new(self, x, y, w=None) -> FieldComplex:
         made = object.__new__(FieldComplex)
-        made.x, made.y, made.w = x, y, self.w
+        made.x, made.y = x, y
         made.multiply, made.constant, made.reduce = self.multiply, self.constant, None
         return made
 
     def _lift(self, other) -> FieldComplex:
         if type(other) is FieldComplex:
             return other
-        if isinstance(other, Homogeneous):
+        if isinstance(other, Homogeneous):  # a triple from elsewhere
             return FieldComplex(other.x, other.y, other.w, self.multiply, self.constant)
         return FieldComplex.of(other, multiply=self.multiply, constant=self.constant)
 
@@ -160,6 +174,17 @@ class FieldComplex(Homogeneous):
         return self._new(self.x * other.x - self.y * other.y, self.x * other.y + self.y * other.x)
 
     __rmul__ = __mul__
+
+    def conjugate(self) -> FieldComplex:
+        return self._new(self.x, -self.y)
+
+    @property
+    def real(self) -> FieldComplex:
+        return self._new(self.x, self.constant(0))
+
+    @property
+    def imag(self) -> FieldComplex:
+        return self._new(self.y, self.constant(0))
 
     def __truediv__(self, other) -> FieldComplex:
         other = self._lift(other)

@@ -700,7 +700,7 @@ def with_slider_points(points: dict) -> dict[str, tuple[flint.acb, flint.acb]]:
     if _SLIDERS not in points:
         return placed
     sliders, reference = points[_SLIDERS]
-    at = {joint: FieldComplex(x, y, flint.acb(1), constant=exact_ball) for joint, (x, y) in placed.items()}
+    at = {joint: FieldComplex(x, y, constant=exact_ball) for joint, (x, y) in placed.items()}
     placed.update({name: (point.x / point.w, point.y / point.w)
                    for name, point in sliders.slider_points(at, reference).items()})
     return placed
@@ -787,7 +787,7 @@ def _ball_sliders(scene: Scene, plan: Plan, values: dict, signs, real_only: bool
         value = radicand.x / radicand.w
         if real_only and value.real < 0:
             raise _Undefined(None)
-        return FieldComplex(signs[free_index[index]] * _square_root(value), flint.acb(0), flint.acb(1), constant=exact_ball)
+        return FieldComplex(signs[free_index[index]] * _square_root(value), flint.acb(0), constant=exact_ball)
 
     sliders = _slider_placement(scene, plan, _BALLS, values, along_root, _ball_slider_geometry(scene, plan))
     slider_step, slider_frame = sliders.kernel_hooks(
