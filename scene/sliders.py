@@ -293,3 +293,30 @@ def axis_turn(first: SliderJoint, second: SliderJoint, link, units: tuple[Number
     (dx, dy), (u, v) = axis_frame(first, link, units[0])[second.joint], axis_frame(second, link, units[1])[first.joint]
     norm = u * u + v * v  # the vector from the first's point to the second's: (dx + i dy) / (−u − i v)
     return -(dx * u + dy * v) / norm, -(dy * u - dx * v) / norm
+
+
+def sliding_link(scene) -> tuple[str, tuple[str, ...]] | None:
+    """A link of ``scene`` whose joints are all sliders with parallel axes on it (two
+    prismatic joints of one direction in a leg, as in a robot leg written pPR): it slides
+    along that direction without moving any other link, so wherever the linkage
+    assembles, its configurations form a continuum (thesis ch. 4 assumes the axes of a
+    link's sliders cross: its point on two axes). The link's name and its sliders; None
+    where no link is so. Parallel: the turn between the axes (:func:`axis_turn`) has sine
+    0, within 1e-12 where an angle is irrational (floats). O(sliders²).
+
+    >>> from baranov.scene import load_scene
+    >>> sliding_link(load_scene("examples/7-B3-sliders-P8-P9.json")) is None  # 45° apart
+    True
+    """
+    on_link: dict[str, list[SliderJoint]] = {}
+    for slider in scene.sliders:
+        for axis in slider.axes:
+            on_link.setdefault(axis.link, []).append(slider)
+    for link in scene.links:
+        sliders = on_link.get(link.name, [])
+        if len(sliders) < 2 or len(sliders) < len(link.joints):
+            continue
+        sines = [axis_turn(sliders[0], other, link)[1] for other in sliders[1:]]
+        if all(sine == 0 if isinstance(sine, (int, Fraction)) else abs(float(sine)) <= 1e-12 for sine in sines):
+            return link.name, tuple(slider.joint for slider in sliders)
+    return None

@@ -1,6 +1,7 @@
 """Solving backends: every assembly mode of a concrete linkage (a scene)."""
 
 from baranov.scene import Scene
+from baranov.scene.sliders import sliding_link
 
 from .backends import available_backends, backend, register_backend
 from .batch import BatchError, instance_scenes, solve_many
@@ -22,7 +23,8 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
     the baselines), passing it ``options``. A one-DOF scene whose crank input has a value
     is solved held there (:func:`baranov.motion.driving.solve_held`). Raises
     :class:`SolverError` for any other scene with mobility F > 0: its configurations are
-    not isolated assembly modes."""
+    not isolated assembly modes; :class:`MovableLinkageError` for a scene with a link that
+    slides on parallel slider axes (:func:`~baranov.scene.sliders.sliding_link`)."""
     if scene.mobility > 0 and any(driver.value is not None for driver in scene.inputs):
         from baranov.motion.driving import solve_held  # its crank held where the scene says
 
@@ -32,6 +34,13 @@ def solve(scene: Scene, method: str = "numeric", **options) -> Solution:
                           "moves by its topology, and the backends find the assembly modes of rigid linkages "
                           "(mobility 0); trace its motion instead: baranov trace SCENE (docs/motion.md), or hold "
                           "its crank by giving its input \"degrees\"")
+    sliding = sliding_link(scene)
+    if sliding is not None:
+        link, sliders = sliding
+        raise MovableLinkageError(f"link {link}: its joints {' and '.join(sliders)} are sliders whose axes are "
+                                  "parallel on it, so it slides along them without moving any other link: wherever "
+                                  "the linkage assembles, it moves (a continuum of configurations, not isolated "
+                                  "assembly modes)")
     chosen = backend(method)
     if scene.sliders and not chosen.sliders:
         joints = ", ".join(slider.joint for slider in scene.sliders)

@@ -807,10 +807,33 @@ def test_two_parallel_slider_axes_give_no_numpy_warning():
     solve says nothing is proven and warns of nothing."""
     import warnings
 
+    from baranov.solvers.numeric import solve_numeric
+
     with warnings.catch_warnings():
         warnings.simplefilter("error", RuntimeWarning)
-        solution = solve(load_scene(SLIDER_REGRESSIONS / "open" / "robot-RrR-rPP-pPR.json"))
+        solution = solve_numeric(load_scene(SLIDER_REGRESSIONS / "open" / "robot-RrR-rPP-pPR.json"))
     assert not solution.certificate.complete
+
+
+@pytest.mark.parametrize("method", ["numeric", "exact"])
+def test_a_link_sliding_on_parallel_axes_is_reported_as_a_motion(method):
+    """The same robot: its leg25 carries two sliders P2 and P5 whose axes are parallel on
+    it (both at the angle (−24, 12) from the other joint), so the leg slides along them
+    and the robot moves wherever it assembles (msolve: a positive-dimensional solution
+    set). Both backends used to answer "no mode found, not proven" (the exact one: two
+    real roots undecided at 1024 bits, where the leg's point on the two axes is
+    undefined); solve now says the linkage moves and which link slides. A turned leg
+    (P5's axis at another angle) is solved as before."""
+    from baranov.scene.sliders import sliding_link
+    from baranov.solvers import MovableLinkageError
+
+    path = SLIDER_REGRESSIONS / "open" / "robot-RrR-rPP-pPR.json"
+    assert sliding_link(load_scene(path)) == ("leg25", ("P2", "P5"))
+    with pytest.raises(MovableLinkageError, match="link leg25: its joints P2 and P5 .* parallel"):
+        solve(load_scene(path), method=method)
+    data = json.loads(path.read_text())
+    data["sliders"][1]["angles"]["leg25"]["P2"] = ["-12", "24"]
+    assert sliding_link(scene_from_dict(data)) is None
 
 
 @needs_msolve
