@@ -342,9 +342,11 @@ def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, al
     """The slider constructions (:mod:`baranov.closure.sliders`) over ``ring`` (a
     :class:`Homogeneous` arithmetic), with the scene's axis frames exact (``geometry``, or
     :func:`_exact_slider_geometry`)."""
+    number, arithmetic = _ring_number(ring), _arithmetic(ring)
+
     def parameter(u: str, v: str):
         value = parameters.get(frozenset((u, v)))
-        return None if value is None else _ring_number(ring).of(value, **_arithmetic(ring))
+        return None if value is None else number.of(value, **arithmetic)
 
     if geometry is None:
         geometry = _exact_slider_geometry(scene, plan, ring)
@@ -354,11 +356,13 @@ def _slider_placement(scene: Scene, plan: Plan, ring: dict, parameters: dict, al
 def _exact_slider_geometry(scene: Scene, plan: Plan, ring: dict) -> dict:
     """:func:`~baranov.solvers.placement.slider_geometry` over ``ring``, exact; raises
     :class:`ExactMethodError` where a place or turn is irrational."""
+    kind, arithmetic = _ring_number(ring), _arithmetic(ring)
+
     def number(pair):
         if not all(isinstance(c, Fraction) for c in pair):
             raise ExactMethodError("slider axes: a joint's place in an axis frame, or the turn between two axes, is "
                                    "irrational; the exact method needs them rational (docs/sliders.md)")
-        return _ring_number(ring).of(pair, **_arithmetic(ring))
+        return kind.of(pair, **arithmetic)
 
     for slider in scene.sliders:
         units = axis_units(slider, [scene.link_of(axis.link) for axis in slider.axes])
@@ -675,7 +679,8 @@ def placed_on_branches(scene: Scene, plan: Plan, parameters: Sequence[flint.acb]
                 yield from ((branch, None, reference, undefined.pair) for branch in below)
                 continue
             if level < len(free_steps):
-                yield from placed(level + 1, (points, kernel_reference, dict(sliders.axes) if sliders else {}), below)
+                # the state is copied where a branch goes on from it, not here
+                yield from placed(level + 1, (points, kernel_reference, sliders.axes if sliders else {}), below)
             else:
                 yield from ((branch, _ball_points(points, sliders, reference), reference, None) for branch in below)
 
@@ -756,7 +761,8 @@ def _rational_ball(value: Fraction, bits: int) -> flint.acb:
     return flint.acb(flint.fmpq(value.numerator, value.denominator))  # rounded at the current precision (= bits)
 
 
-#: Ball arithmetic for :class:`Homogeneous` (divided through after every operation).
+#: Ball arithmetic for the slider constructions: :class:`FieldComplex` over flint's complex
+#: balls (``number``: the class the shared helpers make numbers of, :func:`_ring_number`).
 _BALLS = {"constant": exact_ball, "number": FieldComplex}
 #: The key under which :func:`placed_points` leaves its slider placement for the closures.
 _SLIDERS = "<sliders>"

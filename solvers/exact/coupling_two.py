@@ -124,34 +124,31 @@ def _some_point_solves(points_at: Callable[[], list], scene: Scene, plan: Plan,
 
 def _curve_point_decides(points_at: Callable[[], list], scene: Scene, plan: Plan, condition: int) -> bool | frozenset:
     """For :func:`_curve_is_genuine`: the points of a curve on one line (``points_at()``,
-    at the current precision), real ones first, each taken to more bits of TEST_BITS
-    until it decides. One generic point of an irreducible curve decides the curve: True
-    where some branch solves the condition there, False where every branch rules itself
-    out, and the joint pairs found coincident where the plan is undefined there at every
-    precision (the plan is undefined along the curve). A point left undecided only by
-    complex configurations (a slider chain, :func:`_point_solves`) is not taken to more
-    bits: the next point is. Returns an empty set where no point decides."""
+    isolated at the current precision: :func:`points_on_line`), real ones first, each
+    taken to more bits of TEST_BITS until it decides. One generic point of an
+    irreducible curve decides the curve: True where some branch solves the condition
+    there, False where every branch rules itself out, and the joint pairs found
+    coincident where the plan is undefined there at every precision (the plan is
+    undefined along the curve). A point left undecided only by complex configurations (a
+    slider chain, :func:`_point_solves`) is not taken to more bits: the next point is.
+    Returns an empty set where no point decides."""
     previous = flint.ctx.prec
-    isolated: dict[int, list | None] = {}
+    isolated: dict[int, list] = {}
 
-    def points(bits: int) -> list | None:
+    def points(bits: int) -> list:
         if bits not in isolated:
-            found = points_at()
-            isolated[bits] = None if found is None else _real_first(found)
+            flint.ctx.prec = bits
+            isolated[bits] = _real_first(points_at())
         return isolated[bits]
 
     try:
-        flint.ctx.prec = TEST_BITS[0]
-        first = points(TEST_BITS[0])
-        for index in range(len(first) if first is not None else 1):
+        for index in range(len(points(TEST_BITS[0]))):
             coincident: set = set()
             for bits in TEST_BITS:
+                point = points(bits)[index]
                 flint.ctx.prec = bits
-                found = points(bits)
-                if found is None or index >= len(found):  # not isolated at this precision
-                    continue
                 too_wide: set = set()
-                verdict = _point_solves(scene, plan, found[index], (condition,), bits, coincident, too_wide)
+                verdict = _point_solves(scene, plan, point, (condition,), bits, coincident, too_wide)
                 if verdict is not None:
                     return verdict
                 if not too_wide:  # undecided at complex configurations: bits do not help
@@ -167,7 +164,13 @@ def _curve_point_decides(points_at: Callable[[], list], scene: Scene, plan: Plan
 def _real_first(points: list) -> list:
     """``points`` with the exactly real ones first (a slider chain's branches are ruled
     out at those only), each group in its order."""
-    return sorted(points, key=lambda point: not all(value.imag == 0 for value in point))
+    return sorted(points, key=lambda point: not _is_real(point))
+
+
+def _is_real(point: Sequence[flint.acb]) -> bool:
+    """Whether every coordinate of ``point`` is exactly real (an arb compares equal to 0
+    only where it is exactly 0): a rational line's real roots, as flint isolates them."""
+    return all(value.imag == 0 for value in point)
 
 
 def _point_solves(scene: Scene, plan: Plan, point: Sequence[flint.acb], conditions: Sequence[int], bits: int,
@@ -176,9 +179,8 @@ def _point_solves(scene: Scene, plan: Plan, point: Sequence[flint.acb], conditio
     a real configuration can rule a branch out (:func:`_some_point_solves`)."""
     if not scene.sliders:
         return branch_solves(scene, plan, point, conditions, bits, coincident, too_wide=too_wide)
-    real = all(value.imag.is_exact() and value.imag == 0 for value in point)
     verdict = branch_solves(scene, plan, point, conditions, bits, coincident, real_rules_out=True, too_wide=too_wide)
-    return None if verdict is False and not real else verdict
+    return None if verdict is False and not _is_real(point) else verdict
 
 
 def _curve_is_genuine(curve: flint.fmpz_mpoly, scene: Scene, plan: Plan, condition: int, seed: int = 0) -> bool:
@@ -235,8 +237,7 @@ def _test_line(rng: random.Random, scene: Scene, plan: Plan, curve: flint.fmpz_m
     upper = (bound if signed else bound**2) if math.isfinite(bound) else 10.0**3
     drawn = [flint.fmpq(round(rng.uniform(-upper if signed else 0.0, upper) * 1000) or 1, 1000) for _ in range(8)]
     # the first line that meets the curve in a real point (a root isolation each: milliseconds)
-    return next((value for value in drawn if any(all(part.imag == 0 for part in point)
-                                                 for point in points_on_line(curve, value))), drawn[0])
+    return next((value for value in drawn if any(map(_is_real, points_on_line(curve, value)))), drawn[0])
 
 
 def conjugate_points(curve: flint.fmpz_mpoly, value: flint.fmpq) -> bool:
@@ -256,10 +257,11 @@ def conjugate_points(curve: flint.fmpz_mpoly, value: flint.fmpq) -> bool:
     return len(factors) == 1 and factors[0][1] == 1
 
 
-def points_on_line(curve: flint.fmpz_mpoly, value: flint.fmpq) -> list[tuple[flint.acb, flint.acb]] | None:
+def points_on_line(curve: flint.fmpz_mpoly, value: flint.fmpq) -> list[tuple[flint.acb, flint.acb]]:
     """The points (u, v) of ``curve`` on the line u = ``value`` (on v = ``value`` for a
-    vertical line, a curve free of v), at the current precision; None if they cannot be
-    isolated there."""
+    vertical line, a curve free of v), isolated at the current precision (flint's
+    isolation of an integer polynomial's roots, its square-free part's: real roots exactly
+    real)."""
     if curve.degrees()[1] > 0:  # a column over Q: flint isolates its real roots as exactly real
         column = column_over_field(curve, flint.fmpz_poly([-value.p, value.q]))
         if len(column) <= 1:

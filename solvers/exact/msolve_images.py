@@ -65,8 +65,8 @@ def msolve_images_apply(scene: Scene, plan: Plan | None = None) -> bool:
     places it by its distances with an auxiliary root (it was a nearby instance in rounded
     coordinates, with another polynomial, before issue 55)."""
     sliders = {slider.joint for slider in scene.sliders}
-    distance = plan is None and not sliders or plan is not None and not set(plan.parameters[0]) & sliders
-    return distance and find_msolve() is not None and exact_ground(scene)
+    first = set(plan.parameters[0]) if plan is not None else sliders  # no plan: no slider at all
+    return not first & sliders and find_msolve() is not None and exact_ground(scene)
 
 
 def msolve_images(scene: Scene, plan: Plan, seed: int = 0) -> Iterator[flint.nmod_poly | None]:
