@@ -18,6 +18,7 @@ from pathlib import Path
 from baranov.catalog.tasks import ClusterLost
 
 from .arguments import parameter_pair
+from .explore import add_explore_parser, run_explore
 from .trace import add_trace_parser, run_trace
 
 # the library is imported inside each command, so that --help and --version start fast
@@ -69,7 +70,7 @@ class _MethodsHelp(argparse.HelpFormatter):
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line, no usage block
         if message.endswith("required: command"):  # a bare `baranov`
-            message = ("a command is required: catalog, show, solve, trace, robot or robots "
+            message = ("a command is required: catalog, show, solve, trace, explore, robot or robots "
                        "(baranov --help lists them, baranov COMMAND --help shows one)")
         raise UsageError(message)
 
@@ -170,6 +171,7 @@ def _parser() -> argparse.ArgumentParser:
     robot.add_argument("--json", action="store_true", help="the solution as baranov solve --json, with the poses")
     robot.add_argument("--plot", type=Path, help="draw every pose (the locked robot's assembly modes) into this PNG file")
     add_trace_parser(commands)
+    add_explore_parser(commands)
     robots = commands.add_parser("robots", help="the fully-parallel planar robots: their ten families (thesis §5.2)")
     robots.add_argument("--json", action="store_true", help="a list of families as JSON")
     return parser
@@ -434,6 +436,8 @@ def main(argv: list[str] | None = None) -> int:
             return run_robot(args)
         if args.command == "trace":
             return run_trace(args)
+        if args.command == "explore":
+            return run_explore(args)
         if args.command == "show":
             if args.plans < 1:
                 raise UsageError(f"--plans {args.plans}: must be at least 1")

@@ -85,56 +85,71 @@ def _title(index: int, mode) -> str:
     return heading + "\n" + "\n".join(", ".join(values[n:n + 2]) for n in range(0, len(values), 2))
 
 
+def mode_shapes(scene: Scene, joints: dict, extent: float) -> dict:
+    """What a drawing of one configuration shows, in world coordinates, for any renderer
+    (matplotlib here, the explorer's SVG): ``links`` (each ``{"name", "ground",
+    "points"}``: a bar's two ends, or a k-ary link's convex hull), ``axes`` (each slider's
+    axis through its two points and ``0.15 · extent`` beyond, as two points) and
+    ``joints`` (``{"names", "point", "slider"}``: coincident joints as one, within
+    1e-6 · ``extent``)."""
+    links = []
+    for link in scene.links:
+        points = [tuple(joints[scene.point_name(link.name, j)]) for j in link.joints]
+        links.append({"name": link.name, "ground": link.name == scene.ground,
+                      "points": points if len(points) == 2 else convex_hull(points)})
+    sliders = {scene.point_name(axis.link, slider.joint) for slider in scene.sliders for axis in slider.axes}
+    return {"links": links, "axes": [_slider_axis_segment(scene, slider, joints, extent) for slider in scene.sliders],
+            "joints": [{"names": names, "point": point, "slider": any(name in sliders for name in names)}
+                       for names, point in _label_groups(joints, 1e-6 * extent)]}
+
+
 def draw_mode(axis, scene: Scene, mode, extent: float) -> None:
     """One configuration of ``scene`` (an assembly mode, or any record with ``joints``:
     a traced configuration, a frame of ``baranov trace --animate``) on a matplotlib
-    ``axis``, ``extent`` its size: the links (ground hatched, k-ary links filled, bars),
-    slider axes (dashed, the joint's two points as squares), joints and their labels
-    (:func:`_label_directions`)."""
+    ``axis``, ``extent`` its size: :func:`mode_shapes` drawn as the thesis draws (ground
+    hatched, k-ary links filled, bars, slider axes dashed, a slider's two points as
+    squares), the joints' labels placed by :func:`_label_directions`."""
+    shapes = mode_shapes(scene, mode.joints, extent)
     segments, polygons = [], []
-    for link in scene.links:
-        points = [mode.joints[scene.point_name(link.name, j)] for j in link.joints]
-        ground = link.name == scene.ground
+    for link in shapes["links"]:
+        points, ground = link["points"], link["ground"]
         if len(points) == 2:
             (x1, y1), (x2, y2) = points
             axis.plot([x1, x2], [y1, y2], color="0.15", linewidth=3 if not ground else 5,
                       solid_capstyle="round", zorder=2)
             segments.append((points[0], points[1]))
         else:
-            hull = convex_hull(points)
-            axis.add_patch(Polygon(hull, closed=True, facecolor="0.82" if not ground else "0.95",
+            axis.add_patch(Polygon(points, closed=True, facecolor="0.82" if not ground else "0.95",
                                    edgecolor="0.15", linewidth=1.5, hatch="////" if ground else None, zorder=1))
-            segments += [(hull[n], hull[(n + 1) % len(hull)]) for n in range(len(hull))]
-            polygons.append(hull)
-    sliders = {scene.point_name(axis_.link, slider.joint) for slider in scene.sliders for axis_ in slider.axes}
-    for slider in scene.sliders:
-        segments.append(_draw_slider_axis(axis, scene, slider, mode, extent))
-    groups = _label_groups(mode.joints, 1e-6 * extent)
+            segments += [(points[n], points[(n + 1) % len(points)]) for n in range(len(points))]
+            polygons.append(points)
+    for start, end in shapes["axes"]:
+        axis.plot([start[0], end[0]], [start[1], end[1]], color="0.35", linewidth=1, linestyle="--", zorder=2)
+        segments.append((start, end))
+    groups = [(joint["names"], joint["point"]) for joint in shapes["joints"]]
     limits = (*axis.get_xlim(), *axis.get_ylim())
     axis.apply_aspect()  # data units per typographic point, from the panel's drawn width
     width_points = axis.get_position().width * axis.figure.get_figwidth() * 72
     scale = (limits[1] - limits[0]) / width_points if width_points > 0 else LABEL_SCALE * extent
     directions = _label_directions(groups, segments, polygons, extent, limits, scale)
-    for (names, (x, y)), angle in zip(groups, directions, strict=True):
-        marker = "s" if any(name in sliders for name in names) else "o"
+    for joint, angle in zip(shapes["joints"], directions, strict=True):
+        (x, y), marker = joint["point"], "s" if joint["slider"] else "o"
         axis.plot(x, y, marker, markersize=6, markerfacecolor="white", markeredgecolor="0.1", zorder=3)
         dx, dy = math.cos(angle), math.sin(angle)
-        axis.annotate("=".join(names), (x, y), textcoords="offset points", xytext=(10 * dx, 10 * dy),
+        axis.annotate("=".join(joint["names"]), (x, y), textcoords="offset points", xytext=(10 * dx, 10 * dy),
                       ha="left" if dx > 0.3 else "right" if dx < -0.3 else "center",
                       va="bottom" if dy > 0.3 else "top" if dy < -0.3 else "center", fontsize=8, zorder=4)
 
 
-def _draw_slider_axis(axis, scene: Scene, slider, mode, extent: float):
-    """A slider's axis, dashed, through its two points and a little beyond; returns it as
-    a segment (labels keep off it)."""
-    at = {name: np.array([complex(*xy)]) for name, xy in mode.joints.items()}
+def _slider_axis_segment(scene: Scene, slider, joints: dict, extent: float) -> tuple[tuple, tuple]:
+    """A slider's axis through its two points and ``0.15 · extent`` beyond them."""
+    at = {name: np.array([complex(*xy)]) for name, xy in joints.items()}
     foot, direction = slider_axis(scene, slider, slider.axes[0].link, at)
     first, unit = complex(foot[0]), complex(direction[0])
-    second = mode.joints[scene.point_name(slider.axes[1].link, slider.joint)]
+    second = joints[scene.point_name(slider.axes[1].link, slider.joint)]
     along = [0.0, ((complex(*second) - first) * unit.conjugate()).real]
     low, high = min(along) - 0.15 * extent, max(along) + 0.15 * extent
     start, end = first + low * unit, first + high * unit
-    axis.plot([start.real, end.real], [start.imag, end.imag], color="0.35", linewidth=1, linestyle="--", zorder=2)
     return (start.real, start.imag), (end.real, end.imag)
 
 
