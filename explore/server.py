@@ -108,12 +108,22 @@ class ExplorerHandler(BaseHTTPRequestHandler):
 
     def _solve(self, body: dict) -> None:
         method = self._method(body)
-        self._json(solve_frame(self.server.document, body.get("values", {}), method, body.get("previous"),
+        self._json(solve_frame(self.server.document, self._values(body), method, body.get("previous"),
                                int(body.get("next_id", 0))))
 
     def _profile(self, body: dict) -> None:
         samples = min(max(int(body.get("samples", 101)), 3), 1001)
-        self._json(dimension_profile(self.server.document, body.get("values", {}), str(body.get("name")), samples))
+        self._json(dimension_profile(self.server.document, self._values(body), str(body.get("name")), samples))
+
+    def _values(self, body: dict) -> dict:
+        """The request's values, every name a control of the document (else ControlError:
+        a page that asks for another document's dimension, not a value to draw)."""
+        values = body.get("values", {})
+        if not isinstance(values, dict):
+            raise ValueError("values: expected an object such as {\"P1,P2\": 17}")
+        for name in values:
+            self.server.document.control(name)
+        return values
 
     def _export_scene(self, body: dict) -> None:
         document = self.server.document

@@ -12,6 +12,7 @@ import baranov.catalog
 import baranov.cli
 import baranov.closure
 import baranov.enumerate
+import baranov.explore
 import baranov.literature
 import baranov.motion
 import baranov.planner
@@ -24,7 +25,7 @@ MODULES = sorted(
     info.name
     for package in (baranov.topology, baranov.enumerate, baranov.literature, baranov.planner, baranov.closure,
                     baranov.scene, baranov.solvers, baranov.baselines, baranov.catalog, baranov.cli, baranov.robots,
-                    baranov.motion)
+                    baranov.motion, baranov.explore)
     for info in pkgutil.walk_packages(package.__path__, package.__name__ + ".")
     if not info.name.endswith("__main__")
 ) + ["baranov", "baranov.topology", "baranov.enumerate"]
