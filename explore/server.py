@@ -61,6 +61,8 @@ class ExplorerHandler(BaseHTTPRequestHandler):
     """Routes of :mod:`baranov.explore.server`."""
 
     server: ExplorerServer
+    protocol_version = "HTTP/1.1"  # keep-alive: one connection for a drag's redraws (every answer has a length)
+    disable_nagle_algorithm = True  # else headers and body wait for a delayed ACK: 40 ms a redraw
 
     def log_message(self, format: str, *args) -> None:  # noqa: A002 - the base class's name
         pass  # a request line per redraw would flood the terminal
