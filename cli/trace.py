@@ -132,8 +132,9 @@ def _checked_options(args: argparse.Namespace, scene, system):
     if unknown:
         raise UsageError(f"--eta: joint {unknown[0]}: no such joint in this chain")
     points = joints | {tracer.name for tracer in scene.tracers}
-    last = sorted(joints - set(scene.world), key=lambda n: int(n[1:]) if n[1:].isdigit() else 0)[-1]
-    tracers = args.tracer or [tracer.name for tracer in scene.tracers] or [last]
+    from baranov.motion.tracer_paths import default_traced_points
+
+    tracers = args.tracer or default_traced_points(scene)
     if set(tracers) - points:
         raise UsageError(f"--tracer {sorted(set(tracers) - points)[0]}: no such joint or tracer point in this scene")
     if args.fixed is not None:

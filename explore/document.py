@@ -15,7 +15,13 @@ number a slider of the page sets:
 * a slider's **angle** on each of its two links (thesis §4.1: the angle α_j from the
   sliding direction to the link's reference joint P_j), in degrees, named
   ``"P9 on t569"``;
-* a robot's **actuators** (thesis ch. 5), named ``"actuator 1"`` … ``"actuator 3"``.
+* a robot's **actuators** (thesis ch. 5), named ``"actuator 1"`` … ``"actuator 3"``;
+* a moving linkage's **inputs** (a scene's ``"inputs"``: a crank angle in degrees, a
+  squared distance), named ``"input crank"``: held at a value, a one-degree-of-freedom
+  linkage is rigid, and its assembly modes are its configurations there. An input the
+  file leaves without a value starts where the traced motion first passes (the middle
+  of its first piece, :func:`baranov.motion.trace`); a moving scene without inputs is
+  driven by its one-degree-of-freedom plan's first parameter (a squared distance).
 
 A control left at its initial value leaves its link as the file gives it, exact numbers
 included: the first frame is the scene ``baranov solve`` reads.
@@ -53,7 +59,8 @@ class Control:
         ``"P2,P4"`` (a squared distance), ``"P9 on t569"`` (a slider's angle on a
         link) or ``"actuator 2"``.
     kind
-        ``"squared distance"``, ``"angle"`` (degrees) or ``"actuator"``.
+        ``"squared distance"``, ``"angle"`` (degrees), ``"actuator"`` or
+        ``"input"`` (degrees for an angle input, else a squared distance).
     link
         the link the dimension belongs to (None for an actuator).
     value
@@ -118,7 +125,15 @@ def load_document(path: str | Path) -> Document:
         return Document(path.name, "robot", data, tuple(_actuator_controls(data, actuators)),
                         locked_scene(robot, actuators))
     scene = load_scene(path)
-    return Document(path.name, "scene", data, tuple(_scene_controls(data, scene)), scene)
+    if scene.mobility > 0 and not scene.inputs:
+        data = {**data, "inputs": [_distance_input(scene)]}
+        scene = scene_from_dict(data)
+    controls = _scene_controls(data, scene)
+    if scene.mobility > 0:
+        inputs = _input_controls(scene)
+        controls += inputs
+        scene = scene_from_dict(_with_inputs(data, {control.name: control.value for control in inputs}))
+    return Document(path.name, "scene", data, tuple(controls), scene)
 
 
 def document_scene(document: Document, values: Mapping[str, float] | None = None) -> Scene:
@@ -163,7 +178,9 @@ def document_data(document: Document, values: Mapping[str, float] | None = None)
             if name in changed:
                 (reference,) = angles
                 angles[reference] = changed[name]  # a float: degrees (scene/sliders.py)
-    return data
+    inputs = {control.name: changed.get(control.name, control.value) for control in document.controls
+              if control.kind == "input"}
+    return _with_inputs(data, inputs) if inputs else data
 
 
 def document_robot(document: Document, values: Mapping[str, float] | None = None):
@@ -249,6 +266,63 @@ def _scene_controls(data: Mapping, scene: Scene) -> list[Control]:
             value = math.degrees(math.atan2(y, x))
             controls.append(Control(f"{slider['joint']} on {link}", "angle", link, value, value - 180, value + 180))
     return controls
+
+
+def _input_controls(scene: Scene) -> list[Control]:
+    """A control per input of a moving scene (``scene.mobility`` 1); an input without a
+    value gets the one the traced motion first passes."""
+    start = None
+    controls = []
+    for driver in scene.inputs:
+        value = driver.value
+        if value is None:
+            start = start or _traced_start(scene)
+            from baranov.motion.driving import input_value
+
+            value = input_value(driver, start)
+        value = float(value)
+        if driver.kind == "angle":
+            controls.append(Control(f"input {driver.name}", "input", None, value, -180.0, 180.0))
+        else:
+            low, high = (factor**2 * value for factor in LENGTH_RANGE)
+            controls.append(Control(f"input {driver.name}", "input", None, value, low, high))
+    return controls
+
+
+def _distance_input(scene: Scene) -> dict:
+    """An input for a moving scene that names none: the squared distance its one-degree-
+    of-freedom plan takes as first parameter (thesis §6.1)."""
+    from baranov.motion import one_dof_system
+
+    u, v = one_dof_system(scene).plan.parameters[0]
+    return {"name": f"s{u.removeprefix('P')},{v.removeprefix('P')}", "distance": [u, v]}
+
+
+def _traced_start(scene: Scene):
+    """A configuration of a moving scene: the middle of the first traced piece."""
+    from baranov.motion import one_dof_system, trace
+
+    pieces = trace(one_dof_system(scene), steps=100).pieces
+    if not pieces:
+        raise ControlError("the linkage has no configuration to start from (its traced motion is empty): give its "
+                           "inputs values")
+    return pieces[0].points[len(pieces[0].points) // 2]
+
+
+def _with_inputs(data: Mapping, values: Mapping[str, float]) -> dict:
+    """``data`` with each input ``"input NAME"`` of ``values`` held at its value."""
+    data = dict(data)
+    entries = []
+    for entry in data["inputs"]:
+        entry = dict(entry)
+        name = f"input {entry['name']}"
+        if name in values:
+            entry.pop("degrees", None)
+            entry.pop("squared_distance", None)
+            entry["degrees" if "angle" in entry else "squared_distance"] = values[name]
+        entries.append(entry)
+    data["inputs"] = entries
+    return data
 
 
 def _rebuilt_link(scene: Scene, entry: Mapping, values: Mapping[str, float], ground: bool) -> dict:

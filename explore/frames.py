@@ -40,7 +40,29 @@ def solve_document(document: Document, values: Mapping[str, float], method: str 
             solution, poses = robot_solution(robot, actuators, method)
             return scene, solution, poses
         scene = document_scene(document, values)
+        if scene.mobility > 0 and scene.inputs[0].kind == "distance":
+            return scene, sliced_solution(scene), None
         return scene, solve(scene, method=method), None
+
+
+def sliced_solution(scene) -> Solution:
+    """The configurations of a moving scene whose distance input is held: the slice of
+    its configuration curve where its one-degree-of-freedom plan's first parameter (the
+    input's pair, else SolverError) has the input's value (:func:`baranov.motion.configurations_at`:
+    sampled, not certified). The backends hold crank angles only (``solve_held``)."""
+    from baranov.motion import one_dof_system
+    from baranov.motion.configuration_space import configurations_at
+
+    driver = scene.inputs[0]
+    system = one_dof_system(scene)
+    if set(system.plan.parameters[0]) != set(driver.joints):
+        first = ",".join(system.plan.parameters[0])
+        raise SolverError(f"input {driver.name}: held where it is the plan's first parameter ({first}) or a crank "
+                          "angle; baranov trace SCENE --input NAME drives any input")
+    modes = tuple(configurations_at(system, float(driver.value)))
+    return Solution.of_plan("numeric (a slice of the traced motion)", scene, system.plan, modes,
+                            undecided=("a slice of the configuration curve, sampled: a fold between samples can be "
+                                       "missed",))
 
 
 def mode_count(document: Document, values: Mapping[str, float]) -> int | None:
@@ -136,8 +158,8 @@ def _mode_entry(scene, mode, ident: int, size: float, pose) -> dict:
 def _certificate_entry(solution: Solution) -> dict:
     certificate = solution.certificate
     if certificate is None:
-        return {"certificate": f"not certified ({solution.method} gives no certificate)", "complete": False,
-                "undecided": list(solution.undecided)}
+        why = "; ".join(solution.undecided) or f"the {solution.method} method proves nothing about completeness"
+        return {"certificate": f"not certified: {why}", "complete": False, "undecided": list(solution.undecided)}
     return {"certificate": certificate.summary(), "complete": certificate.complete and not certificate.probabilistic,
             "undecided": list(solution.undecided)}
 

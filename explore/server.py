@@ -10,6 +10,8 @@ Routes (every POST body and answer is JSON, unless said otherwise):
   (:func:`~baranov.explore.frames.solve_frame`).
 * ``POST /api/profile`` ``{"values", "name", "samples"}`` — the number of modes across a
   dimension's range (:func:`~baranov.explore.frames.dimension_profile`).
+* ``POST /api/trace`` ``{"values"}`` — a moving linkage's traced motion
+  (:func:`~baranov.explore.traced_motion.traced_motion`).
 * ``POST /api/export/scene`` ``{"values"}`` — the scene (or robot) file with the current
   dimensions; ``/api/export/modes`` ``{"values", "method", "format"}`` — the modes as
   ``baranov solve --format json`` or ``csv`` writes them; ``/api/export/png`` — the
@@ -80,7 +82,8 @@ class ExplorerHandler(BaseHTTPRequestHandler):
             self._fail(HTTPStatus.NOT_FOUND, f"{self.path}: no such page")
 
     def do_POST(self) -> None:
-        routes = {"/api/solve": self._solve, "/api/profile": self._profile, "/api/export/scene": self._export_scene,
+        routes = {"/api/solve": self._solve, "/api/profile": self._profile, "/api/trace": self._trace,
+                  "/api/export/scene": self._export_scene,
                   "/api/export/modes": self._export_modes, "/api/export/png": self._export_png}
         route = routes.get(self.path)
         if route is None:
@@ -104,6 +107,7 @@ class ExplorerHandler(BaseHTTPRequestHandler):
         with self.server.solving:
             frame = solve_frame(document, values, self.server.method)
         return {"title": document.title, "kind": document.kind, "ground": document.scene.ground,
+                "mobility": document.scene.mobility,
                 "controls": [control.to_dict() for control in document.controls],
                 "methods": available_backends(), "method": self.server.method, "frame": frame,
                 "view": view_box(document, frame)}
@@ -116,6 +120,11 @@ class ExplorerHandler(BaseHTTPRequestHandler):
     def _profile(self, body: dict) -> None:
         samples = min(max(int(body.get("samples", 101)), 3), 1001)
         self._json(dimension_profile(self.server.document, self._values(body), str(body.get("name")), samples))
+
+    def _trace(self, body: dict) -> None:
+        from .traced_motion import traced_motion
+
+        self._json(traced_motion(self.server.document, self._values(body)))
 
     def _values(self, body: dict) -> dict:
         """The request's values, every name a control of the document (else ControlError:

@@ -15,6 +15,14 @@ from .driving import DrivenBranch
 from .tracing import Trace
 
 
+def default_traced_points(scene: Scene) -> list[str]:
+    """The points a trace draws when none are named: the scene's tracer points, else its
+    last moving joint (by number, P12 after P9)."""
+    moving = {joint.name for joint in scene.chain.joints} - set(scene.world)
+    last = sorted(moving, key=lambda name: int(name[1:]) if name[1:].isdigit() else 0)[-1]
+    return [tracer.name for tracer in scene.tracers] or [last]
+
+
 def with_tracer_points(scene: Scene, point: ConfigurationPoint) -> ConfigurationPoint:
     """``point`` with the coordinates of every tracer of ``scene`` added to its joints.
     O(tracers)."""

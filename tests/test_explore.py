@@ -281,3 +281,47 @@ def test_the_command_refuses_a_bad_scene_in_one_line(tmp_path):
         result = subprocess.run([sys.executable, "-m", "baranov.cli", *args], capture_output=True, text=True, timeout=120)
         assert result.returncode == 2 and result.stdout == ""
         assert result.stderr.count("\n") == 1 and "Traceback" not in result.stderr
+
+
+def test_a_moving_linkage_is_held_by_its_input():
+    """The Stephenson six-bar, crank at 30°: the modes are the configurations of the
+    linkage held there, as baranov solve finds them with the input's "degrees"."""
+    document = load_document(EXAMPLES / "stephenson-six-bar.json")
+    (control,) = [c for c in document.controls if c.kind == "input"]
+    assert control.name == "input crank" and (control.low, control.high) == (-180, 180)
+    frame = solve_frame(document, {"input crank": 30.0})
+    data = json.loads((EXAMPLES / "stephenson-six-bar.json").read_text())
+    data["inputs"][0]["degrees"] = 30
+    scene = scene_from_dict(data)
+    modes = solve(scene).assembly_modes
+    assert len(frame["modes"]) == len(modes) == 4
+    for mode in modes:
+        assert any(max(math.dist(m["joints"][j], mode.joints[j]) for j in mode.joints) < 1e-9 for m in frame["modes"])
+
+
+def test_a_moving_linkage_without_inputs_is_driven_by_its_plan_parameter():
+    """The double butterfly names no input: the explorer drives s1,3, its one-DOF plan's
+    first parameter, from a traced configuration."""
+    document = load_document(EXAMPLES / "double-butterfly.json")
+    (control,) = [c for c in document.controls if c.kind == "input"]
+    assert control.name.startswith("input s")
+    assert solve_frame(document, {})["modes"]  # the traced start assembles
+
+
+def test_the_traced_motion_passes_through_the_configurations_drawn():
+    """Four-bar with a coupler point: the traced pieces' (input, parameter) curve meets
+    the crank value of every configuration the frame draws, and the coupler point's path
+    is given along every piece."""
+    from baranov.explore.traced_motion import traced_motion
+
+    document = load_document(EXAMPLES / "four-bar-coupler-point.json")
+    motion = traced_motion(document, {})
+    assert motion["points"] == ["C"] and motion["loose_ends"] == 0
+    assert all(len(piece["paths"]["C"]) == len(piece["inputs"]) for piece in motion["pieces"])
+    frame = solve_frame(document, {"input crank": 45.0})
+    u, v = motion["parameter_joints"]
+    for mode in frame["modes"]:
+        value = math.dist(mode["joints"][u], mode["joints"][v]) ** 2
+        nearest = min(abs(p - value) for piece in motion["pieces"]
+                      for a, p in zip(piece["inputs"], piece["parameters"], strict=True) if abs(a - 45) < 8)
+        assert nearest < 0.05 * max(piece_value for piece in motion["pieces"] for piece_value in piece["parameters"])

@@ -254,6 +254,7 @@ function render() {
   if (layout === "overlay" || modes.length === 0) {
     const svg = newDrawing(box, view);
     svg.id = "drawing";
+    drawPaths(svg);
     if (modes.length) drawShapes(svg, groundShapes(modes[0].shapes), "#333", extent, {className: "ground-link", labels: true});
     for (const mode of modes) {
       const g = drawShapes(svg, mode.shapes, colour(mode.id), extent,
@@ -273,6 +274,7 @@ function render() {
     }
   }
   renderLegend(modes);
+  if (state.motion) drawMotion();
 }
 
 function setHatch(extent) {
@@ -314,6 +316,88 @@ function renderLegend(modes) {
     chip.addEventListener("mouseenter", () => { state.highlighted = mode.id; render(); });
     chip.addEventListener("mouseleave", () => { state.highlighted = null; render(); });
   }
+}
+
+// ---- a moving linkage: its whole motion ------------------------------------------------
+function requestTrace() {
+  $("motion-note").textContent = "(tracing…)";
+  post("/api/trace", {values: state.values})
+    .then(answer => answer.json())
+    .then(motion => {
+      state.motion = motion;
+      const input = state.document.controls.find(c => c.name === motion.input);
+      $("motion-input").textContent = input ? label(input) : motion.input;
+      $("motion-parameter").textContent = motion.parameter;
+      $("motion-note").textContent = `(${motion.pieces.length} pieces, ${motion.branch_points} branch points` +
+        (motion.loose_ends ? `, ${motion.loose_ends} piece ends not joined)` : ")");
+      growView([], motion.pieces.flatMap(piece => Object.values(piece.paths).flat()));
+      drawMotion();
+      render();
+    })
+    .catch(error => { $("motion-note").textContent = error.message; });
+}
+
+function drawPaths(svg) {   // the traced points' paths (coupler curves) behind the modes
+  if (!state.motion) return;
+  for (const piece of state.motion.pieces) {
+    for (const path of Object.values(piece.paths)) {
+      el("polyline", {class: "path", points: path.map(([x, y]) => `${x},${-y}`).join(" ")}, svg);
+    }
+  }
+}
+
+function motionScale() {
+  const motion = state.motion;
+  const input = state.document.controls.find(c => c.name === motion.input);
+  const ys = motion.pieces.flatMap(piece => piece.parameters);
+  const low = Math.min(...ys), high = Math.max(...ys), pad = 0.05 * (high - low || 1);
+  return {input, x: value => 1000 * (value - input.low) / (input.high - input.low),
+          y: value => 100 - 100 * (value - low + pad) / (high - low + 2 * pad)};
+}
+
+function drawMotion() {
+  const svg = $("motion");
+  svg.textContent = "";
+  if (!state.motion) return;
+  svg.setAttribute("viewBox", "0 0 1000 100");
+  const {input, x, y} = motionScale();
+  const wraps = state.motion.input_kind === "angle";
+  for (const piece of state.motion.pieces) {
+    let run = [];
+    piece.inputs.forEach((value, k) => {
+      if (wraps && k > 0 && Math.abs(value - piece.inputs[k - 1]) > 180) {   // across ±180°: a new run
+        el("polyline", {class: "piece", points: run.join(" ")}, svg);
+        run = [];
+      }
+      run.push(`${x(value)},${y(piece.parameters[k])}`);
+    });
+    if (piece.closed && !wraps) run.push(`${x(piece.inputs[0])},${y(piece.parameters[0])}`);
+    el("polyline", {class: "piece", points: run.join(" ")}, svg);
+  }
+  const now = state.values[input.name];
+  el("line", {class: "now", x1: x(now), x2: x(now), y1: 0, y2: 100}, svg);
+  const [u, v] = state.motion.parameter_joints;
+  for (const mode of (state.frame && state.frame.modes) || []) {
+    if (!(u in mode.joints && v in mode.joints)) continue;
+    const [a, b] = [mode.joints[u], mode.joints[v]];
+    const value = (a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2;
+    el("ellipse", {cx: x(now), cy: y(value), rx: 5, ry: 4, fill: colour(mode.id)}, svg);
+  }
+}
+
+function togglePlay() {
+  if (state.playing) { clearInterval(state.playing); state.playing = null; $("play").textContent = "▶ animate"; return; }
+  const input = state.document.controls.find(c => c.name === state.motion.input);
+  const step = (input.high - input.low) / 240;
+  let direction = 1;
+  $("play").textContent = "❚❚ stop";
+  state.playing = setInterval(() => {
+    if (state.inFlight) return;   // one redraw at a time: the animation goes as fast as redraws do
+    let value = state.values[input.name] + direction * step;
+    if (state.motion.input_kind === "angle") value = value > 180 ? value - 360 : value;
+    else if (value > input.high || value < input.low) { direction = -direction; value += 2 * direction * step; }
+    setValue(input.name, value);
+  }, 1000 / 30);
 }
 
 // ---- a redraw arrives -----------------------------------------------------------------
@@ -392,8 +476,8 @@ function download(blob, name) {
   link.remove();
 }
 
-function growView(modes) {   // never shrinks: the drawing stays still while modes move inside it
-  const points = modes.flatMap(mode => Object.values(mode.joints));
+function growView(modes, extra = []) {   // never shrinks: the drawing stays still while modes move inside it
+  const points = modes.flatMap(mode => Object.values(mode.joints)).concat(extra);
   if (!points.length || !state.view) return;
   const [x, y, width, height] = state.view;
   const xs = points.map(p => p[0]).concat([x, x + width]), ys = points.map(p => p[1]).concat([y, y + height]);
@@ -454,7 +538,19 @@ async function start() {
   buildControls();
   documentInfo.frame.values = {...state.values};
   showFrame(documentInfo.frame, 0);
+  if (documentInfo.mobility > 0) {
+    $("motion-box").hidden = false;
+    $("trace").addEventListener("click", requestTrace);
+    $("play").addEventListener("click", togglePlay);
+    $("motion").addEventListener("click", event => {
+      if (!state.motion) return;
+      const input = state.document.controls.find(c => c.name === state.motion.input);
+      const box = $("motion").getBoundingClientRect();
+      setValue(input.name, input.low + (event.clientX - box.left) / box.width * (input.high - input.low));
+    });
+    requestTrace();
+  }
 }
 
 // what the browser tests and the frame-rate script drive
-window.explorer = {state, setValue, idle, activate, render, fps, ready: start()};
+window.explorer = {state, setValue, idle, activate, render, fps, requestTrace, ready: start()};
