@@ -262,7 +262,7 @@ def run_solve(args: argparse.Namespace) -> int:
     from baranov.solvers.progress import watching
     from baranov.solvers.verification import RESIDUAL_TOLERANCE
 
-    from .output import characteristic_lines, mode_table, modes_csv
+    from .output import characteristic_lines, mode_table
 
     if args.method not in available_backends():
         raise UsageError(f"--method {args.method}: choose from {', '.join(available_backends())}")
@@ -286,7 +286,7 @@ def run_solve(args: argparse.Namespace) -> int:
         print(json.dumps(solution.to_dict(), indent=1))
         return 0
     if form == "csv":
-        print(modes_csv(solution), end="")
+        print(solution.to_csv(), end="")
         return 0
     modes = solution.assembly_modes
     print(f"{args.scene}: coupling degree {solution.coupling_degree}, "

@@ -3,8 +3,6 @@ demand, or CSV (JSON is :meth:`~baranov.solvers.modes.Solution.to_dict`)."""
 
 from __future__ import annotations
 
-import csv
-import io
 from collections.abc import Mapping
 
 from baranov.solvers.modes import Solution, signs_text
@@ -160,18 +158,3 @@ def _wrapped(items: list[str], width: int, indent: int) -> list[str]:
             candidate = " " * indent + item
         current = candidate
     return lines + ([current] if current else [])
-
-
-def modes_csv(solution: Solution) -> str:
-    """The modes as CSV: mode, parameter values, signs, residual, then x and y of every
-    joint (full precision)."""
-    modes = solution.assembly_modes
-    joint_names = sorted(modes[0].joints, key=natural_sort_key) if modes else []
-    stream = io.StringIO()
-    writer = csv.writer(stream, lineterminator="\n")
-    writer.writerow(["mode", *solution.parameters, "signs", "max_residual",
-                     *(f"{name}_{axis}" for name in joint_names for axis in "xy")])
-    for number, mode in enumerate(modes, 1):
-        writer.writerow([number, *(repr(v) for v in mode.parameters.values()), signs_text(mode.signs),
-                         repr(mode.max_residual), *(repr(c) for name in joint_names for c in mode.joints[name])])
-    return stream.getvalue()

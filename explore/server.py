@@ -142,11 +142,9 @@ class ExplorerHandler(BaseHTTPRequestHandler):
         self._send(json.dumps(data, indent=1).encode(), "application/json", _exported_name(document, ".json"))
 
     def _export_modes(self, body: dict) -> None:
-        from baranov.cli.output import modes_csv
-
         _, solution, _ = solve_document(self.server.document, body.get("values", {}), self._method(body))
         if body.get("format") == "csv":
-            self._send(modes_csv(solution).encode(), "text/csv", _exported_name(self.server.document, "-modes.csv"))
+            self._send(solution.to_csv().encode(), "text/csv", _exported_name(self.server.document, "-modes.csv"))
         else:
             self._send(json.dumps(solution.to_dict(), indent=1).encode(), "application/json",
                        _exported_name(self.server.document, "-modes.json"))

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import csv
+import io
 from dataclasses import dataclass
 from typing import Any
 
 from baranov.planner import parameter_name
+from baranov.topology import natural_sort_key
 
 
 class SolverError(ValueError):
@@ -132,6 +135,20 @@ class Solution:
         if self.certificate is not None:
             result["certificate"] = self.certificate.to_dict()
         return result
+
+    def to_csv(self) -> str:
+        """The CSV form printed by ``baranov solve --format csv``: mode, parameter values,
+        signs, residual, then x and y of every joint (full precision)."""
+        modes = self.assembly_modes
+        joint_names = sorted(modes[0].joints, key=natural_sort_key) if modes else []
+        stream = io.StringIO()
+        writer = csv.writer(stream, lineterminator="\n")
+        writer.writerow(["mode", *self.parameters, "signs", "max_residual",
+                         *(f"{name}_{axis}" for name in joint_names for axis in "xy")])
+        for number, mode in enumerate(modes, 1):
+            writer.writerow([number, *(repr(v) for v in mode.parameters.values()), signs_text(mode.signs),
+                             repr(mode.max_residual), *(repr(c) for name in joint_names for c in mode.joints[name])])
+        return stream.getvalue()
 
 
 @dataclass(frozen=True)

@@ -180,12 +180,13 @@ function drawProfile() {
   const profile = state.profile;
   if (profile) {
     const most = Math.max(1, ...profile.counts.filter(c => c !== null));
-    const width = 1000 / (profile.values.length - 1);
+    const at = profile.values.map(x);   // samples are even in the stored unit, not always in the shown one
     profile.values.forEach((value, k) => {
-      const count = profile.counts[k];
-      if (count === null) el("rect", {class: "none", x: x(value) - width / 2, y: 0, width, height: 100}, svg);
-      else if (count > 0) el("rect", {class: "count", x: x(value) - width / 2, y: 100 - 90 * count / most,
-                                      width, height: 90 * count / most}, svg);
+      const left = k === 0 ? at[0] : (at[k - 1] + at[k]) / 2;
+      const right = k === at.length - 1 ? at[k] : (at[k] + at[k + 1]) / 2;
+      const count = profile.counts[k], width = Math.max(right - left, 0.5);
+      if (count === null) el("rect", {class: "none", x: left, y: 0, width, height: 100}, svg);
+      else if (count > 0) el("rect", {class: "count", x: left, y: 100 - 90 * count / most, width, height: 90 * count / most}, svg);
     });
     for (const change of profile.changes) {
       const line = el("line", {class: "change", x1: x(change.value), x2: x(change.value), y1: 0, y2: 100}, svg);
@@ -306,7 +307,7 @@ function drawGhosts(svg, extent) {
 function renderLegend(modes) {
   const legend = $("legend");
   legend.textContent = "";
-  for (const mode of modes) {
+  for (const mode of [...modes].sort((a, b) => a.id - b.id)) {
     const chip = html("span", {class: "chip", "data-id": mode.id}, null, legend);
     html("span", {class: "swatch", style: `background:${colour(mode.id)}`}, null, chip);
     const values = Object.entries(mode.parameters).map(([name, value]) => `${name} = ${formatted(value)}`).join(", ");
