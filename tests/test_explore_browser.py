@@ -3,6 +3,7 @@ mode drawn, a dimension moved, the redraw equal to ``baranov solve`` on the same
 dimensions, for a truss, a slider chain and a robot. Skipped, with the reason, where
 Playwright or Chromium is missing (``make test`` installs both where it can)."""
 
+import json
 import math
 import threading
 from pathlib import Path
@@ -13,7 +14,7 @@ from baranov.explore import ExplorerServer, document_scene, load_document
 from baranov.explore.browser import launch_chromium, missing_browser
 from baranov.robots.kinematics import forward_kinematics
 from baranov.robots.model import load_robot
-from baranov.scene import load_scene, with_dimensions
+from baranov.scene import load_scene, scene_from_dict, with_dimensions
 from baranov.solvers import solve
 
 pytestmark = pytest.mark.skipif(missing_browser() is not None, reason=str(missing_browser()))
@@ -138,3 +139,23 @@ def test_the_scene_export_is_the_scene_drawn(page_of, tmp_path):
     scene = load_scene(path)
     assert float(scene.known[frozenset(("P6", "P8"))]) == value
     assert same_configurations(drawn(page), solve(scene).assembly_modes, 30)
+
+
+def test_a_moving_linkage_shows_its_motion_and_follows_its_input(page_of):
+    """The four-bar with a coupler point: the traced motion drawn (its curve and the
+    coupler point's path), the input moved by a click on the curve, and the configurations
+    drawn equal to the linkage held there."""
+    page = page_of("four-bar-coupler-point.json")
+    page.wait_for_function("window.explorer.state.motion != null")
+    assert page.evaluate("document.querySelectorAll('#motion .piece').length") >= 1
+    assert page.evaluate("document.querySelectorAll('#drawing .path').length") >= 1
+    box = page.locator("#motion").bounding_box()
+    page.mouse.click(box["x"] + 0.75 * box["width"], box["y"] + box["height"] / 2)  # the crank at 90°
+    page.evaluate("window.explorer.idle()")
+    value = page.evaluate("window.explorer.state.values['input crank']")
+    assert value == pytest.approx(90, abs=2)
+    data = json.loads((EXAMPLES / "four-bar-coupler-point.json").read_text())
+    data["inputs"][0]["degrees"] = value
+    scene = scene_from_dict(data)
+    modes = solve(scene).assembly_modes
+    assert len(modes) == 2 and same_configurations(drawn(page), modes, 20)
