@@ -1,7 +1,9 @@
 """A one-degree-of-freedom linkage's whole motion for the explorer: its configuration
 curve traced once (:func:`baranov.motion.trace`, thesis ch. 6), each piece with the input's
-value along it, the plan's first parameter, and the paths of the points it traces (the
-scene's tracer points, else its last joint, as ``baranov trace`` draws them)."""
+value along it, the plan's first parameter, and the path of every joint and tracer point
+along it (the page draws the chosen ones as coupler curves, by default the scene's tracer
+points, else its last joint, as ``baranov trace`` does, and places a configuration moved
+along a piece from them)."""
 
 from __future__ import annotations
 
@@ -17,9 +19,10 @@ TRACE_STEPS = 200
 
 def traced_motion(document: Document, values: Mapping[str, float], steps: int = TRACE_STEPS) -> dict:
     """The traced motion of a moving document at ``values``: ``input`` (the first input's
-    control name), ``parameter`` (the plan's first parameter), ``points`` (names of the
-    traced points) and ``pieces``, each with its ``signs``, ``closed``, ``inputs`` and
-    ``parameters`` (one value per configuration along it) and ``paths`` (point → [x, y]
+    control name), ``parameter`` (the plan's first parameter), ``points`` (the points
+    drawn by default: :func:`~baranov.motion.tracer_paths.default_traced_points`) and
+    ``pieces``, each with its ``signs``, ``closed``, ``inputs`` and ``parameters`` (one
+    value per configuration along it) and ``paths`` (every joint and tracer point → [x, y]
     per configuration); ``loose_ends`` and ``branch_points`` as the trace counts them.
     Cost: the trace, about 0.1–1 s for six to eight links."""
     from baranov.motion import one_dof_system, trace
@@ -40,7 +43,7 @@ def traced_motion(document: Document, values: Mapping[str, float], steps: int = 
         pieces.append({"signs": list(piece.signs), "closed": piece.closed,
                        "inputs": [input_value(driver, point) for point in piece.points],
                        "parameters": [point.parameters[system.parameter_names[0]] for point in piece.points],
-                       "paths": {name: [list(map(float, joints[name])) for joints in placed] for name in points}})
+                       "paths": {name: [list(map(float, joints[name])) for joints in placed] for name in placed[0]}})
     return {"input": f"input {driver.name}", "input_kind": driver.kind, "parameter": system.parameter_names[0],
             "parameter_joints": list(system.plan.parameters[0]),
             "points": points, "pieces": pieces, "branch_points": len(traced.branch_points),

@@ -159,3 +159,20 @@ def test_a_moving_linkage_shows_its_motion_and_follows_its_input(page_of):
     scene = scene_from_dict(data)
     modes = solve(scene).assembly_modes
     assert len(modes) == 2 and same_configurations(drawn(page), modes, 20)
+
+
+def test_a_followed_piece_is_drawn_as_the_mode_it_passes_through(page_of):
+    """Stephenson six-bar: following a traced piece sets the crank to each of its points'
+    values and highlights the drawn configuration that is that point (within 1e-6 of the
+    linkage's size: the traced point, verified on the dimensions, is an assembly mode of
+    the linkage held there)."""
+    page = page_of("stephenson-six-bar.json")
+    page.wait_for_function("window.explorer.state.motion != null")
+    for index in (10, 30, 50):
+        page.evaluate("k => window.explorer.follow(2, k)", index)
+        page.evaluate("window.explorer.idle()")
+        piece = page.evaluate("window.explorer.state.motion.pieces[2]")
+        assert page.evaluate("window.explorer.state.values['input crank']") == piece["inputs"][index]
+        shown = page.evaluate("""() => { const s = window.explorer.state;
+            return s.frame.modes.find(m => m.id === s.highlighted).joints; }""")
+        assert max(math.dist(shown[name], piece["paths"][name][index]) for name in shown) < 1e-6 * 30

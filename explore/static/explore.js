@@ -115,6 +115,7 @@ function controlRow(control) {
   const number = html("input", {type: "number", step: "any", value: formatted(shown(control, state.values[control.name]))},
                       null, row);
   range.addEventListener("input", () => {
+    if (control.kind === "input" && state.follow) { state.follow = null; state.highlighted = null; }
     setValue(control.name, stored(control, +range.value), false);
     number.value = formatted(+range.value);
   });
@@ -331,6 +332,9 @@ function requestTrace() {
       $("motion-parameter").textContent = motion.parameter;
       $("motion-note").textContent = `(${motion.pieces.length} pieces, ${motion.branch_points} branch points` +
         (motion.loose_ends ? `, ${motion.loose_ends} piece ends not joined)` : ")");
+      state.shownPoints = new Set(motion.points);
+      state.follow = null;
+      pointChoices();
       growView([], motion.pieces.flatMap(piece => Object.values(piece.paths).flat()));
       drawMotion();
       render();
@@ -338,13 +342,61 @@ function requestTrace() {
     .catch(error => { $("motion-note").textContent = error.message; });
 }
 
-function drawPaths(svg) {   // the traced points' paths (coupler curves) behind the modes
+function pointChoices() {   // which points' paths (coupler curves) are drawn
+  const box = $("point-choices");
+  box.textContent = "";
+  for (const name of Object.keys(state.motion.pieces[0]?.paths ?? {})) {
+    const choice = html("label", {}, null, box);
+    const tick = html("input", {type: "checkbox", value: name}, null, choice);
+    tick.checked = state.shownPoints.has(name);
+    choice.append(` ${name}`);
+    tick.addEventListener("change", () => {
+      if (tick.checked) state.shownPoints.add(name); else state.shownPoints.delete(name);
+      render();
+    });
+  }
+}
+
+function drawPaths(svg) {   // the chosen points' paths (coupler curves) behind the modes
   if (!state.motion) return;
   for (const piece of state.motion.pieces) {
-    for (const path of Object.values(piece.paths)) {
-      el("polyline", {class: "path", points: path.map(([x, y]) => `${x},${-y}`).join(" ")}, svg);
+    for (const [name, path] of Object.entries(piece.paths)) {
+      if (state.shownPoints.has(name)) {
+        el("polyline", {class: "path", points: path.map(([x, y]) => `${x},${-y}`).join(" ")}, svg);
+      }
     }
   }
+}
+
+function followedMode() {   // the drawn mode nearest to the followed piece's configuration
+  const {piece, index} = state.follow;
+  const paths = state.motion.pieces[piece].paths;
+  let best = null, distance = Infinity;
+  for (const mode of state.frame.modes ?? []) {
+    let far = 0;
+    for (const [name, at] of Object.entries(mode.joints)) {
+      if (paths[name]) far = Math.max(far, Math.hypot(at[0] - paths[name][index][0], at[1] - paths[name][index][1]));
+    }
+    if (far < distance) { distance = far; best = mode.id; }
+  }
+  return best;
+}
+
+function follow(piece, index) {   // move to a piece's configuration: its input value, its mode highlighted
+  state.follow = {piece, index, direction: state.follow?.direction ?? 1};
+  return setValue(state.motion.input, state.motion.pieces[piece].inputs[index]);
+}
+
+function nearestPiecePoint(event) {
+  const box = $("motion").getBoundingClientRect();
+  const {x, y} = motionScale();
+  let best = null, distance = 15;   // pixels
+  state.motion.pieces.forEach((piece, p) => piece.inputs.forEach((value, k) => {
+    const dx = (x(value) / 1000) * box.width - (event.clientX - box.left);
+    const dy = (y(piece.parameters[k]) / 100) * box.height - (event.clientY - box.top);
+    if (Math.hypot(dx, dy) < distance) { distance = Math.hypot(dx, dy); best = [p, k]; }
+  }));
+  return best;
 }
 
 function motionScale() {
@@ -377,6 +429,11 @@ function drawMotion() {
   }
   const now = state.values[input.name];
   el("line", {class: "now", x1: x(now), x2: x(now), y1: 0, y2: 100}, svg);
+  if (state.follow) {
+    const piece = state.motion.pieces[state.follow.piece];
+    el("ellipse", {class: "followed", cx: x(piece.inputs[state.follow.index]), cy: y(piece.parameters[state.follow.index]),
+                   rx: 9, ry: 7}, svg);
+  }
   const [u, v] = state.motion.parameter_joints;
   for (const mode of (state.frame && state.frame.modes) || []) {
     if (!(u in mode.joints && v in mode.joints)) continue;
@@ -394,6 +451,14 @@ function togglePlay() {
   $("play").textContent = "❚❚ stop";
   state.playing = setInterval(() => {
     if (state.inFlight) return;   // one redraw at a time: the animation goes as fast as redraws do
+    if (state.follow) {   // along the followed piece, through its folds: the input turns back there
+      const piece = state.motion.pieces[state.follow.piece], last = piece.inputs.length - 1;
+      let next = state.follow.index + state.follow.direction;
+      if (piece.closed) next = (next + last + 1) % (last + 1);
+      else if (next < 0 || next > last) { state.follow.direction = -state.follow.direction; next = state.follow.index; }
+      follow(state.follow.piece, next);
+      return;
+    }
     let value = state.values[input.name] + direction * step;
     if (state.motion.input_kind === "angle") value = value > 180 ? value - 360 : value;
     else if (value > input.high || value < input.low) { direction = -direction; value += 2 * direction * step; }
@@ -410,6 +475,7 @@ function showFrame(frame, milliseconds) {
   state.redrawTimes.push(performance.now());
   if (state.redrawTimes.length > 60) state.redrawTimes.shift();
   for (const event of frame.events ?? []) recordEvent(event);
+  if (state.follow && state.motion && !frame.error) state.highlighted = followedMode();
   const error = $("error");
   error.hidden = !frame.error;
   error.textContent = frame.error ? `No assembly mode drawn: ${frame.error}` : "";
@@ -545,6 +611,10 @@ async function start() {
     $("play").addEventListener("click", togglePlay);
     $("motion").addEventListener("click", event => {
       if (!state.motion) return;
+      const near = nearestPiecePoint(event);
+      if (near) { follow(...near); return; }
+      state.follow = null;
+      state.highlighted = null;
       const input = state.document.controls.find(c => c.name === state.motion.input);
       const box = $("motion").getBoundingClientRect();
       setValue(input.name, input.low + (event.clientX - box.left) / box.width * (input.high - input.low));
@@ -554,4 +624,4 @@ async function start() {
 }
 
 // what the browser tests and the frame-rate script drive
-window.explorer = {state, setValue, idle, activate, render, fps, requestTrace, ready: start()};
+window.explorer = {state, setValue, idle, activate, render, fps, requestTrace, follow, ready: start()};
