@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import json
 import threading
+import traceback
 import webbrowser
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
@@ -100,6 +101,10 @@ class ExplorerHandler(BaseHTTPRequestHandler):
                 route(body)
         except (SceneError, SolverError, ValueError) as error:
             self._fail(HTTPStatus.BAD_REQUEST, str(error))
+        except Exception as error:  # a fault of ours: the page says so and the server goes on
+            traceback.print_exc()
+            self._fail(HTTPStatus.INTERNAL_SERVER_ERROR, f"internal error ({type(error).__name__}: {error}); the "
+                                                         "server printed the traceback: please report it")
 
     def _document(self) -> dict:
         document = self.server.document

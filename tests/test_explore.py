@@ -325,3 +325,22 @@ def test_the_traced_motion_passes_through_the_configurations_drawn():
         nearest = min(abs(p - value) for piece in motion["pieces"]
                       for a, p in zip(piece["inputs"], piece["parameters"], strict=True) if abs(a - 45) < 8)
         assert nearest < 0.05 * max(piece_value for piece in motion["pieces"] for piece_value in piece["parameters"])
+
+
+def test_the_command_serves_until_interrupted():
+    """``baranov explore --no-browser`` prints its address, answers there, and stops on
+    Ctrl-C (SIGINT) with exit status 0."""
+    import signal
+
+    process = subprocess.Popen([sys.executable, "-m", "baranov.cli", "explore", str(EXAMPLES / "7-B1.json"),
+                                "--no-browser"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        line = process.stdout.readline()
+        assert line.startswith("baranov explore: ") and "http://127.0.0.1:" in line
+        url = line.split(" at ")[1].split()[0]
+        with urllib.request.urlopen(url + "api/document", timeout=120) as answer:
+            assert len(json.loads(answer.read())["frame"]["modes"]) == 8
+    finally:
+        process.send_signal(signal.SIGINT)
+        _, errors = process.communicate(timeout=60)
+    assert process.returncode == 0 and "Traceback" not in errors
