@@ -10,6 +10,7 @@ sends them to the page.
 from __future__ import annotations
 
 import math
+import threading
 import time
 import warnings
 from collections.abc import Mapping, Sequence
@@ -24,14 +25,25 @@ from .continuity import count_changes, match_modes
 from .document import Document, document_robot, document_scene
 
 #: Bisection of a change in the number of modes: to this fraction of the way between two
-#: redraws, or of a profile's step.
+#: redraws, or of a profile's step; COARSE_TOLERANCE where one solve takes longer than
+#: SLOW_SOLVE seconds (a coupling-2 nine-link truss: 0.2 s), so that a redraw with an event
+#: stays within about a second.
 EVENT_TOLERANCE = 1e-4
+COARSE_TOLERANCE = 1e-2
+SLOW_SOLVE = 0.02
+#: Seconds a profile may spend on its samples; fewer samples (at least PROFILE_FEWEST)
+#: where solves are slow.
+PROFILE_BUDGET = 3.0
+PROFILE_FEWEST = 11
+#: One solve at a time in a process: the backends' plan and kernel caches are shared, and
+#: a long task (a profile, a trace) lets redraws in between its solves.
+SOLVING = threading.RLock()
 
 
 def solve_document(document: Document, values: Mapping[str, float], method: str = "numeric"):
     """The scene the document makes with ``values``, its solution, and for a robot the
     pose of each mode (None for a scene). Raises SceneError or SolverError."""
-    with warnings.catch_warnings():
+    with SOLVING, warnings.catch_warnings():
         warnings.simplefilter("ignore")
         if document.kind == "robot":
             from baranov.robots.kinematics import robot_solution
@@ -115,7 +127,8 @@ def solve_frame(document: Document, values: Mapping[str, float], method: str = "
                        for k, (mode, ident) in enumerate(zip(modes, ids, strict=True))],
              **_certificate_entry(solution), "next_id": next_id}
     lost = len(earlier) - sum(index is not None for index in matched)
-    frame["events"] = (_events(document, previous["values"], values, len(earlier), len(modes), size)
+    tolerance = EVENT_TOLERANCE if time.perf_counter() - start < SLOW_SOLVE else COARSE_TOLERANCE
+    frame["events"] = (_events(document, previous["values"], values, len(earlier), len(modes), size, tolerance)
                        if previous and (lost or len(earlier) != len(modes)) else [])
     frame["seconds"] = time.perf_counter() - start
     return frame
@@ -126,8 +139,14 @@ def dimension_profile(document: Document, values: Mapping[str, float], name: str
     ``name`` across its range, the others at ``values``, and each value where the number
     changes (bisected to :data:`EVENT_TOLERANCE` of a step): for which values of a
     dimension the linkage assembles, and in how many ways. ``counts`` has None where the
-    dimensions make no linkage or it moves."""
+    dimensions make no linkage or it moves. Where one solve is slow, fewer samples (the
+    :data:`PROFILE_BUDGET`) and a coarser bisection."""
     control = document.control(name)
+    start = time.perf_counter()
+    mode_count(document, {**values, name: control.low})
+    seconds = time.perf_counter() - start
+    samples = max(min(samples, int(PROFILE_BUDGET / max(seconds, 1e-9))), PROFILE_FEWEST)
+    tolerance = EVENT_TOLERANCE if seconds < SLOW_SOLVE else COARSE_TOLERANCE
     grid = [control.low + (control.high - control.low) * k / (samples - 1) for k in range(samples)]
     counts = [mode_count(document, {**values, name: value}) for value in grid]
     changes = []
@@ -138,7 +157,7 @@ def dimension_profile(document: Document, values: Mapping[str, float], name: str
             def count(fraction: float, low=low, high=high) -> int:
                 return mode_count(document, {**values, name: low + (high - low) * fraction}) or 0
 
-            for change in count_changes(count, counts[k], counts[k + 1], EVENT_TOLERANCE):
+            for change in count_changes(count, counts[k], counts[k + 1], tolerance):
                 changes.append({"value": low + (high - low) * change.fraction, "before": change.before,
                                 "after": change.after})
         elif counts[k] != counts[k + 1]:
@@ -165,7 +184,7 @@ def _certificate_entry(solution: Solution) -> dict:
 
 
 def _events(document: Document, before: Mapping[str, float], after: Mapping[str, float], count_before: int,
-            count_after: int, size: float) -> list[dict]:
+            count_after: int, size: float, tolerance: float = EVENT_TOLERANCE) -> list[dict]:
     """Where the number of real modes changed on the straight way from ``before`` to
     ``after`` (bisected, numeric backend): each with the kind ("merge": modes met and left
     the real plane, "split": they appeared), the dimensions there, and the configurations
@@ -180,7 +199,7 @@ def _events(document: Document, before: Mapping[str, float], after: Mapping[str,
 
     events = []
     moved = max(names, key=lambda name: abs(after[name] - before[name]) / max(abs(before[name]), 1e-12), default=None)
-    for change in count_changes(count, count_before, count_after, EVENT_TOLERANCE):
+    for change in count_changes(count, count_before, count_after, tolerance):
         low, high = change.fraction - change.width / 2, change.fraction + change.width / 2
         more, fewer = (low, high) if change.before > change.after else (high, low)
         ghosts = _unmatched(document, at(more), at(fewer), size)

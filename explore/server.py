@@ -17,7 +17,8 @@ Routes (every POST body and answer is JSON, unless said otherwise):
   ``baranov solve --format json`` or ``csv`` writes them; ``/api/export/png`` — the
   drawing ``baranov solve --plot`` makes.
 
-Solves run one at a time (a lock): the backends' caches are shared by the process.
+Solves run one at a time (:data:`baranov.explore.frames.SOLVING`): the backends' caches
+are shared by the process; a long request (a profile, a trace) lets redraws in between.
 """
 
 from __future__ import annotations
@@ -53,7 +54,6 @@ class ExplorerServer(ThreadingHTTPServer):
         super().__init__(("127.0.0.1", port), ExplorerHandler)
         self.document = document
         self.method = method
-        self.solving = threading.Lock()
 
     @property
     def url(self) -> str:
@@ -97,8 +97,7 @@ class ExplorerHandler(BaseHTTPRequestHandler):
             body = json.loads(self.rfile.read(length) or b"{}")
             if not isinstance(body, dict):
                 raise ValueError("expected a JSON object")
-            with self.server.solving:
-                route(body)
+            route(body)
         except (SceneError, SolverError, ValueError) as error:
             self._fail(HTTPStatus.BAD_REQUEST, str(error))
         except Exception as error:  # a fault of ours: the page says so and the server goes on
@@ -109,8 +108,7 @@ class ExplorerHandler(BaseHTTPRequestHandler):
     def _document(self) -> dict:
         document = self.server.document
         values = {control.name: control.value for control in document.controls}
-        with self.server.solving:
-            frame = solve_frame(document, values, self.server.method)
+        frame = solve_frame(document, values, self.server.method)
         return {"title": document.title, "kind": document.kind, "ground": document.scene.ground,
                 "mobility": document.scene.mobility,
                 "controls": [control.to_dict() for control in document.controls],

@@ -12,6 +12,7 @@ from collections.abc import Mapping
 from baranov.scene import tracer_positions
 
 from .document import Document, document_scene
+from .frames import SOLVING
 
 #: Slices of the first parameter the explorer traces with (``baranov trace``: 400).
 TRACE_STEPS = 200
@@ -32,8 +33,9 @@ def traced_motion(document: Document, values: Mapping[str, float], steps: int = 
     scene = document_scene(document, values)
     if scene.mobility == 0:
         raise ValueError(f"{document.title}: the linkage is rigid; only a moving linkage (mobility 1) is traced")
-    system = one_dof_system(scene)
-    traced = trace(system, steps=steps)
+    with SOLVING:
+        system = one_dof_system(scene)
+        traced = trace(system, steps=steps)
     driver = scene.inputs[0]
     link_joints = {link.name: link.joints for link in scene.links}
     points = default_traced_points(scene)
