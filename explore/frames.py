@@ -140,7 +140,8 @@ def dimension_profile(document: Document, values: Mapping[str, float], name: str
     changes (bisected to :data:`EVENT_TOLERANCE` of a step): for which values of a
     dimension the linkage assembles, and in how many ways. ``counts`` has None where the
     dimensions make no linkage or it moves. Where one solve is slow, fewer samples (the
-    :data:`PROFILE_BUDGET`) and a coarser bisection."""
+    :data:`PROFILE_BUDGET`), a coarser bisection, and past twice the budget the changes
+    placed halfway between their samples."""
     control = document.control(name)
     start = time.perf_counter()
     mode_count(document, {**values, name: control.low})
@@ -150,8 +151,10 @@ def dimension_profile(document: Document, values: Mapping[str, float], name: str
     grid = [control.low + (control.high - control.low) * k / (samples - 1) for k in range(samples)]
     counts = [mode_count(document, {**values, name: value}) for value in grid]
     changes = []
+    deadline = start + 2 * PROFILE_BUDGET
     for k in range(samples - 1):
-        if counts[k] != counts[k + 1] and None not in (counts[k], counts[k + 1]):
+        bisect = time.perf_counter() < deadline  # past the budget a change is placed between its samples
+        if counts[k] != counts[k + 1] and None not in (counts[k], counts[k + 1]) and bisect:
             low, high = grid[k], grid[k + 1]
 
             def count(fraction: float, low=low, high=high) -> int:
