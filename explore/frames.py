@@ -41,8 +41,8 @@ SOLVING = threading.RLock()
 
 
 def solve_document(document: Document, values: Mapping[str, float], method: str = "numeric"):
-    """The scene the document makes with ``values``, its solution, and for a robot the
-    pose of each mode (None for a scene). Raises SceneError or SolverError."""
+    """The scene the document makes with ``values``, its solution, and for a robot each
+    mode's pose with the robot (None for a scene). Raises SceneError or SolverError."""
     with SOLVING, warnings.catch_warnings():
         warnings.simplefilter("ignore")
         if document.kind == "robot":
@@ -50,7 +50,7 @@ def solve_document(document: Document, values: Mapping[str, float], method: str 
 
             scene, robot, actuators, _ = document_robot(document, values)
             solution, poses = robot_solution(robot, actuators, method)
-            return scene, solution, poses
+            return scene, solution, [(pose, robot) for pose in poses]
         scene = document_scene(document, values)
         if scene.mobility > 0 and scene.inputs[0].kind == "distance":
             return scene, sliced_solution(scene), None
@@ -173,7 +173,12 @@ def _mode_entry(scene, mode, ident: int, size: float, pose) -> dict:
              "joints": {name: [float(x), float(y)] for name, (x, y) in mode.joints.items()},
              "residual": mode.max_residual, "shapes": mode_shapes(scene, mode.joints, size)}
     if pose is not None:
+        from baranov.robots.drawing import actuator_blocks
+
+        pose, robot = pose
         entry["pose"] = {"position": list(pose.position), "angle": math.degrees(pose.angle)}
+        xs, ys = zip(*mode.joints.values(), strict=True)
+        entry["shapes"]["blocks"] = actuator_blocks(robot, mode.joints, max(max(xs) - min(xs), max(ys) - min(ys)))
     return entry
 
 

@@ -222,6 +222,10 @@ function drawShapes(svg, shapes, hue, extent, options = {}) {
       el("polygon", {class: "body", points, fill: hue, "fill-opacity": 0.18, stroke: hue, "stroke-width": "1.5px"}, g);
     }
   }
+  for (const corners of shapes.blocks ?? []) {   // a robot's actuated prismatic joint
+    el("polygon", {class: "body", points: corners.map(([x, y]) => `${x},${-y}`).join(" "), fill: "#fff", stroke: hue,
+                   "stroke-width": "1.5px"}, g);
+  }
   for (const [start, end] of shapes.axes) el("line", {class: "axis", x1: start[0], y1: -start[1], x2: end[0], y2: -end[1]}, g);
   const radius = 0.009 * extent;
   for (const joint of shapes.joints) {
