@@ -54,7 +54,7 @@ def truss(browser) -> None:
     for k in range(36):  # |P2P4|² from 46 to 60 and back: two modes appear, then leave
         value = 46 + 14 * (k / 18 if k <= 18 else (36 - k) / 18)
         set_value(page, "P2,P4", value)
-        frames.append(page.screenshot(clip={"x": 300, "y": 60, "width": 980, "height": 600}))
+        frames.append(page.screenshot(clip={"x": 315, "y": 60, "width": 965, "height": 640}))
     save_animation(frames, IMAGES / "explore-7-B1.gif")
     closed(server, page)
 
@@ -83,11 +83,11 @@ def six_bar(browser) -> None:
 
 
 def save_animation(frames: list[bytes], path: Path) -> None:
-    """PNG screenshots as a looping GIF, halved in size (Pillow, which matplotlib brings)."""
+    """PNG screenshots as a looping GIF at 0.65 of their size (Pillow, which matplotlib brings)."""
     from PIL import Image
 
     images = [Image.open(io.BytesIO(frame)).convert("RGB") for frame in frames]
-    images = [image.resize((image.width // 2, image.height // 2), Image.LANCZOS) for image in images]
+    images = [image.resize((int(0.65 * image.width), int(0.65 * image.height)), Image.LANCZOS) for image in images]
     palette = [image.quantize(colors=96, method=Image.Quantize.MEDIANCUT) for image in images]
     palette[0].save(path, save_all=True, append_images=palette[1:], duration=120, loop=0, optimize=True)
 
