@@ -15,7 +15,8 @@ def add_explore_parser(commands) -> None:
     explore.add_argument("--port", type=int, default=0, help="port on 127.0.0.1 (default: a free one)")
     explore.add_argument("--method", default="numeric",
                          help="solving backend of every redraw (default numeric; the page can switch)")
-    explore.add_argument("--no-browser", action="store_true", help="print the address, do not open a browser")
+    explore.add_argument("--no-browser", action="store_true",
+                         help="print the address, do not open a browser (none opens without a display either)")
 
 
 def run_explore(args: argparse.Namespace) -> int:

@@ -24,6 +24,8 @@ are shared by the process; a long request (a profile, a trace) lets redraws in b
 from __future__ import annotations
 
 import json
+import os
+import sys
 import threading
 import traceback
 import webbrowser
@@ -202,15 +204,22 @@ def _exported_name(document: Document, suffix: str) -> str:
     return Path(document.title).stem + "-explored" + suffix
 
 
+def _graphical() -> bool:
+    """Whether a graphical browser can open here: macOS, Windows, or a display on Linux.
+    Without one, Python's ``webbrowser`` would start a text browser in the terminal."""
+    return sys.platform in ("darwin", "win32") or bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
 def serve(path: str | Path, port: int = 0, method: str = "numeric", open_browser: bool = True,
           announce=print) -> None:
     """Serve the explorer of the scene or robot file ``path`` on 127.0.0.1 (``port``, 0:
-    a free one) until interrupted; ``announce`` is given the address. The file is read
-    and checked before the server starts."""
+    a free one) until interrupted; ``announce`` is given the address, and the user's
+    browser opens it where there is a display (``open_browser``). The file is read and
+    checked before the server starts."""
     document = load_document(path)
     server = ExplorerServer(document, port, method)
     announce(server.url)
-    if open_browser:
+    if open_browser and _graphical():
         threading.Thread(target=webbrowser.open, args=(server.url,), daemon=True).start()
     try:
         server.serve_forever()
