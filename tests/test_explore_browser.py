@@ -176,3 +176,12 @@ def test_a_followed_piece_is_drawn_as_the_mode_it_passes_through(page_of):
         shown = page.evaluate("""() => { const s = window.explorer.state;
             return s.frame.modes.find(m => m.id === s.highlighted).joints; }""")
         assert max(math.dist(shown[name], piece["paths"][name][index]) for name in shown) < 1e-6 * 30
+
+
+def test_reset_brings_back_the_file(page_of):
+    page = page_of("7-B1.json")
+    move(page, "P2,P4", 7.4)
+    page.click("#reset")
+    page.evaluate("window.explorer.idle()")
+    assert page.evaluate("window.explorer.state.values['P2,P4']") == 25
+    assert len(drawn(page)) == 8

@@ -589,6 +589,13 @@ async function start() {
   $("layout").addEventListener("change", render);
   $("units").addEventListener("change", () => { state.units = $("units").value; buildControls(); drawProfile(); });
   $("fit").addEventListener("click", fitView);
+  $("reset").addEventListener("click", () => {
+    for (const control of state.document.controls) state.values[control.name] = control.value;
+    buildControls();
+    state.follow = null;
+    state.highlighted = null;
+    requestRedraw();
+  });
   $("filter").addEventListener("input", () => {
     const text = $("filter").value.trim().toLowerCase();
     document.querySelectorAll(".control").forEach(row => {
