@@ -185,3 +185,16 @@ def test_reset_brings_back_the_file(page_of):
     page.evaluate("window.explorer.idle()")
     assert page.evaluate("window.explorer.state.values['P2,P4']") == 25
     assert len(drawn(page)) == 8
+
+
+def test_the_exact_method_redraws_the_same_modes_with_its_certificate(page_of):
+    page = page_of("7-B1.json")
+    numeric = drawn(page)
+    page.select_option("#method", "exact")
+    page.evaluate("window.explorer.idle()")
+    assert "certified complete" in page.inner_text("#certificate")
+    exact = drawn(page)
+    assert len(exact) == len(numeric) == 8
+    assert all(any(max(math.dist(a["joints"][j], b["joints"][j]) for j in a["joints"]) < 1e-9 for b in numeric)
+               for a in exact)
+    assert {mode["id"] for mode in exact} == {mode["id"] for mode in numeric}  # the same modes keep their colours
