@@ -87,6 +87,18 @@ def _instance(index: int, seed: int):
 
 
 @needs_msolve
+def test_an_msolve_image_that_is_not_the_plans_is_not_lifted():
+    """The check before the lifting by primes: msolve's image passes on a generic
+    instance; a polynomial of the same degree whose roots are not the plan's fails (as
+    msolve's image did on a double-root instance of 11/N1, where 84 images were lifted
+    before the result was rejected)."""
+    scene, plan = _instance(0, 1)
+    image = eliminating_polynomial_modulo(scene, plan.parameters[0], 1073741789)
+    assert msolve_images.plans_image_divides(scene, plan, image) is True
+    assert msolve_images.plans_image_divides(scene, plan, image + 1) is False  # monic, same degree, no common root
+
+
+@needs_msolve
 @pytest.mark.parametrize("index", range(4))
 def test_msolve_image_is_the_saturated_characteristic_image(index):
     """msolve's eliminating polynomial of the first parameter over F_p (Cartesian system)

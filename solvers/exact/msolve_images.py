@@ -102,8 +102,25 @@ def characteristic_by_msolve(scene: Scene, plan: Plan, curves: Sequence[flint.fm
         for lift in newton_lifts(curves, first):
             if reduced_modulo(lift, second.modulus()) == second:
                 return primitive_polynomial(lift)
+    if plans_image_divides(scene, plan, first, seed) is False:
+        return None  # msolve's image is not the plan's: lifting it would be wasted
     lifted = lifted_from_images(chain([first, second], islice(images, MOST_PRIMES)), "msolve's images")
     return lifted if lifted is not None and holds_the_plans_image(scene, plan, lifted, seed) else None
+
+
+def plans_image_divides(scene: Scene, plan: Plan, image: flint.nmod_poly, seed: int = 0) -> bool | None:
+    """Whether the plan's own characteristic image modulo ``image``'s prime divides
+    ``image`` (every value at which the plan's curves meet on one branch is a root of it);
+    None where the plan gives no image at that prime. Checked on msolve's first image
+    before the lifting by the Chinese remainder theorem: on a double-root adversarial
+    instance of 11/N1 msolve's eliminating polynomial (degree 162) shared no root with
+    the plan's (degree 161), and 84 images were lifted (40 s) before the check of the
+    result rejected it."""
+    try:
+        _, own = candidate_images(scene, plan, image.modulus(), seed)
+    except ExactMethodError:
+        return None
+    return (image % own).is_zero()
 
 
 def holds_the_plans_image(scene: Scene, plan: Plan, polynomial: flint.fmpz_poly, seed: int = 0) -> bool:
