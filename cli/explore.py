@@ -4,6 +4,7 @@ redrawn while its dimensions are dragged (:mod:`baranov.explore`)."""
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 from pathlib import Path
 
@@ -32,6 +33,14 @@ def run_explore(args: argparse.Namespace) -> int:
 
     def announce(url: str) -> None:
         print(f"baranov explore: {args.scene} at {url} (Ctrl-C stops)", flush=True)
+
+    def stop(signum: int, frame) -> None:
+        raise KeyboardInterrupt  # SIGTERM stops the server like Ctrl-C
+
+    # installed, not inherited: a process started in the background of a script (or by a test
+    # runner's worker) ignores SIGINT, and Ctrl-C would not stop it
+    for number in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(number, stop)
 
     try:
         serve(args.scene, args.port, args.method, open_browser=not args.no_browser, announce=announce)
