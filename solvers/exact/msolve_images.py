@@ -32,8 +32,11 @@ accepted only when it reduces to the image of a prime that was not used to make 
 
 from __future__ import annotations
 
+import os
 import random
+from collections import deque
 from collections.abc import Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from itertools import chain, islice
 
 import flint
@@ -74,13 +77,26 @@ def msolve_images(scene: Scene, plan: Plan, seed: int = 0) -> Iterator[flint.nmo
     modulo successive random 30-bit primes (monic, square-free); None where msolve gives
     none at a prime (the parameter does not separate the solutions, positive dimension,
     the prime divides a denominator). Nothing if the Cartesian system needs an auxiliary
-    root (an irrational link area: it would also solve the mirrored link)."""
+    root (an irrational link area: it would also solve the mirrored link). The images
+    come in the order of the primes drawn from ``seed``, computed one per core ahead of
+    the one awaited."""
     rng = random.Random(seed)
     variables, polynomials, _, auxiliary = cartesian_system(scene, distances=[plan.parameters[0]])
     if auxiliary:
         return
-    while True:
-        yield eliminating_polynomial_of(variables, polynomials, random_prime(rng, MSOLVE_PRIME_BITS))
+    # msolve runs one thread a prime: the next primes' runs go on beside the one awaited, one
+    # per core, so that a lifting that takes hundreds of images waits for about 1/cores of them
+    cores = len(os.sched_getaffinity(0))
+    pool = ThreadPoolExecutor(max_workers=cores)
+    running: deque = deque()
+    try:
+        while True:
+            while len(running) < cores:
+                running.append(pool.submit(eliminating_polynomial_of, variables, polynomials,
+                                           random_prime(rng, MSOLVE_PRIME_BITS)))
+            yield running.popleft().result()
+    finally:  # a run still going finishes on its own; nobody waits for it
+        pool.shutdown(wait=False, cancel_futures=True)
 
 
 def characteristic_by_msolve(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mpoly],
