@@ -36,8 +36,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-from baranov.closure.bilateration import bilaterated, dehomogenised, triangle_radicand
 from baranov.scene import Scene, SceneError, load_scene, scene_from_dict
+from baranov.scene.model import point_in_frame
 from baranov.scene.sliders import angle_direction
 
 #: The range a squared-distance control spans, as factors of its initial length.
@@ -159,17 +159,15 @@ def document_data(document: Document, values: Mapping[str, float] | None = None)
     changed = _changed(document, values or {})
     data = copy.deepcopy(dict(document.data))
     if document.kind == "robot":
-        actuators = list(data["actuators"])
-        for name, value in changed.items():
-            actuators[int(name.split()[1]) - 1] = value
-        data["actuators"] = actuators
+        data["actuators"] = _actuators(data["actuators"], changed)
         return data
     by_link: dict[str, dict[str, float]] = {}
     for name, value in changed.items():
         control = document.control(name)
-        by_link.setdefault(control.link, {})[name] = value
+        if control.kind == "squared distance":
+            by_link.setdefault(control.link, {})[name] = value
     for index, entry in enumerate(data["links"]):
-        values_here = {name: value for name, value in by_link.get(entry["name"], {}).items() if "," in name}
+        values_here = by_link.get(entry["name"])
         if values_here:
             data["links"][index] = _rebuilt_link(document.scene, entry, values_here, ground=entry["name"] == data["ground"])
     for slider in data.get("sliders", []):
@@ -212,11 +210,17 @@ def _robot_scene(document: Document, changed: Mapping[str, float]):
     from baranov.robots.model import robot_from_dict
 
     robot, actuators = robot_from_dict(document.data)
-    actuators = list(actuators)
-    for name, value in changed.items():
-        actuators[int(name.split()[1]) - 1] = value
+    actuators = _actuators(actuators, changed)
     scene, platform = locked_robot(robot, actuators)
     return scene, robot, actuators, platform
+
+
+def _actuators(given, changed: Mapping[str, float]) -> list:
+    """The actuator values ``given`` with the controls ``"actuator k"`` of ``changed``."""
+    values = list(given)
+    for name, value in changed.items():
+        values[int(name.removeprefix("actuator ")) - 1] = value
+    return values
 
 
 def _actuator_controls(data: Mapping, actuators) -> list[Control]:
@@ -354,28 +358,15 @@ def _rebuilt_link(scene: Scene, entry: Mapping, values: Mapping[str, float], gro
 def _trilaterated(name: str, joints, squared: Mapping[frozenset, float], sides: Mapping) -> dict:
     """Local coordinates from the independent squared distances (first joint at the
     origin, second on +x), each further joint on the side of the first two that ``sides``
-    (the link's current frame) puts it (thesis eq. 2.7, the kernel's bilateration)."""
+    (the link's current frame) puts it (:func:`~baranov.scene.model.point_in_frame`)."""
     first, second = joints[0], joints[1]
-    base = squared[frozenset((first, second))]
-    local = {first: (0.0, 0.0), second: (math.sqrt(base), 0.0)}
+    local = {first: (0.0, 0.0), second: (math.sqrt(squared[frozenset((first, second))]), 0.0)}
     (ax, ay), (bx, by) = sides[first], sides[second]
     for joint in joints[2:]:
-        a, b = squared[frozenset((first, joint))], squared[frozenset((second, joint))]
-        radicand = triangle_radicand(base, a, b)
-        if radicand < -1e-9 * max(base, a, b) ** 2:
-            raise SceneError(f"link {name}: squared distances of {first}, {second}, {joint} violate the triangle "
-                             f"inequality ({_sides_text(first, second, joint, base, a, b)})")
         px, py = sides[joint]
         side = 1 if (bx - ax) * (py - ay) - (by - ay) * (px - ax) >= 0 else -1
-        x, y, _ = dehomogenised(bilaterated((0, 0, 1), (math.sqrt(base), 0, 1), (base, a, b),
-                                            side * math.sqrt(max(radicand, 0.0))))
-        local[joint] = (float(x), float(y))
+        local[joint] = point_in_frame(name, (first, second, joint), squared, side)
     return local
-
-
-def _sides_text(first: str, second: str, joint: str, base: float, a: float, b: float) -> str:
-    return (f"lengths {first}{second} = {math.sqrt(base):.6g}, {first}{joint} = {math.sqrt(a):.6g}, "
-            f"{second}{joint} = {math.sqrt(b):.6g}")
 
 
 def _moved_to(local: Mapping, joints, world: Mapping) -> dict[str, tuple[float, float]]:

@@ -41,8 +41,8 @@ SOLVING = threading.RLock()
 
 
 def solve_document(document: Document, values: Mapping[str, float], method: str = "numeric"):
-    """The scene the document makes with ``values``, its solution, and for a robot each
-    mode's pose with the robot (None for a scene). Raises SceneError or SolverError."""
+    """The scene the document makes with ``values``, its solution, and for a robot the
+    robot and each mode's pose (None for a scene). Raises SceneError or SolverError."""
     with SOLVING, warnings.catch_warnings():
         warnings.simplefilter("ignore")
         if document.kind == "robot":
@@ -50,7 +50,7 @@ def solve_document(document: Document, values: Mapping[str, float], method: str 
 
             scene, robot, actuators, _ = document_robot(document, values)
             solution, poses = robot_solution(robot, actuators, method)
-            return scene, solution, [(pose, robot) for pose in poses]
+            return scene, solution, (robot, poses)
         scene = document_scene(document, values)
         if scene.mobility > 0 and scene.inputs[0].kind == "distance":
             return scene, sliced_solution(scene), None
@@ -111,7 +111,7 @@ def solve_frame(document: Document, values: Mapping[str, float], method: str = "
     ``next_id`` and up."""
     start = time.perf_counter()
     try:
-        scene, solution, poses = solve_document(document, values, method)
+        scene, solution, robot_poses = solve_document(document, values, method)
     except (SceneError, SolverError) as error:
         return {"error": str(error), "modes": [], "events": [], "next_id": next_id,
                 "seconds": time.perf_counter() - start}
@@ -123,9 +123,10 @@ def solve_frame(document: Document, values: Mapping[str, float], method: str = "
     for index in matched:
         ids.append(earlier[index]["id"] if index is not None else next_id)
         next_id += index is None
-    frame = {"modes": [_mode_entry(scene, mode, ident, size, poses[k] if poses else None)
-                       for k, (mode, ident) in enumerate(zip(modes, ids, strict=True))],
+    frame = {"modes": [_mode_entry(scene, mode, ident, size) for mode, ident in zip(modes, ids, strict=True)],
              **_certificate_entry(solution), "next_id": next_id}
+    if robot_poses is not None:
+        _add_poses(frame["modes"], *robot_poses, modes)
     lost = len(earlier) - sum(index is not None for index in matched)
     tolerance = EVENT_TOLERANCE if time.perf_counter() - start < SLOW_SOLVE else COARSE_TOLERANCE
     frame["events"] = (_events(document, previous["values"], values, len(earlier), len(modes), size, tolerance)
@@ -144,12 +145,12 @@ def dimension_profile(document: Document, values: Mapping[str, float], name: str
     placed halfway between their samples."""
     control = document.control(name)
     start = time.perf_counter()
-    mode_count(document, {**values, name: control.low})
+    first = mode_count(document, {**values, name: control.low})  # timed: how many samples the budget allows
     seconds = time.perf_counter() - start
     samples = max(min(samples, int(PROFILE_BUDGET / max(seconds, 1e-9))), PROFILE_FEWEST)
     tolerance = EVENT_TOLERANCE if seconds < SLOW_SOLVE else COARSE_TOLERANCE
     grid = [control.low + (control.high - control.low) * k / (samples - 1) for k in range(samples)]
-    counts = [mode_count(document, {**values, name: value}) for value in grid]
+    counts = [first] + [mode_count(document, {**values, name: value}) for value in grid[1:]]
     changes = []
     deadline = start + 2 * PROFILE_BUDGET
     for k in range(samples - 1):
@@ -168,18 +169,24 @@ def dimension_profile(document: Document, values: Mapping[str, float], name: str
     return {"name": name, "values": grid, "counts": counts, "changes": changes}
 
 
-def _mode_entry(scene, mode, ident: int, size: float, pose) -> dict:
-    entry = {"id": ident, "signs": signs_text(mode.signs), "parameters": mode.parameters,
-             "joints": {name: [float(x), float(y)] for name, (x, y) in mode.joints.items()},
-             "residual": mode.max_residual, "shapes": mode_shapes(scene, mode.joints, size)}
-    if pose is not None:
-        from baranov.robots.drawing import actuator_blocks
+def _joints_entry(joints: Mapping) -> dict[str, list[float]]:
+    return {name: [float(x), float(y)] for name, (x, y) in joints.items()}
 
-        pose, robot = pose
+
+def _mode_entry(scene, mode, ident: int, size: float) -> dict:
+    return {"id": ident, "signs": signs_text(mode.signs), "parameters": mode.parameters,
+            "joints": _joints_entry(mode.joints), "residual": mode.max_residual,
+            "shapes": mode_shapes(scene, mode.joints, size)}
+
+
+def _add_poses(entries: list[dict], robot, poses, modes) -> None:
+    """Each robot mode's platform pose, and its actuated prismatic joints as blocks."""
+    from baranov.robots.drawing import actuator_blocks
+
+    for entry, pose, mode in zip(entries, poses, modes, strict=True):
         entry["pose"] = {"position": list(pose.position), "angle": math.degrees(pose.angle)}
         xs, ys = zip(*mode.joints.values(), strict=True)
         entry["shapes"]["blocks"] = actuator_blocks(robot, mode.joints, max(max(xs) - min(xs), max(ys) - min(ys)))
-    return entry
 
 
 def _certificate_entry(solution: Solution) -> dict:
@@ -228,8 +235,8 @@ def _unmatched(document: Document, more: Mapping, fewer: Mapping, size: float) -
         return []
     many = solution.assembly_modes
     matched = set(match_modes([mode.joints for mode in many], [mode.joints for mode in few], size))
-    return [{"joints": {name: [float(x), float(y)] for name, (x, y) in mode.joints.items()},
-             "shapes": mode_shapes(scene, mode.joints, size)} for k, mode in enumerate(many) if k not in matched]
+    return [{"joints": _joints_entry(mode.joints), "shapes": mode_shapes(scene, mode.joints, size)}
+            for k, mode in enumerate(many) if k not in matched]
 
 
 def frame_modes(frame: Mapping) -> Sequence[Mapping]:

@@ -119,7 +119,15 @@ class ExplorerHandler(BaseHTTPRequestHandler):
 
     def _solve(self, body: dict) -> None:
         method = self._method(body)
-        self._json(solve_frame(self.server.document, self._values(body), method, body.get("previous"),
+        previous = body.get("previous")
+        if previous is not None:
+            if not isinstance(previous, dict):
+                raise ValueError("previous: expected the last redraw, {\"values\": {...}, \"modes\": [...]}")
+            self._values(previous)
+            if not isinstance(previous.get("modes"), list) or not all(
+                    isinstance(mode, dict) and {"id", "joints"} <= mode.keys() for mode in previous["modes"]):
+                raise ValueError("previous: expected {\"values\": {...}, \"modes\": [{\"id\": 0, \"joints\": {...}}]}")
+        self._json(solve_frame(self.server.document, self._values(body), method, previous,
                                int(body.get("next_id", 0))))
 
     def _profile(self, body: dict) -> None:

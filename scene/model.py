@@ -281,23 +281,34 @@ def _pair_key(text: str, link: str, joints: tuple[str, ...]) -> frozenset[str]:
     return frozenset(parts)
 
 
+def point_in_frame(name: str, triangle: tuple[str, str, str], squared: Mapping[frozenset[str], float],
+                   sign: int) -> tuple[float, float]:
+    """Where joint ``triangle[2]`` of link ``name`` lies in the frame of its first two
+    (the first at the origin, the second on +x), on the side ``sign`` (+1: to the left),
+    from the three float squared distances of ``triangle`` (thesis eq. 2.7, the kernel's
+    bilateration). Raises SceneError where they violate the triangle inequality."""
+    first, second, joint = triangle
+    base, a, b = (squared[frozenset(pair)] for pair in ((first, second), (first, joint), (second, joint)))
+    area16 = triangle_radicand(base, a, b)
+    if area16 < -1e-9 * max(base, a, b) ** 2:
+        lengths = ", ".join(f"{u}{v} = {math.sqrt(w):.6g}" for (u, v), w in
+                            (((first, second), base), ((first, joint), a), ((second, joint), b)))
+        raise SceneError(f"link {name}: squared distances of {first}, {second}, {joint} violate the triangle "
+                         f"inequality (lengths {lengths})")
+    x, y, _ = dehomogenised(bilaterated((0, 0, 1), (math.sqrt(base), 0, 1), (base, a, b),
+                                        sign * math.sqrt(max(area16, 0.0))))
+    return float(x), float(y)
+
+
 def _embed(name: str, joints: tuple[str, ...], squared: Mapping[frozenset[str], Number], orientation: int):
     """Local coordinates from pairwise squared distances (first joint at the origin, second
     on +x, third on the side ``orientation`` says); checks the distances are planar."""
     s = {key: float(value) for key, value in squared.items()}
     first, second = joints[0], joints[1]
-    d = math.sqrt(s[frozenset((first, second))])
-    local = {first: (0.0, 0.0), second: (d, 0.0)}
+    local = {first: (0.0, 0.0), second: (math.sqrt(s[frozenset((first, second))]), 0.0)}
 
     def place(joint: str, sign: int) -> tuple[float, float]:
-        a, b = s[frozenset((first, joint))], s[frozenset((second, joint))]
-        area16 = triangle_radicand(d * d, a, b)
-        if area16 < -1e-9 * max(d * d, a, b) ** 2:
-            raise SceneError(f"link {name}: squared distances of {first}, {second}, {joint} violate the "
-                             "triangle inequality")
-        root = sign * math.sqrt(max(area16, 0.0))
-        x, y, _ = dehomogenised(bilaterated((0, 0, 1), (d, 0, 1), (d * d, a, b), root))
-        return x, y
+        return point_in_frame(name, (first, second, joint), s, sign)
 
     if len(joints) >= 3:
         local[joints[2]] = place(joints[2], orientation)

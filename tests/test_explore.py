@@ -258,6 +258,8 @@ def test_the_server_solves_and_exports_what_baranov_solve_does(server, tmp_path)
     ("/api/solve", {"values": {"P9,P1": 3}}, "P9,P1"),
     ("/api/solve", {"values": {}, "method": "guess"}, "method 'guess'"),
     ("/api/profile", {"values": {}, "name": "nothing"}, "nothing"),
+    ("/api/solve", {"values": {}, "previous": [1, 2]}, "previous"),
+    ("/api/solve", {"values": {}, "previous": {"values": {}, "modes": [{"id": 1}]}}, "previous"),
     ("/api/nothing", {}, "no such request"),
 ])
 def test_a_bad_request_is_answered_with_its_reason(server, path, body, message):

@@ -504,8 +504,10 @@ function recordEvent(event) {
   state.events.push(event);
   const control = state.document.controls.find(c => c.name === event.dimension);
   const where = control ? `${label(control)} = ${formatted(shown(control, event.value))}` : "";
-  const what = event.kind === "merge" ? `${event.before - event.after} modes meet and leave the real plane`
-                                      : `${event.after - event.before} modes appear`;
+  const difference = Math.abs(event.after - event.before);
+  const what = event.kind === "merge"
+    ? (difference === 1 ? "two modes meet in a double mode" : `${difference} modes meet and leave the real plane`)
+    : (difference === 1 ? "a double mode splits in two" : `${difference} modes appear`);
   const item = html("li", {"data-kind": event.kind}, `${where}: ${what} (${event.before} → ${event.after})`);
   $("events").prepend(item);
 }
@@ -547,27 +549,25 @@ function download(blob, name) {
   link.remove();
 }
 
+function boxAround(points, margin) {   // [x, y, width, height] of the points, widened by margin · extent
+  const xs = points.map(p => p[0]), ys = points.map(p => p[1]);
+  const low = [Math.min(...xs), Math.min(...ys)], high = [Math.max(...xs), Math.max(...ys)];
+  const pad = margin * Math.max(high[0] - low[0], high[1] - low[1], 1e-9);
+  return [low[0] - pad, low[1] - pad, high[0] - low[0] + 2 * pad, high[1] - low[1] + 2 * pad];
+}
+
 function growView(modes, extra = []) {   // never shrinks: the drawing stays still while modes move inside it
   const points = modes.flatMap(mode => Object.values(mode.joints)).concat(extra);
   if (!points.length || !state.view) return;
   const [x, y, width, height] = state.view;
-  const xs = points.map(p => p[0]).concat([x, x + width]), ys = points.map(p => p[1]).concat([y, y + height]);
-  const low = [Math.min(...xs), Math.min(...ys)], high = [Math.max(...xs), Math.max(...ys)];
-  if (low[0] < x || low[1] < y || high[0] > x + width || high[1] > y + height) {
-    const margin = 0.08 * Math.max(high[0] - low[0], high[1] - low[1]);
-    state.view = [low[0] - margin, low[1] - margin, high[0] - low[0] + 2 * margin, high[1] - low[1] + 2 * margin];
-  }
+  const outside = points.some(([px, py]) => px < x || py < y || px > x + width || py > y + height);
+  if (outside) state.view = boxAround(points.concat([[x, y], [x + width, y + height]]), 0.08);
 }
 
-// ---- start --------------------------------------------------------------------------
 function fitView() {
   const points = (state.frame.modes ?? []).flatMap(mode => Object.values(mode.joints));
   if (!points.length) return;
-  const xs = points.map(p => p[0]), ys = points.map(p => p[1]);
-  const extent = Math.max(Math.max(...xs) - Math.min(...xs), Math.max(...ys) - Math.min(...ys), 1e-9);
-  const margin = 0.12 * extent;
-  state.view = [Math.min(...xs) - margin, Math.min(...ys) - margin, Math.max(...xs) - Math.min(...xs) + 2 * margin,
-                Math.max(...ys) - Math.min(...ys) + 2 * margin];
+  state.view = boxAround(points, 0.12);
   render();
 }
 
