@@ -151,6 +151,7 @@ def one_dof() -> list[str]:
     configuration, and one random configuration of each eight-bar."""
     from baranov.enumerate.grubler import grubler_chains
     from baranov.motion import one_dof_system, trace
+    from baranov.motion.continuation import linkage_curve
     from baranov.motion.driving import (
         _with_extrema,
         crank_of,
@@ -184,7 +185,8 @@ def one_dof() -> list[str]:
     system = one_dof_system(rocker)
     sampled = max(input_value(crank, p) for piece in trace(system).pieces for p in piece.points)
     refined = max(input_value(crank, p) for piece in trace(system).pieces
-                  for p in _with_extrema(system, crank, piece).points)
+                  for p in _with_extrema(system, linkage_curve(rocker, system.plan.free_sign_triangles), crank,
+                                         piece).points)
     dead = math.degrees(math.acos(-1 / 3))
     lines = ["| case | crank angle | driven / numeric / missed / spurious |", "|---|---|---|"]
     lines += [f"| double-rocker (6, 5, 2, 7), dead point arccos(−1/3) = {dead:.7f}° | dead point {offset:+g}° | "

@@ -22,7 +22,12 @@ def add_trace_parser(commands) -> None:
     trace.add_argument("--tracer", action="append", metavar="POINT",
                        help="a joint or a scene's tracer point (\"tracers\") whose path to draw (repeatable); "
                             "default: the scene's tracer points, else its last joint")
-    trace.add_argument("--steps", type=int, default=400, help="resolution: slices of the first parameter (default 400)")
+    trace.add_argument("--steps", type=int, default=400,
+                       help="slices of the first parameter on which loops are sought (default 400; a circuit between "
+                            "two slices is missed; two parameters: steps/8 slices)")
+    trace.add_argument("--chord", type=float, default=1e-3,
+                       help="the traced polylines stay within this fraction of the linkage's size of the "
+                            "configuration curve (default 1e-3)")
     trace.add_argument("--input", metavar="INPUT",
                        help="drive the linkage: a scene input's name, an angle 'P1,P4,P2' (at P1 from P4 to P2, "
                             "degrees) or a distance 'P2,P5' (squared); lists every configuration at each value of "
@@ -65,6 +70,8 @@ def run_trace(args: argparse.Namespace) -> int:
 
     if args.steps < 8:
         raise UsageError(f"--steps {args.steps}: at least 8")
+    if not 1e-9 <= args.chord <= 0.1:
+        raise UsageError(f"--chord {args.chord:g}: between 1e-9 and 0.1 of the linkage's size")
     check_picture(args.plot)
     scene = load_scene(args.scene)
     parameters = None
@@ -73,7 +80,7 @@ def run_trace(args: argparse.Namespace) -> int:
     system = one_dof_system(scene, parameters)
     triangles, tracers, driver = _checked_options(args, scene, system)
     degrees = _degrees(scene, tracers) if args.degree else {}
-    traced = trace(system, steps=args.steps)
+    traced = trace(system, steps=args.steps, chord=args.chord)
     exact = _exact_ranges(system, traced)
     driven = _driven(system, traced, driver, args.grid) if driver is not None else []
     if scene.tracers:
@@ -162,18 +169,29 @@ def _point(point, tracers: frozenset[str] = frozenset()) -> dict:
     return result
 
 
-def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, exact=None) -> dict:
+def _eta(piece, triangles) -> int:
+    """A piece's η, read at its middle point (its ends are branch points, where a
+    triangle is flat)."""
     from baranov.motion import sign_index
 
+    return sign_index(piece.points[len(piece.points) // 2], triangles)
+
+
+def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, exact=None) -> dict:
     names = frozenset(tracer.name for tracer in scene.tracers)
     result = {
         "parameters": list(system.parameter_names),
         "fixed_link": args.fixed or scene.ground,
         "eta_triangles": [list(t) for t in triangles],
-        "pieces": [{"eta": sign_index(piece.points[0], triangles), "signs": list(piece.signs), "closed": piece.closed,
+        "circuits": [{"pieces": list(circuit.pieces), "branch_points": list(circuit.branch_points),
+                      "singular_points": list(circuit.singular_points)} for circuit in traced.circuits],
+        "pieces": [{"eta": _eta(piece, triangles), "signs": list(piece.signs), "closed": piece.closed,
                     "points": [_point(point, names) for point in piece.points]} for piece in traced.pieces],
-        "branch_points": [{"pieces": [list(end) for end in bp.pieces], **bp.parameters} for bp in traced.branch_points],
+        "branch_points": [{"pieces": [list(end) for end in bp.pieces], **bp.parameters,
+                           "flat": list(bp.flat) if bp.flat else None} for bp in traced.branch_points],
+        "singular_points": [{"pieces": list(sp.pieces), **_point(sp.point, names)} for sp in traced.singular_points],
         "loose_ends": [list(end) for end in traced.loose_ends],
+        "unfinished": list(traced.unfinished),
         "jumps": list(traced.jumps),
     }
     if exact is not None:
@@ -191,18 +209,24 @@ def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, ex
 
 
 def _print_summary(args, system, traced, triangles, degrees, driver, driven, exact=None) -> None:
-    from baranov.motion import sign_index
-
     from .output import joint_lines
 
-    print(f"{args.scene}: {len(traced.pieces)} pieces in ({', '.join(system.parameter_names)}), "
-          f"{len(traced.branch_points)} branch points, {len(traced.loose_ends)} piece ends not joined")
+    noun = "circuit" if len(traced.circuits) == 1 else "circuits"
+    print(f"{args.scene}: {len(traced.circuits)} {noun}, {len(traced.pieces)} pieces in "
+          f"({', '.join(system.parameter_names)}), {len(traced.branch_points)} branch points, "
+          f"{len(traced.singular_points)} singular configurations, {len(traced.loose_ends)} piece ends not joined")
+    for number, circuit in enumerate(traced.circuits):
+        print(f"circuit {number}: {len(circuit.pieces)} branches (pieces {_listed(circuit.pieces)}), "
+              f"{len(circuit.branch_points)} branch points"
+              + (f", singular configurations {_listed(circuit.singular_points)}" if circuit.singular_points else ""))
+    for sentence in traced.unfinished:
+        print(f"unfinished: {sentence}")
     print("piece  eta  signs  points  " + "  ".join(f"{name} range" for name in system.parameter_names))
     for number, piece in enumerate(traced.pieces):
         ranges = "  ".join(f"[{min(p.parameters[n] for p in piece.points):.6g}, "
                            f"{max(p.parameters[n] for p in piece.points):.6g}]" for n in system.parameter_names)
         signs = "".join("+" if s > 0 else "-" for s in piece.signs)
-        print(f"{number:5d}  {sign_index(piece.points[0], triangles):3d}  {signs}  {len(piece.points):6d}"
+        print(f"{number:5d}  {_eta(piece, triangles):3d}  {signs}  {len(piece.points):6d}"
               f"{' (closed)' if piece.closed else ''}  {ranges}")
     for sentence in traced.jumps:
         print(f"jump: {sentence}")
@@ -228,6 +252,17 @@ def _print_summary(args, system, traced, triangles, degrees, driver, driven, exa
                 print(f"    {driver.name} = {value:.6g}{unit}:\n" + "\n".join(lines))
     if degrees:
         print("coupler-curve degrees: " + ", ".join(f"{where} {degree}" for where, degree in degrees.items()))
+
+
+def _listed(numbers) -> str:
+    """Indices as runs: 0-3, 7, 9-10."""
+    runs: list[list[int]] = []
+    for n in numbers:
+        if runs and n == runs[-1][-1] + 1:
+            runs[-1].append(n)
+        else:
+            runs.append([n])
+    return ", ".join(f"{run[0]}-{run[-1]}" if len(run) > 1 else f"{run[0]}" for run in runs)
 
 
 def _driver(scene, text: str):

@@ -8,11 +8,11 @@ removes: the branches are the pieces of the configuration space, split by the si
 the free-sign triangles).
 
 A configuration at an input value is located between two neighbouring traced points
-where the input crosses the value, then refined: d = 1 by Brent's method on the one
-parameter (the plan places the configuration exactly at each value), d = 2 by Newton's
-method on the closure condition and the input together, started from the linear
-interpolation of the two points' parameters. Every configuration is verified on the link
-dimensions (1e-8, relative) as the traced ones are.
+where the input crosses the value, then refined on the configuration curve itself
+(:func:`~.continuation.on_chord`: the curve's point in the hyperplane normal to the two
+points' chord, moved along it by Brent's method until the input has the value); the same
+for one parameter and two, and exact at a branch point, where a triangle is flat. Every
+configuration is verified on the link dimensions (1e-8, relative) as the traced ones are.
 """
 
 from __future__ import annotations
@@ -24,10 +24,10 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from baranov.scene import Scene, SceneError, SceneInput, link_entry, scene_from_dict
-from baranov.solvers.placement import placed_configurations
 
-from .configuration_space import ConfigurationPoint, OneDofSystem, slice_configurations, verified_configurations
-from .tracing import Piece, Trace
+from .configuration_space import ConfigurationPoint, OneDofSystem
+from .continuation import LinkageCurve, linkage_curve, on_chord
+from .tracing import Piece, Trace, configurations_on_curve
 
 
 def input_value(driver: SceneInput, point: ConfigurationPoint) -> float:
@@ -66,14 +66,14 @@ def driven_motion(system: OneDofSystem, traced: Trace, driver: SceneInput, grid)
 
     Cost: per crossing, a Brent search (d = 1, about 40 placements) or a few Newton steps
     (d = 2)."""
+    curve = linkage_curve(system.scene, system.plan.free_sign_triangles)
     branches = []
     for index, piece in enumerate(traced.pieces):
         values, points = [], []
-        if len(system.parameter_names) == 1:
-            piece = _with_extrema(system, driver, piece)
+        piece = _with_extrema(system, curve, driver, piece)
         for before, after in _segments(piece):
             for target in _crossed(driver, before, after, grid):
-                _keep(values, points, target, _refined(system, driver, before, after, target))
+                _keep(values, points, target, _refined(system, curve, driver, before, after, target))
         if not piece.closed:  # a value just beyond an end, met at the end itself (_beyond)
             for target in _beyond(driver, piece.points[-1], grid):
                 _keep(values, points, target, piece.points[-1])
@@ -84,14 +84,13 @@ def driven_motion(system: OneDofSystem, traced: Trace, driver: SceneInput, grid)
     return branches
 
 
-def _with_extrema(system: OneDofSystem, driver: SceneInput, piece: Piece) -> Piece:
-    """d = 1: ``piece`` with the configuration at each local extremum of the input along
-    it added, located to 1e-13 of the parameter's range (a bounded scalar search between
-    the samples around it): a dead point of the input (a four-bar rocker's extreme angle)
-    lies between two samples, and the values between the higher sample and the extremum
-    would be missed (a double-rocker's crank: 109.4633° traced, 109.4712° = arccos(−1/3)
-    reached)."""
-    name = system.parameter_names[0]
+def _with_extrema(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, piece: Piece) -> Piece:
+    """``piece`` with the configuration at each local extremum of the input along it
+    added (a bounded scalar search along the chords on either side of the point where the
+    input turns, each value a point of the curve: :func:`~.continuation.on_chord`): a dead
+    point of the input (a four-bar rocker's extreme angle) lies between two traced
+    points, and the values between the higher one and the extremum would be missed (a
+    double-rocker's crank: 109.4633° traced, 109.4712° = arccos(−1/3) reached)."""
     points = list(piece.points)
     inputs = [input_value(driver, point) for point in points]
     steps = [_turned(driver, after - before) for before, after in zip(inputs, inputs[1:], strict=False)]
@@ -100,21 +99,21 @@ def _with_extrema(system: OneDofSystem, driver: SceneInput, piece: Piece) -> Pie
         if steps[k - 1] * steps[k] >= 0:
             continue
         sign = 1.0 if steps[k - 1] > 0 else -1.0  # a maximum: minimise −input
-        low, high = sorted((points[k - 1].parameters[name], points[k + 1].parameters[name]))
+        ends = [curve.unknowns_of(points[n].joints) for n in (k - 1, k, k + 1)]
 
-        def negated(value: float, sign=sign, reference=inputs[k]) -> float:
-            found = verified_configurations(system, np.array([[value]]), np.array(piece.signs)[None, :])
-            return -sign * _turned(driver, input_value(driver, found[0]) - reference) if found else math.inf
+        def at(along: float, ends=ends) -> np.ndarray | None:  # 0 to 1: the first chord; 1 to 2: the second
+            first = 0 if along < 1 else 1
+            return on_chord(curve, ends[first], ends[first + 1], along - first)
 
-        best = minimize_scalar(negated, bounds=(low, high), method="bounded",
-                               options={"xatol": 1e-13 * system.upper[0]})
-        found = verified_configurations(system, np.array([[best.x]]), np.array(piece.signs)[None, :])
-        if found and abs(best.x - points[k].parameters[name]) > 0:
-            added.append((k, found[0]))
-    for k, point in reversed(added):  # in order of the parameter, next to the sample it refines
-        at = points[k].parameters[name]
-        forward = points[-1].parameters[name] >= points[0].parameters[name]
-        later = (point.parameters[name] > at) == forward
+        def negated(along: float, sign=sign, reference=inputs[k], at=at) -> float:
+            x = at(along)
+            return math.inf if x is None else -sign * _turned(driver, _input_at(system, curve, driver, x) - reference)
+
+        best = minimize_scalar(negated, bounds=(0.0, 2.0), method="bounded", options={"xatol": 1e-12})
+        x = at(best.x)
+        if x is not None and abs(best.x - 1.0) > 1e-12:
+            added.append((k, best.x > 1.0, _with_signs(configurations_on_curve(system, curve, [x])[0], piece.signs)))
+    for k, later, point in reversed(added):
         points.insert(k + 1 if later else k, point)
     return Piece(piece.signs, tuple(points), piece.closed)
 
@@ -198,147 +197,37 @@ END_SLACK = 1e-6
 VALUE_SLACK = 1e-12
 
 
-def _refined(system: OneDofSystem, driver: SceneInput, before: ConfigurationPoint, after: ConfigurationPoint,
-             target: float, splits: int = 0) -> ConfigurationPoint | None:
-    """The verified configuration between two neighbouring traced points at which the
-    input is ``target`` (module docstring), or None where none is found. d = 2: where
-    Newton's method fails from the interpolation, the stretch is split at a point of the
-    curve between them (:func:`_middle_on_curve`) and the half the input crosses
-    ``target`` on is refined instead, at most MAX_SPLITS times."""
-    names = system.parameter_names
-    branch = np.array(before.signs)[None, :]
-    start = np.array([before.parameters[name] for name in names])
-    end = np.array([after.parameters[name] for name in names])
-
-    def placed(values: np.ndarray) -> ConfigurationPoint | None:
-        found = verified_configurations(system, values[None, :], branch)
-        return found[0] if found else None
-
-    def offset(point: ConfigurationPoint) -> float:
-        return _turned(driver, input_value(driver, point) - target)
-
+def _refined(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, before: ConfigurationPoint,
+             after: ConfigurationPoint, target: float) -> ConfigurationPoint | None:
+    """The configuration between two neighbouring traced points at which the input is
+    ``target`` (module docstring), with their sign vector; None where the input does not
+    cross it on the curve between them."""
     for point in (before, after):  # met at a traced point (within VALUE_SLACK)
-        if abs(offset(point)) <= VALUE_SLACK * max(1.0, abs(target)):
+        if abs(_turned(driver, input_value(driver, point) - target)) <= VALUE_SLACK * max(1.0, abs(target)):
             return point
+    first, last = curve.unknowns_of(before.joints), curve.unknowns_of(after.joints)
 
-    if len(names) == 1:
-        try:
-            root = brentq(lambda s: offset(placed(np.array([s]))), start[0], end[0], xtol=1e-13 * system.upper[0])
-        except (ValueError, TypeError):  # the ends place no configuration or do not bracket
-            return None
-        return placed(np.array([root]))
+    def offset(along: float) -> float:
+        x = on_chord(curve, first, last, along)
+        return math.inf if x is None else _turned(driver, _input_at(system, curve, driver, x) - target)
 
-    def offset_anywhere(values: np.ndarray) -> float | None:  # off the curve too: Newton's iterates
-        joints, points = placed_configurations(system.scene, system.compiled, values[None, :], branch)
-        if not np.isfinite(points).all():
-            return None
-        where = {name: (point.real, point.imag) for name, point in zip(joints, points[0], strict=True)}
-        return offset(ConfigurationPoint({}, (), where, math.inf))
-
-    found = _newton(system, branch, start, end, offset_anywhere)
-    if found is not None or splits >= MAX_SPLITS:
-        return found
-    middle = _middle_on_curve(system, before, after)
-    if middle is None:
+    try:
+        along = brentq(offset, 0.0, 1.0, xtol=1e-14)
+    except ValueError:  # no sign change: the input does not reach the value here
         return None
-    for first, second in ((before, middle), (middle, after)):
-        if _crossed(driver, first, second, np.array([target])):
-            return _refined(system, driver, first, second, target, splits + 1)
-    return None
+    x = on_chord(curve, first, last, along)
+    return None if x is None else _with_signs(configurations_on_curve(system, curve, [x])[0], before.signs)
 
 
-#: Splits of a stretch where Newton's method fails (:func:`_refined`), and the samples of
-#: the slice that finds a point of the curve between its ends (:func:`_middle_on_curve`).
-MAX_SPLITS = 12
-MIDDLE_SAMPLES = 64
+def _input_at(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, x: np.ndarray) -> float:
+    """The input's value at unknowns ``x`` of the curve."""
+    at = curve.positions(x)
+    joints = {name: (at[name].real * curve.size, at[name].imag * curve.size) for name in driver.joints}
+    return input_value(driver, ConfigurationPoint({}, (), joints, 0.0))
 
 
-def _middle_on_curve(system: OneDofSystem, before: ConfigurationPoint,
-                     after: ConfigurationPoint) -> ConfigurationPoint | None:
-    """d = 2: a configuration on the curve between two neighbouring traced points of one
-    piece: on the slice halfway between them along the parameter that changes more
-    (relatively), the root of the closure condition on their branch nearest their joints'
-    midpoint (MIDDLE_SAMPLES samples of the other parameter over three times the two
-    points' spread, with the roots next to a domain edge). Where the curve bends sharply
-    in the parameters the linear interpolation of two traced points can lie outside the
-    domain: eight-bar 9 of docs/stability.md, P10 0.87 from P1 (s1,10 between 0.63 and
-    0.90) as the crank passes 180°."""
-    names = system.parameter_names
-    first = np.array([before.parameters[name] for name in names])
-    second = np.array([after.parameters[name] for name in names])
-    axis = int(np.argmax(np.abs(second - first) / np.maximum(np.abs(first) + np.abs(second), 1e-300)))
-    other = 1 - axis
-    low, high = sorted((first[other], second[other]))
-    spread = max(high - low, 1e-9 * system.upper[other])
-    grid = np.linspace(max(low - spread, 1e-12 * system.upper[other]), high + spread, MIDDLE_SAMPLES)
-    found = slice_configurations(system, (first[axis] + second[axis]) / 2, grid, np.array(before.signs)[None, :], axis)
-    if not found:
-        return None
-    middle = {name: ((before.joints[name][0] + after.joints[name][0]) / 2,
-                     (before.joints[name][1] + after.joints[name][1]) / 2) for name in before.joints}
-    return min(found, key=lambda point: max(math.dist(point.joints[name], middle[name]) for name in middle))
-
-
-def _newton(system: OneDofSystem, branch: np.ndarray, start: np.ndarray, end: np.ndarray,
-            offset) -> ConfigurationPoint | None:
-    """d = 2: the closure condition and the input's offset both 0, by Newton's method
-    with a forward-difference Jacobian from the interpolation of ``start`` and ``end``
-    where the input's offset is linear between them."""
-    first, last = offset(start), offset(end)
-    if first is None or last is None or first == last:
-        return None
-    values = start + (end - start) * first / (first - last)
-    scale = np.array(system.upper)
-    residual = _equations(system, branch, values, offset)
-    for _ in range(NEWTON_STEPS):
-        if residual is None:
-            return None
-        if np.max(np.abs(residual)) < 1e-12:
-            break
-        jacobian = np.empty((2, 2))
-        for column in range(2):
-            # relative to the value: a step of 1e-7 of the range left s1,10 = 0.77 (P10
-            # 0.87 from P1 on eight-bar 9 of docs/stability.md) for the undefined region
-            step = np.zeros(2)
-            step[column] = 1e-7 * max(abs(values[column]), 1e-9 * scale[column])
-            moved = _equations(system, branch, values + step, offset)
-            if moved is None:
-                return None
-            jacobian[:, column] = (moved - residual) / step[column]
-        try:
-            step = np.linalg.solve(jacobian, residual)
-        except np.linalg.LinAlgError:
-            return None
-        values, residual = _damped(system, branch, values, step, residual, offset)
-    found = verified_configurations(system, values[None, :], branch)
-    return found[0] if found else None
-
-
-#: Newton steps of :func:`_newton`, and halvings of a step that does not lower the residual.
-NEWTON_STEPS = 30
-HALVINGS = 12
-
-
-def _damped(system: OneDofSystem, branch: np.ndarray, values: np.ndarray, step: np.ndarray,
-            residual: np.ndarray, offset) -> tuple[np.ndarray, np.ndarray | None]:
-    """``values − step``, the step halved (at most HALVINGS times) until the equations are
-    defined there and their largest residual lower; the full step if none is (a last
-    try, as plain Newton)."""
-    size = np.max(np.abs(residual))
-    for halving in range(HALVINGS):
-        trial = values - step / 2**halving
-        moved = _equations(system, branch, trial, offset)
-        if moved is not None and np.max(np.abs(moved)) < size:
-            return trial, moved
-    return values - step, _equations(system, branch, values - step, offset)
-
-
-def _equations(system: OneDofSystem, branch: np.ndarray, values: np.ndarray, offset) -> np.ndarray | None:
-    closure = system.compiled.residuals(values[None, :], branch)[0, 0, 0]
-    moved = offset(values)
-    if moved is None or not np.isfinite(closure):
-        return None
-    return np.array([closure, moved])
+def _with_signs(point: ConfigurationPoint, signs: tuple[int, ...]) -> ConfigurationPoint:
+    return ConfigurationPoint(point.parameters, tuple(signs), point.joints, point.max_residual)
 
 
 def followed(traced: Trace, driven: list[DrivenBranch], start: int) -> DrivenBranch:

@@ -34,11 +34,14 @@ from baranov.closure.bilateration import triangle_radicand
 from baranov.solvers.exact.characteristic import computed_distance, placed_points, radical_tower, radicand_norm
 
 from .configuration_space import OneDofSystem
-from .tracing import RANGE_SAMPLES, Trace
+from .tracing import Trace
 
 #: A range's end matches a traced end within this fraction of the parameter's range (the
 #: tracer locates an edge by bisection to 1e-13 of it).
 END_MATCH = 1e-9
+#: An end of the searched interval (0 or the parameter's bound) matches within this
+#: fraction of the range.
+SEARCHED_END_MATCH = 1e-7
 #: Bits of the balls that isolate the roots and test the radicands (about 60 digits).
 PRECISION = 200
 
@@ -70,8 +73,8 @@ class ExactRange:
 
     def holds(self, low: float, high: float, upper: float) -> bool:
         """Whether a traced range from ``low`` to ``high`` has this range's ends (an end
-        of the searched interval within the tracer's first sample, upper / RANGE_SAMPLES²)."""
-        return all(abs(float(end.value.mid()) - value) <= (END_MATCH if end.polynomial else 2 / RANGE_SAMPLES**2) * upper
+        of the searched interval within SEARCHED_END_MATCH)."""
+        return all(abs(float(end.value.mid()) - value) <= (END_MATCH if end.polynomial else SEARCHED_END_MATCH) * upper
                    for end, value in ((self.low, low), (self.high, high)))
 
 

@@ -1,58 +1,48 @@
-"""Tracing a one-degree-of-freedom chain's configuration space in distance space (thesis
-§6.3): ordered pieces, one sign vector each, and the points where an oriented area
-vanishes and the linkage can pass from one piece to another.
+"""Tracing a one-degree-of-freedom chain's configuration space (thesis §6.3): every loop
+of its configuration curve followed once, cut into pieces of one sign vector each at the
+branch points where an oriented area vanishes, and the loops gathered into circuits.
 
-**Two parameters (d = 2).** On each sign vector the closure condition f(u, v) = 0 is a
-curve in the plane of the two parameters (scaled to their ranges). Starting points are
-the roots of coarse slices u = const (:func:`~.configuration_space.configurations_at`);
-from each not yet on a traced piece the curve is followed both ways by pseudo-arclength
-continuation: a step along the tangent (−f_v, f_u), then Newton back onto f = 0 along
-the gradient (central differences), the step halved where Newton does not converge in
-four iterations, f is undefined (the domain of the sign vector ends: a triangle is
-flat) or a joint would move more than ``jump`` of the linkage's size, and doubled up to
-``resolution`` of the ranges otherwise. Where the step falls below 1e-6 of the ranges
-(next to a domain edge the curve runs along it and predictor steps leave the domain; a
-hairpin fold) the curve is followed on slices instead (:func:`_slid`), to the edge, or on
-until continuation can resume. A piece ends at a domain edge or closes on itself.
+**Loops.** The curve is followed in the joints' coordinates, where it is smooth through a
+flat triangle (:mod:`.continuation`), from configurations found on slices of the plan's
+first parameter (:func:`~.configuration_space.configurations_at`): a starting
+configuration already within ``2 · chord`` of a followed loop is on it and skipped, so
+each loop is followed once, and it closes when it passes its start again. A loop's
+points lie within ``chord`` (of the linkage's size) of the curve between neighbours, and
+no joint moves more than ``jump`` between them.
 
-**One parameter (d = 1).** A piece is a range of the parameter on one sign vector: the
-runs of RANGE_SAMPLES samples (even in √s) on which the plan places every joint, each
-end bisected to 1e-13 of the range against its undefined neighbour, then sampled from
-end to end, midpoints inserted where a joint would move more than ``jump``. A range
-narrower than a sample step is missed.
+**Pieces and branch points.** Where one of the plan's free-sign triangles turns flat
+along a loop (a crossing, located to rounding), the linkage passes from one sign vector to
+the one with that triangle's sign flipped (thesis §6.3): the loop is cut there, and the
+branch point joins the piece ending there to the piece starting there. A loop without a
+crossing is one closed piece. Every piece end is thus joined; an end stays loose only
+where a loop could not be finished (:attr:`Trace.unfinished` says why).
 
-**Branch points.** A piece ends where one of the plan's free-sign triangles becomes flat
-(a radicand vanishes): there the configuration is the same on the two sign vectors that
-differ in that triangle's sign, and the linkage can go on along the other one. Two piece
-ends on such sign vectors whose configurations are within ``join`` of the linkage's size
-(scaled by the step) are reported as a branch point joining them.
+**Circuits** (:class:`Circuit`; Chase and Mirth, "Circuits and branches of
+single-degree-of-freedom planar linkages", J. Mech. Des. 115, 1993): the connected
+components of the real configuration curve, between which the linkage cannot pass without
+being taken apart. A loop is one circuit unless it passes a singular configuration (the
+Jacobian of the link equations loses rank: two branches of the curve cross, as in a
+change-point four-bar) that another loop passes too; then they are one circuit. A
+circuit's *branches* are its pieces: the arcs between its branch points, along which the
+plan's sign vector is fixed.
 
-Resolution: the step between slices; a feature of the curve narrower than a step (two
-folds between slices) is not resolved. Consecutive points of a piece are checked for
-jumps: a joint moving more than ``jump`` of the linkage's size between neighbours is
-reported (``Trace.jumps``), never silently joined.
+Completeness: a loop is found if one of the slices meets it — ``steps`` slices for one
+parameter (the whole range, a slice is one placement per sign vector), ``steps // 8`` for
+two (4000 samples each); a circuit that lies between two neighbouring slices is missed.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from baranov.solvers.numeric.lockstep import paired_profile, run_alone
-from baranov.solvers.numeric.one_parameter import window_samples
-from baranov.solvers.placement import placed_configurations
-from baranov.solvers.verification import distance_bound
+from baranov.solvers.modes import AssemblyMode
+from baranov.solvers.verification import joint_residuals
 
-from .configuration_space import (
-    ConfigurationPoint,
-    OneDofSystem,
-    configurations_at,
-    oriented_area,
-    slice_configurations,
-    verified_configurations,
-)
+from .configuration_space import ConfigurationPoint, OneDofSystem, configurations_at
+from .continuation import LinkageCurve, Loop, followed_loop, linkage_curve, singular_point
 
 
 @dataclass(frozen=True)
@@ -67,428 +57,228 @@ class Piece:
 
 @dataclass(frozen=True)
 class BranchPoint:
-    """Where a free-sign triangle is flat: the ends of two pieces (index, 0 for the first
-    point or -1 for the last) that meet there."""
+    """Where a free-sign triangle (``flat``) is flat: the ends of two pieces (index, 0
+    for the first point or -1 for the last) that meet there, and the plan's parameters
+    there."""
 
     pieces: tuple[tuple[int, int], tuple[int, int]]
     parameters: dict[str, float]
+    flat: tuple[str, str, str] | None = None
+
+
+@dataclass(frozen=True)
+class SingularPoint:
+    """A singular configuration of the linkage passed by a loop (the Jacobian of its link
+    equations loses rank; generically two branches of the curve cross there): its joints
+    and parameters, and the pieces whose polylines pass it."""
+
+    point: ConfigurationPoint
+    pieces: tuple[int, ...]
+
+
+@dataclass(frozen=True)
+class Circuit:
+    """A connected component of the real configuration curve (module docstring): its
+    pieces (its branches) in order along its loops, the branch points joining them, and
+    the singular configurations on it (indices into :attr:`Trace.singular_points`)."""
+
+    pieces: tuple[int, ...]
+    branch_points: tuple[int, ...]
+    singular_points: tuple[int, ...] = ()
 
 
 @dataclass(frozen=True)
 class Trace:
     """A traced configuration space: the pieces, the branch points joining them, the
-    steps at which neighbouring points of a piece are farther apart than expected, and
-    (:attr:`loose_ends`) the piece ends that were not joined."""
+    circuits, the singular configurations passed, the steps at which neighbouring points
+    of a piece are farther apart than expected, and why a loop was left unfinished."""
 
     pieces: tuple[Piece, ...]
     branch_points: tuple[BranchPoint, ...]
     jumps: tuple[str, ...] = field(default=())
+    circuits: tuple[Circuit, ...] = field(default=())
+    singular_points: tuple[SingularPoint, ...] = field(default=())
+    unfinished: tuple[str, ...] = field(default=())
 
     @property
     def loose_ends(self) -> tuple[tuple[int, int], ...]:
-        """Ends of open pieces (index, 0 or −1) at no branch point: where the tracer found
-        no piece to go on along (not resolved: the curve's continuation was not placed)."""
+        """Ends of open pieces (index, 0 or −1) at no branch point: the ends of a loop the
+        tracer could not finish (:attr:`unfinished`)."""
         joined = {end for point in self.branch_points for end in point.pieces}
         return tuple((n, end) for n, piece in enumerate(self.pieces) if not piece.closed for end in (0, -1)
                      if (n, end) not in joined)
 
 
-def trace(system: OneDofSystem, steps: int = 400, jump: float = 0.02, join: float = 0.02,
-          resolution: float = 1 / 200) -> Trace:
-    """The configuration space of ``system`` traced (see the module docstring): d = 1 as
-    ranges of its parameter, d = 2 by continuation from ``steps // 8`` slices. Cost: d = 1,
-    a vectorised placement of RANGE_SAMPLES values per sign vector, 60 per edge; d = 2, a
-    few evaluations per point."""
-    size = distance_bound(system.scene)
-    if len(system.plan.parameters) == 1:
-        pieces = [Piece(signs, tuple(points)) for signs, points in _ranges(system, jump * size)]
-    else:
-        pieces = _continued_pieces(system, max(steps // 8, 8), jump * size, resolution)
+def trace(system: OneDofSystem, steps: int = 400, jump: float = 0.02, chord: float = 1e-3) -> Trace:
+    """The configuration space of ``system`` traced (module docstring): each loop of its
+    curve followed once from the configurations of ``steps`` slices (``steps // 8`` for
+    two parameters), its points within ``chord`` of the curve and no joint moving more
+    than ``jump`` between neighbours (both fractions of the linkage's size). Cost: per
+    loop point a few 2n × 2n solves (n joints); per slice one vectorised placement (two
+    parameters: 4000 samples of the closure condition per sign vector)."""
+    curve = linkage_curve(system.scene, system.plan.free_sign_triangles)
+    loops: list[Loop] = []
+    for start in _starting_configurations(system, steps):
+        x = curve.unknowns_of(start.joints)
+        if np.abs(curve.areas(x)).min(initial=1.0) < FLAT_START or any(_near_loop(x, loop, 2 * chord) for loop in loops):
+            # a loop is not started at a flat triangle: its crossing there would be met only once
+            continue
+        loops.append(_whole_loop(curve, x, chord, jump))
+    pieces, branch_points, owners = [], [], []
+    for number, loop in enumerate(loops):
+        found, joined = _loop_pieces(system, curve, loop, len(pieces))
+        pieces += found
+        branch_points += joined
+        owners += [number] * len(found)
+    singular = _singular_points(system, curve, loops, owners)
+    circuits = _circuits(loops, owners, branch_points, singular)
+    size = curve.size
     jumps = [f"piece {n}, between points {k} and {k + 1}: a joint moves {moved / size:.3g} of the linkage's size"
              for n, piece in enumerate(pieces) for k, moved in _moves(piece) if moved > 2 * jump * size]
-    return Trace(tuple(pieces), tuple(_branch_points(pieces, join * size)), tuple(jumps))
+    unfinished = tuple(f"loop {n}: {loop.unfinished}" for n, loop in enumerate(loops) if not loop.closed)
+    return Trace(tuple(pieces), tuple(branch_points), tuple(jumps), circuits, singular, unfinished)
 
 
-#: Samples of the one parameter (even in its square root) that find its ranges.
-RANGE_SAMPLES = 4000
+#: A starting configuration with a free-sign triangle's area (scaled) below this is not
+#: used: a slice through a branch point (the crank in line at the parameter's bound).
+FLAT_START = 1e-8
 
 
-def _ranges(system: OneDofSystem, jump: float) -> list[tuple[tuple[int, ...], list[ConfigurationPoint]]]:
-    """The ranges of a one-parameter configuration space, per sign vector (module docstring)."""
-    uniform = np.linspace(0.0, math.sqrt(system.upper[0]), RANGE_SAMPLES + 1)[1:] ** 2
-    failures, radicands, margins = system.compiled.failure_profile(uniform[:, None], np.array(system.branches))
+def _starting_configurations(system: OneDofSystem, steps: int) -> list[ConfigurationPoint]:
+    """The configurations of ``steps`` slices of the first parameter, even in its square
+    root (one parameter), or of ``steps // 8`` slices across the stretch where it has
+    configurations (two)."""
+    if len(system.plan.parameters) == 1:
+        values = np.linspace(0.0, math.sqrt(system.upper[0]), steps + 2)[1:-1] ** 2
+    else:
+        slices = max(steps // 8, 8)
+        low, high = _range(system, slices)
+        values = np.linspace(low, high, slices + 2)[1:-1]
+    return [point for value in values for point in configurations_at(system, float(value))]
+
+
+def _whole_loop(curve: LinkageCurve, x: np.ndarray, chord: float, jump: float) -> Loop:
+    """The loop through ``x``; if it cannot be closed, followed the other way from ``x``
+    too, so that only the stretch the tracer could not pass is missing."""
+    loop = followed_loop(curve, x, chord, jump)
+    if loop.closed:
+        return loop
+    back = followed_loop(curve, x, chord, jump, backwards=True)
+    count = len(back.points)
+    points = back.points[:0:-1] + loop.points
+    crossings = [(count - 1 - k, t) for k, t in reversed(back.crossings)] + [(k + count - 1, t) for k, t in loop.crossings]
+    singular = [count - 2 - k for k in reversed(back.singular)] + [k + count - 1 for k in loop.singular]
+    reasons = "; ".join(dict.fromkeys(r for r in (back.unfinished, loop.unfinished) if r))
+    return Loop(points, crossings, singular, False, reasons)
+
+
+def _near_loop(x: np.ndarray, loop: Loop, within: float) -> bool:
+    """Whether ``x`` lies within ``within`` of the loop's polyline."""
+    points = np.array(loop.points)
+    ends = np.roll(points, -1, axis=0) if loop.closed else points[1:]
+    starts = points if loop.closed else points[:-1]
+    if len(starts) == 0:
+        return bool(np.linalg.norm(points[0] - x) < within)
+    segment = ends - starts
+    along = np.clip(np.einsum("ij,ij->i", x - starts, segment) / np.maximum(np.einsum("ij,ij->i", segment, segment),
+                                                                             1e-300), 0, 1)
+    return bool(np.min(np.linalg.norm(starts + along[:, None] * segment - x, axis=1)) < within)
+
+
+def _loop_pieces(system: OneDofSystem, curve: LinkageCurve, loop: Loop,
+                 first: int) -> tuple[list[Piece], list[BranchPoint]]:
+    """A loop cut into pieces at its crossings (numbered from ``first``), and the branch
+    points joining consecutive ones (module docstring)."""
+    points = configurations_on_curve(system, curve, loop.points)
+    cuts = [k for k, _ in loop.crossings]
+    triangles = [system.plan.free_sign_triangles[t] for _, t in loop.crossings]
+    if not cuts:
+        return [Piece(_signs(points[len(points) // 2]), tuple(points), loop.closed)], []
+    if loop.closed:  # from the first crossing round to it again
+        spans = [(a, b) for a, b in zip(cuts, cuts[1:], strict=False)] + [(cuts[-1], cuts[0] + len(points))]
+        joints = list(zip(range(len(cuts)), [*range(1, len(cuts)), 0], triangles[1:] + triangles[:1], strict=True))
+    else:
+        spans = [(0, cuts[0]), *zip(cuts, cuts[1:], strict=False), (cuts[-1], len(points) - 1)]
+        joints = [(k, k + 1, triangles[k]) for k in range(len(cuts))]
+    pieces = []
+    for a, b in spans:
+        stretch = [points[k % len(points)] for k in range(a, b + 1)]
+        signs = _signs(stretch[len(stretch) // 2]) if len(stretch) > 2 else _signs_between(stretch)
+        pieces.append(Piece(signs, tuple(AssemblyMode(p.parameters, signs, p.joints, p.max_residual) for p in stretch)))
+    branch_points = [BranchPoint(((first + a, -1), (first + b, 0)), pieces[b].points[0].parameters, triangle)
+                     for a, b, triangle in joints]
+    return pieces, branch_points
+
+
+def configurations_on_curve(system: OneDofSystem, curve: LinkageCurve, points: list[np.ndarray]) -> list[ConfigurationPoint]:
+    """The loop's points as configurations: world joints, the plan's parameters, the
+    signs of its free-sign triangles' areas (0 where flat to rounding) and the residual
+    on the link dimensions."""
+    names = sorted({joint for link in system.scene.links for joint in link.joints})
+    placed = [curve.positions(x) for x in points]
+    world = np.array([[place[name] * curve.size for name in names] for place in placed])
+    residuals = joint_residuals(system.scene, names, world)
     found = []
-    for b, branch in enumerate(system.branches):
-        # a window of the domain narrower than the samples (eight-bar 12 of docs/stability.md:
-        # 0.0011 of s2,10 wide, between the crank in line and a domain edge)
-        added, _, _ = run_alone(window_samples(uniform, failures[b], radicands[b], margins[b], len(system.plan.steps)),
-                                paired_profile(system.compiled), branch)
-        grid = np.union1d(uniform, added)
-        defined = _placed(system, grid, branch)
-        edges = np.flatnonzero(np.diff(defined.astype(int)))
-        starts = ([0] if defined[0] else []) + [e + 1 for e in edges if not defined[e]]
-        for start in starts:
-            stop = next((e for e in edges if e >= start and defined[e]), len(grid) - 1)
-            low, flat_low = (grid[0], None) if start == 0 else _edge(system, branch, grid[start - 1], grid[start])
-            high, flat_high = ((grid[-1], None) if stop == len(grid) - 1
-                               else _edge(system, branch, grid[stop + 1], grid[stop]))
-            points = _sampled_range(system, branch, low, high, jump)
-            if points:
-                found.append((tuple(int(x) for x in branch), _with_flat_ends(system, points, flat_low, flat_high)))
+    for row, x, residual in zip(world, points, residuals, strict=True):
+        joints = {name: (value.real, value.imag) for name, value in zip(names, row, strict=True)}
+        parameters = {name: (joints[u][0] - joints[v][0]) ** 2 + (joints[u][1] - joints[v][1]) ** 2
+                      for name, (u, v) in zip(system.parameter_names, system.plan.parameters, strict=True)}
+        signs = tuple(int(s) for s in np.sign(np.where(np.abs(curve.areas(x)) < 1e-14, 0.0, curve.areas(x))))
+        found.append(AssemblyMode(parameters, signs, joints, float(residual)))
     return found
 
 
-def _with_flat_ends(system: OneDofSystem, points: list[ConfigurationPoint], flat_low: int | None,
-                    flat_high: int | None) -> list[ConfigurationPoint]:
-    """A range's end points placed with the free-sign triangle that turns flat at that edge
-    flat (index into the plan's free-sign triangles; None at an end of the searched
-    range). The bisection leaves the end within 1e-13 of the range of the edge, but the
-    joints move like √ of that distance: eight-bar 12 of docs/stability.md ended a range
-    with its crank at 179.9987° where the crank's triangle with the fixed link turns flat,
-    at 180°, and the configuration at 180° was missed."""
-    name = system.parameter_names[0]
-    points = list(points)
-    for end, flat in ((0, flat_low), (-1, flat_high)):
-        if flat is None:
-            continue
-        branch = np.array(points[end].signs)
-        branch[flat] = 0
-        placed = verified_configurations(system, np.array([[points[end].parameters[name]]]), branch[None, :])
-        if placed:
-            points[end] = replace(placed[0], signs=points[end].signs)
-    return points
+def _signs(point: ConfigurationPoint) -> tuple[int, ...]:
+    return point.signs
 
 
-def _placed(system: OneDofSystem, values: np.ndarray, branch: np.ndarray) -> np.ndarray:
-    """Whether the plan places every joint at each of ``values`` on ``branch``."""
-    _, points = placed_configurations(system.scene, system.compiled, values[:, None],
-                                      np.repeat(branch[None, :], len(values), axis=0))
-    return np.isfinite(points).all(axis=1)
+def _signs_between(stretch: list[ConfigurationPoint]) -> tuple[int, ...]:
+    """The sign vector of a piece of two or three points (a short arc between crossings):
+    at each triangle, the sign that is not 0 among its points."""
+    return tuple(next((p.signs[k] for p in stretch if p.signs[k] != 0), 1) for k in range(len(stretch[0].signs)))
 
 
-def _edge(system: OneDofSystem, branch: np.ndarray, outside: float, inside: float) -> tuple[float, int | None]:
-    """The domain's edge between an undefined and a defined value, by bisection; and the
-    free-sign triangle that cannot be built beyond it (its index among the plan's
-    free-sign triangles; None if the failing step has a fixed sign)."""
-    for _ in range(60):
-        middle = (outside + inside) / 2
-        if _placed(system, np.array([middle]), branch)[0]:
-            inside = middle
-        else:
-            outside = middle
-        if abs(inside - outside) <= 1e-13 * system.upper[0]:
-            break
-    steps = system.plan.steps
-    failing = int(system.compiled.first_failures(np.array([[outside]]), branch[None, :])[0, 0])
-    if failing >= len(steps) or not steps[failing].free_sign:
-        return inside, None
-    return inside, sum(step.free_sign for step in steps[:failing])
+def _singular_points(system: OneDofSystem, curve: LinkageCurve, loops: list[Loop],
+                     owners: list[int]) -> tuple[SingularPoint, ...]:
+    """The singular configurations the loops passed, located by bisection, one record per
+    place (two loops through one crossing of branches share it), with the pieces of the
+    loops that pass it."""
+    found: list[tuple[np.ndarray, set[int]]] = []
+    for number, loop in enumerate(loops):
+        pieces = {n for n, owner in enumerate(owners) if owner == number}
+        for k in loop.singular:
+            x = singular_point(curve, loop.points[k], loop.points[(k + 1) % len(loop.points)])
+            same = next((entry for entry in found if np.linalg.norm(entry[0] - x) < 1e-6), None)
+            if same is None:
+                found.append((x, set(pieces)))
+            else:
+                same[1].update(pieces)
+    return tuple(SingularPoint(configurations_on_curve(system, curve, [x])[0], tuple(sorted(pieces))) for x, pieces in found)
 
 
-def _sampled_range(system: OneDofSystem, branch: np.ndarray, low: float, high: float,
-                   jump: float) -> list[ConfigurationPoint]:
-    """Configurations from ``low`` to ``high`` on ``branch``: 64 values clustered at the
-    ends (where the joints move as √ of the distance to the edge), then midpoints where a
-    joint moves more than ``jump``, up to 12 rounds."""
-    values = low + (high - low) * (1 - np.cos(np.linspace(0, math.pi, 64))) / 2
-    for _ in range(12):
-        points = verified_configurations(system, values[:, None], np.repeat(branch[None, :], len(values), axis=0))
-        if len(points) < 2:
-            return points
-        moves = [move for _, move in _moves(Piece(tuple(branch), tuple(points)))]
-        if max(moves) <= jump:
-            return points
-        where = [k for k, move in enumerate(moves) if move > jump]
-        ordered = [p.parameters[system.parameter_names[0]] for p in points]
-        values = np.sort(np.concatenate([ordered, [(ordered[k] + ordered[k + 1]) / 2 for k in where]]))
-    return points
+def _circuits(loops: list[Loop], owners: list[int], branch_points: list[BranchPoint],
+              singular: tuple[SingularPoint, ...]) -> tuple[Circuit, ...]:
+    """Loops joined by a singular configuration they share, as circuits (module
+    docstring)."""
+    group = list(range(len(loops)))
 
+    def root(n: int) -> int:
+        while group[n] != n:
+            n = group[n]
+        return n
 
-def _continued_pieces(system: OneDofSystem, slices: int, jump: float, resolution: float) -> list[Piece]:
-    """Pieces of a two-parameter configuration space by continuation from the roots of
-    ``slices`` slices, and on across every piece end where a free-sign triangle is flat,
-    on the sign vector with that sign flipped (module docstring)."""
-    low, high = _range(system, slices)
-    # inside the range: at its ends a triangle is flat and both its signs give one point
-    queue = [point for u in np.linspace(low, high, slices + 2)[1:-1] for point in configurations_at(system, u)]
-    pieces: list[Piece] = []
-    scale = np.array(system.upper, float)
-    while queue:
-        start = queue.pop(0)
-        here = _scaled(start, scale)
-        if any(_on_piece(here, piece, scale, resolution) for piece in pieces if piece.signs == start.signs):
-            continue
-        piece = _piece_from(system, start, jump, resolution)
-        pieces.append(piece)
-        if not piece.closed:
-            queue += [crossing for end in (0, -1) for crossing in _across(system, piece.points[end])]
-    return pieces
-
-
-def _piece_from(system: OneDofSystem, start: ConfigurationPoint, jump: float, resolution: float) -> Piece:
-    forward = _follow(system, start, +1, jump, resolution)
-    if forward[-1] is start and len(forward) > 2:  # closed on itself
-        return Piece(start.signs, tuple(forward[:-1]), True)
-    backward = _follow(system, start, -1, jump, resolution)
-    return Piece(start.signs, tuple(backward[:0:-1] + forward), False)
-
-
-def _across(system: OneDofSystem, end: ConfigurationPoint) -> list[ConfigurationPoint]:
-    """The configuration at a piece's ``end`` on the sign vector with its flattest
-    free-sign triangle's sign flipped, brought onto that sign vector's curve by Newton
-    steps and verified (none where it does not land): the linkage goes on there through
-    the flat triangle."""
-    areas = [abs(oriented_area(end, triangle)) for triangle in system.plan.free_sign_triangles]
-    flat = int(np.argmin(areas))
-    signs = tuple(-s if k == flat else s for k, s in enumerate(end.signs))
-    scale = np.array(system.upper, float)
-    landed = _corrected(_closure_with_gradient(system, signs), _scaled(end, scale))
-    if landed is not None:
-        found = [p for p in verified_configurations(system, (landed * scale)[None, :], np.array([signs]))
-                 if p.max_residual < TRACED_RESIDUAL]
-        if found:
-            return found
-    # Newton left the domain (next to its edge the closure has a square-root edge): the
-    # slice through the end, on the flipped sign vector, its root nearest the end; or a
-    # slice just beside it, where the end is placed on the edge's other side (eight-bar 9
-    # of tests/test_motion.py: −−++ ends at s1,10 = 0.5344, where −−+− is not yet defined)
-    names = system.parameter_names
-    u, v = end.parameters[names[0]], end.parameters[names[-1]]
-    width = CROSSING_GAP * system.upper[-1]
-    grid = np.linspace(max(v - width, 0.0), min(v + width, system.upper[-1]), SLIDE_SAMPLES)
-    for offset in CROSSING_OFFSETS:
-        beside = u + offset * system.upper[0]
-        if not 0 < beside <= system.upper[0]:
-            continue
-        near = [p for p in slice_configurations(system, beside, grid[grid > 0], np.array([signs]))
-                if p.max_residual < TRACED_RESIDUAL]
-        if near:
-            return [min(near, key=lambda p: abs(p.parameters[names[-1]] - v))]
-    return []
-
-
-#: A piece end's crossing found on the slice through it lies within this fraction of the
-#: second parameter's range of the end; else on a slice this fraction of the first
-#: parameter's range beside it.
-CROSSING_GAP = 1e-3
-CROSSING_OFFSETS = (0.0, -1e-9, 1e-9, -1e-7, 1e-7, -1e-5, 1e-5)
-
-
-def _scaled(point: ConfigurationPoint, scale: np.ndarray) -> np.ndarray:
-    return np.array(list(point.parameters.values())) / scale
-
-
-def _on_piece(here: np.ndarray, piece: Piece, scale: np.ndarray, resolution: float) -> bool:
-    """Whether ``here`` (scaled) lies within a step of the piece's polyline."""
-    points = np.array([_scaled(p, scale) for p in piece.points])
-    if len(points) == 1:
-        return bool(np.linalg.norm(points[0] - here) < resolution)
-    a, b = points[:-1], points[1:]
-    t = np.clip(np.einsum("ij,ij->i", here - a, b - a) / np.maximum(np.einsum("ij,ij->i", b - a, b - a), 1e-300), 0, 1)
-    return bool(np.min(np.linalg.norm(a + t[:, None] * (b - a) - here, axis=1)) < resolution)
-
-
-#: Newton corrections per continuation step, and the smallest step (scaled) before a
-#: piece is declared ended at a domain edge (where f has a square-root edge, Newton
-#: converges only ever closer to it: the piece's end is placed to about this).
-NEWTON_STEPS = 4
-SMALLEST_STEP = 1e-6
-#: At most this many points per piece.
-MAX_POINTS = 20000
-
-
-def _follow(system: OneDofSystem, start: ConfigurationPoint, direction: int, jump: float,
-            resolution: float) -> list[ConfigurationPoint]:
-    """Points along the curve of ``start``'s sign vector from ``start`` in ``direction``
-    (+1 or −1 along the tangent (−f_v, f_u)), until a domain edge, back at the start, or
-    MAX_POINTS; where the steps stall, on along slices (:func:`_slid`)."""
-    scale = np.array(system.upper, float)
-    value_and_gradient = _closure_with_gradient(system, start.signs)
-    points, x, step, tangent_sign = [start], _scaled(start, scale), resolution / 4, direction
-    origin, previous_tangent, travelled, slides = x.copy(), None, 0.0, 0
-    while len(points) < MAX_POINTS:
-        _, g = value_and_gradient(x)
-        if step < SMALLEST_STEP or not np.isfinite(g).all() or not g.any():
-            # next to a domain edge every predictor step leaves the domain
-            heading = previous_tangent if previous_tangent is not None else np.array([direction, 0.0])
-            more, goes_on = _slid(system, points[-1], heading, jump, resolution)
-            ordered = points + more
-            if not goes_on and len(ordered) > 1 and not _at_edge(system, ordered[-1]):  # a fold in the slid parameter
-                turned = _turned(system, ordered[-2], ordered[-1], heading)
-                more_on, goes_on = _slid(system, ordered[-1], turned, jump, resolution)
-                more += more_on
-            points += more
-            if not goes_on or slides >= MAX_SLIDES:
-                break
-            slides += 1
-            moved = _scaled(more[-1], scale) - x
-            previous_tangent, x, step = moved / np.linalg.norm(moved), x + moved, resolution / 4
-            continue
-        tangent = np.array([-g[1], g[0]]) / np.linalg.norm(g) * tangent_sign
-        if previous_tangent is not None and tangent @ previous_tangent < 0:  # keep going the same way
-            tangent, tangent_sign = -tangent, -tangent_sign
-        corrected = _corrected(value_and_gradient, x + step * tangent)
-        found = [] if corrected is None else verified_configurations(system, (corrected * scale)[None, :],
-                                                                     np.array([start.signs]))
-        point = found[0] if found else None
-        if point is None or max(math.dist(point.joints[j], points[-1].joints[j]) for j in point.joints) > jump:
-            step /= 2
-            continue
-        points.append(point)
-        travelled += float(np.linalg.norm(corrected - x))
-        previous_tangent, x = tangent, corrected
-        step = min(step * 2, resolution)
-        if travelled > 8 * resolution and np.linalg.norm(x - origin) < resolution:
-            points.append(start)  # closed: back at the start
-            break
-    return points
-
-
-#: Every traced point verifies to this on the link dimensions (issue 19); a slide's or a
-#: crossing's point closer to a domain edge, where placement loses digits as √ of the
-#: distance to it (8e-9 to 1e-8 on the double butterfly), is not taken.
-TRACED_RESIDUAL = 1e-9
-#: Samples of the window in which :func:`_slid` follows a root, its bisection steps, and
-#: the most slides per piece end.
-SLIDE_SAMPLES = 400
-SLIDE_STEPS = 24
-MAX_SLIDES = 8
-
-
-def _slid(system: OneDofSystem, last: ConfigurationPoint, heading: np.ndarray, jump: float,
-          resolution: float) -> tuple[list[ConfigurationPoint], bool]:
-    """Points from ``last`` on along the curve where continuation stalled, and whether the
-    curve goes on beyond them. Next to a domain edge the curve runs along it, every
-    predictor step leaves the domain and the step falls below SMALLEST_STEP; so the curve
-    is followed on slices instead: the parameter along which ``heading`` (scaled) moves
-    most is fixed and moved that way, the root of the other nearest the previous one
-    within a ``resolution`` window tracked (edge roots included:
-    :func:`slice_configurations`). If it exists a full step on, the points up to there
-    (the curve goes on: continuation resumes there); else the end is placed by
-    SLIDE_STEPS bisections on whether it exists, with points between; either way no joint
-    moves more than ``jump`` between neighbours where midpoints can help. On eight-bar 9
-    of tests/test_motion.py the piece on −−++ stopped at s1,10 = 0.5535, 1.2e-4 of the
-    ranges short of its end at the flat triangle P10 P5 P6 (s1,10 = 0.535), and the short
-    piece beyond it was never crossed into. Cost: up to SLIDE_STEPS slices of
-    SLIDE_SAMPLES samples, and one per point added."""
-    axis = int(np.argmax(np.abs(heading)))
-    if heading[axis] == 0:
-        return [], False
-    names, scale = system.parameter_names, np.array(system.upper, float)
-    other, branch = 1 - axis, np.array([last.signs])
-    width = resolution * scale[other]
-
-    def near(value: float, previous: float) -> ConfigurationPoint | None:
-        grid = np.linspace(max(previous - width, 0.0), min(previous + width, scale[other]), SLIDE_SAMPLES)
-        for edges in (False, True):  # the edges' bisection only where no root is bracketed
-            found = [p for p in slice_configurations(system, value, grid[grid > 0], branch, axis, edges)
-                     if p.max_residual < TRACED_RESIDUAL]
-            if found:
-                return min(found, key=lambda p: abs(p.parameters[names[other]] - previous))
-        return None
-
-    start, previous = last.parameters[names[axis]], last.parameters[names[other]]
-    outside = float(np.clip(start + np.sign(heading[axis]) * resolution * scale[axis], scale[axis] * 1e-12,
-                            scale[axis]))
-    beyond = near(outside, previous) if outside != start else None
-    if beyond is not None:
-        filled = _without_jumps(_filled(near, names[axis], [last, beyond], jump), jump)
-        return filled[1:], filled[-1] is beyond
-    inside, point = start, last
-    for _ in range(SLIDE_STEPS):
-        middle = (inside + outside) / 2
-        found = near(middle, point.parameters[names[other]])
-        if found is None:
-            outside = middle
-        else:
-            inside, point = middle, found
-    if point is last:
-        return [], False
-    return _without_jumps(_filled(near, names[axis], [last, point], jump), jump)[1:], False
-
-
-def _without_jumps(points: list[ConfigurationPoint], jump: float) -> list[ConfigurationPoint]:
-    """``points`` up to the first neighbour that a joint moves more than ``jump`` to (no
-    midpoint verified to TRACED_RESIDUAL there: next to the edge joints move as √ of the
-    distance to it): a piece ends short rather than jump."""
-    for k, (a, b) in enumerate(zip(points, points[1:], strict=False)):
-        if max(math.dist(a.joints[j], b.joints[j]) for j in a.joints) > jump:
-            return points[:k + 1]
-    return points
-
-
-def _filled(near, name: str, points: list[ConfigurationPoint], jump: float, rounds: int = 12) -> list[ConfigurationPoint]:
-    """``points`` (ordered along parameter ``name``) with midpoints on the slices between
-    neighbours (``near(value, previous root)``) wherever a joint moves more than ``jump``,
-    up to ``rounds`` rounds."""
-    other = next(n for n in points[0].parameters if n != name)
-    for _ in range(rounds):
-        grown, added = [points[0]], False
-        for a, b in zip(points, points[1:], strict=False):
-            if max(math.dist(a.joints[j], b.joints[j]) for j in a.joints) > jump:
-                middle = near((a.parameters[name] + b.parameters[name]) / 2, a.parameters[other])
-                if middle is not None:
-                    grown.append(middle)
-                    added = True
-            grown.append(b)
-        points = grown
-        if not added:
-            break
-    return points
-
-
-#: A free-sign triangle whose doubled area is below this fraction of its longest side
-#: squared is flat: a piece's end there is at the domain's edge.
-FLAT = 1e-3
-
-
-def _at_edge(system: OneDofSystem, point: ConfigurationPoint) -> bool:
-    """Whether one of the plan's free-sign triangles is flat at ``point`` (FLAT)."""
-    for triangle in system.plan.free_sign_triangles:
-        corners = [point.joints[name] for name in triangle]
-        longest = max(math.dist(a, b) for a in corners for b in corners)
-        if abs(oriented_area(point, triangle)) <= FLAT * longest ** 2:
-            return True
-    return False
-
-
-def _turned(system: OneDofSystem, before: ConfigurationPoint, fold: ConfigurationPoint,
-            heading: np.ndarray) -> np.ndarray:
-    """The heading that continues a slide past a fold of the curve in the parameter it
-    slid along: along the other parameter, the way the curve was already moving in it
-    (eight-bar 9: on ++ +− the curve folds back in s1,10 at 1.3843 and goes on down in
-    s3,10; a slide in s1,10 ends there)."""
-    axis = 1 - int(np.argmax(np.abs(heading)))
-    name = system.parameter_names[axis]
-    turned = np.zeros(2)
-    turned[axis] = 1.0 if fold.parameters[name] >= before.parameters[name] else -1.0
-    return turned
-
-
-def _closure_with_gradient(system: OneDofSystem, signs: tuple[int, ...]):
-    """x (scaled parameters) ↦ (f(x), ∇f(x)) on sign vector ``signs``: one evaluation of 5
-    points (central differences, step 1e-7 of the ranges)."""
-    scale, branch, h = np.array(system.upper, float), np.array(signs)[None, :], 1e-7
-
-    def value_and_gradient(x: np.ndarray) -> tuple[float, np.ndarray]:
-        values = system.compiled.residuals(np.array([x, x + (h, 0), x - (h, 0), x + (0, h), x - (0, h)]) * scale,
-                                           branch)[0, :, 0]
-        return values[0], np.array([values[1] - values[2], values[3] - values[4]]) / (2 * h)
-
-    return value_and_gradient
-
-
-def _corrected(value_and_gradient, x: np.ndarray) -> np.ndarray | None:
-    """Newton steps along the gradient back onto f = 0, or None if they do not converge."""
-    for _ in range(NEWTON_STEPS):
-        value, g = value_and_gradient(x)
-        if not (np.isfinite(value) and np.isfinite(g).all()) or not g.any():
-            return None
-        if abs(value) < 1e-12:
-            return x
-        x = x - value * g / (g @ g)
-    value, _ = value_and_gradient(x)
-    return x if np.isfinite(value) and abs(value) < 1e-10 else None
+    for point in singular:
+        loops_there = sorted({owners[n] for n in point.pieces})
+        for other in loops_there[1:]:
+            group[root(other)] = root(loops_there[0])
+    circuits = []
+    for head in dict.fromkeys(root(n) for n in range(len(loops))):
+        members = [n for n in range(len(loops)) if root(n) == head]
+        pieces = tuple(n for n, owner in enumerate(owners) if owner in members)
+        joined = tuple(k for k, point in enumerate(branch_points) if point.pieces[0][0] in pieces)
+        places = tuple(k for k, point in enumerate(singular) if set(point.pieces) & set(pieces))
+        circuits.append(Circuit(pieces, joined, places))
+    return tuple(circuits)
 
 
 def _range(system: OneDofSystem, steps: int) -> tuple[float, float]:
@@ -507,18 +297,3 @@ def _moves(piece: Piece) -> list[tuple[int, float]]:
     """For each step along the piece, the largest distance a joint moves."""
     return [(k, max(math.dist(a.joints[j], b.joints[j]) for j in a.joints))
             for k, (a, b) in enumerate(zip(piece.points, piece.points[1:], strict=False))]
-
-
-def _branch_points(pieces: list[Piece], within: float) -> list[BranchPoint]:
-    """Piece ends on sign vectors differing in one sign whose configurations coincide to
-    ``within`` (a flat free-sign triangle: the linkage can go on along either)."""
-    ends = [(n, end, piece.points[end]) for n, piece in enumerate(pieces) if not piece.closed for end in (0, -1)]
-    found = []
-    for a, (n, end, point) in enumerate(ends):
-        for m, other_end, other in ends[a + 1:]:
-            if m == n or sum(x != y for x, y in zip(point.signs, other.signs, strict=True)) != 1:
-                continue
-            if max(math.dist(point.joints[j], other.joints[j]) for j in point.joints) <= within:
-                middle = {name: (point.parameters[name] + other.parameters[name]) / 2 for name in point.parameters}
-                found.append(BranchPoint(((n, end), (m, other_end)), middle))
-    return found

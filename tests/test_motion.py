@@ -13,12 +13,28 @@ from hypothesis import strategies as st
 
 from baranov.cli.main import main
 from baranov.motion import configurations_at, one_dof_system, sign_index, trace
-from baranov.motion.tracing import _on_piece, _scaled
 from baranov.scene import load_scene, scene_from_dict
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 #: The thesis's η: A2,4,10, A1,3,6, A1,6,5, A4,9,7, most significant first (§6.3).
 ETA = [("P2", "P4", "P10"), ("P1", "P3", "P6"), ("P1", "P6", "P5"), ("P4", "P9", "P7")]
+
+
+def _scaled(point, scale: np.ndarray) -> np.ndarray:
+    return np.array(list(point.parameters.values())) / scale
+
+
+def _on_piece(here: np.ndarray, piece, scale: np.ndarray, resolution: float) -> bool:
+    """Whether ``here`` (parameters over their bounds) lies within ``resolution`` of the
+    piece's polyline in the plane of the plan's parameters."""
+    points = np.array([_scaled(p, scale) for p in piece.points])
+    if piece.closed:
+        points = np.vstack([points, points[:1]])
+    if len(points) == 1:
+        return bool(np.linalg.norm(points[0] - here) < resolution)
+    a, b = points[:-1], points[1:]
+    t = np.clip(np.einsum("ij,ij->i", here - a, b - a) / np.maximum(np.einsum("ij,ij->i", b - a, b - a), 1e-300), 0, 1)
+    return bool(np.min(np.linalg.norm(a + t[:, None] * (b - a) - here, axis=1)) < resolution)
 
 
 @pytest.fixture(scope="module")
@@ -49,7 +65,8 @@ def test_traced_pieces_verify_and_do_not_jump(butterfly):
     scale = np.array(system.upper)
     for s16, eta in [(188.6855, 8), (122.0, 14), (98.9158, 0)]:
         start = next(p for p in configurations_at(system, 74.0) if abs(p.parameters["s1,6"] - s16) < 1e-3)
-        assert any(_on_piece(_scaled(start, scale), piece, scale, 1 / 200) and sign_index(piece.points[0], ETA) == eta
+        assert any(_on_piece(_scaled(start, scale), piece, scale, 1 / 200)
+                   and sign_index(piece.points[len(piece.points) // 2], ETA) == eta
                    for piece in traced.pieces)
 
 
@@ -64,7 +81,7 @@ def test_the_sign_combinations_of_table_6_1(butterfly):
     eleven. The traced pieces carry exactly those eleven η; a combination's curve may
     consist of several pieces (17 pieces in all), each a connected arc of it."""
     _, traced = butterfly
-    assert {sign_index(piece.points[0], ETA) for piece in traced.pieces} == TABLE_6_1
+    assert {sign_index(piece.points[len(piece.points) // 2], ETA) for piece in traced.pieces} == TABLE_6_1
 
 
 def test_traced_pieces_hold_every_slice_configuration(butterfly):
@@ -533,7 +550,8 @@ def test_a_window_of_the_range_between_the_crank_in_line_and_an_edge():
     windows = [piece for piece in traced.pieces if abs(piece.points[-1].parameters["s2,10"]
                                                        - piece.points[0].parameters["s2,10"]) < 0.01]
     assert len(windows) == 2
-    assert all(abs(abs(input_value(driver, piece.points[0])) - 180) < 1e-9 for piece in windows)
+    assert all(any(abs(abs(input_value(driver, end)) - 180) < 1e-9 for end in (piece.points[0], piece.points[-1]))
+               for piece in windows)
     found = [p.joints for p in distinct_configurations(driven_motion(system, traced, driver, [180.0]), 180.0, 360)]
     modes = _rigid_modes(scene, driver, 180.0)
     assert len(modes) == 6
@@ -625,7 +643,10 @@ def test_a_dead_point_is_reached_to_rounding():
     entries = _four_bar(*GRASHOF["double-rocker"])
     system = one_dof_system(scene_from_dict(entries))
     driver = SceneInput("crank", "angle", ("P1", "P4", "P2"))
-    pieces = [_with_extrema(system, driver, piece) for piece in trace(system).pieces]
+    from baranov.motion.continuation import linkage_curve
+
+    curve = linkage_curve(system.scene, system.plan.free_sign_triangles)
+    pieces = [_with_extrema(system, curve, driver, piece) for piece in trace(system).pieces]
     dead = math.degrees(math.acos(-1 / 3))
     assert abs(max(input_value(driver, p) for piece in pieces for p in piece.points) - dead) < 1e-9
     below, above = _configurations_at(entries, dead - 1e-5), _configurations_at(entries, dead + 1e-5)
