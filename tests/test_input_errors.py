@@ -163,6 +163,8 @@ CASES = [
          (("scene.json", json.dumps(FOUR_BAR)),)),
     Case("trace: --joints without --input", ("trace", "scene.json", "--joints"),
          (("scene.json", json.dumps(FOUR_BAR)),)),
+    Case("trace: a chord tolerance of 0", ("trace", "scene.json", "--chord", "0"),
+         (("scene.json", json.dumps(FOUR_BAR)),)),
     Case("trace: a tracer point on no link of the scene", ("trace", "scene.json"),
          (("scene.json", json.dumps({**FOUR_BAR, "tracers": [{"name": "C", "link": "d", "at": [1, 2]}]})),)),
     # baranov explore (the live page: checked before the server starts)
