@@ -170,11 +170,9 @@ def _point(point, tracers: frozenset[str] = frozenset()) -> dict:
 
 
 def _eta(piece, triangles) -> int:
-    """A piece's η, read at its middle point (its ends are branch points, where a
-    triangle is flat)."""
     from baranov.motion import sign_index
 
-    return sign_index(piece.points[len(piece.points) // 2], triangles)
+    return sign_index(piece.middle, triangles)
 
 
 def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, exact=None) -> dict:
@@ -188,7 +186,7 @@ def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, ex
         "pieces": [{"eta": _eta(piece, triangles), "signs": list(piece.signs), "closed": piece.closed,
                     "points": [_point(point, names) for point in piece.points]} for piece in traced.pieces],
         "branch_points": [{"pieces": [list(end) for end in bp.pieces], **bp.parameters,
-                           "flat": list(bp.flat) if bp.flat else None} for bp in traced.branch_points],
+                           "flat": [list(triangle) for triangle in bp.flat]} for bp in traced.branch_points],
         "singular_points": [{"pieces": list(sp.pieces), **_point(sp.point, names)} for sp in traced.singular_points],
         "loose_ends": [list(end) for end in traced.loose_ends],
         "unfinished": list(traced.unfinished),
@@ -216,7 +214,8 @@ def _print_summary(args, system, traced, triangles, degrees, driver, driven, exa
           f"({', '.join(system.parameter_names)}), {len(traced.branch_points)} branch points, "
           f"{len(traced.singular_points)} singular configurations, {len(traced.loose_ends)} piece ends not joined")
     for number, circuit in enumerate(traced.circuits):
-        print(f"circuit {number}: {len(circuit.pieces)} branches (pieces {_listed(circuit.pieces)}), "
+        branches = f"{len(circuit.pieces)} branch" + ("es" if len(circuit.pieces) != 1 else "")
+        print(f"circuit {number}: {branches} (pieces {_listed(circuit.pieces)}), "
               f"{len(circuit.branch_points)} branch points"
               + (f", singular configurations {_listed(circuit.singular_points)}" if circuit.singular_points else ""))
     for sentence in traced.unfinished:

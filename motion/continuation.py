@@ -176,11 +176,11 @@ def corrected(curve: LinkageCurve, guess: np.ndarray, normal: np.ndarray, offset
 @dataclass
 class Loop:
     """A followed loop of the curve: its points (unknowns, in order; the start first),
-    the crossings among them (point index, triangle index), the singular configurations
+    the crossings among them (point index, the triangles flat there), the singular configurations
     passed (point index after which), whether it closed, and why not."""
 
     points: list[np.ndarray]
-    crossings: list[tuple[int, int]]
+    crossings: list[tuple[int, tuple[int, ...]]]
     singular: list[int]
     closed: bool
     unfinished: str = ""
@@ -204,6 +204,8 @@ def followed_loop(curve: LinkageCurve, start: np.ndarray, chord: float, jump: fl
             loop.unfinished = f"the step fell below {SMALLEST_STEP:g} of the linkage's size"
             return loop
         y = corrected(curve, x + step * direction, direction, direction @ x + step)
+        if y is None and step < LEAP_BELOW:
+            step, y = _leap(curve, x, direction)
         if y is None:
             step /= 2
             continue
@@ -214,19 +216,16 @@ def followed_loop(curve: LinkageCurve, start: np.ndarray, chord: float, jump: fl
             continue
         new_areas = curve.areas(y)
         changed = np.flatnonzero(np.sign(new_areas) != np.sign(areas))
-        if len(changed) > 1 and step > 1e3 * SMALLEST_STEP:  # one crossing per step, each located alone
+        if len(changed) > 1 and step > LEAP_BELOW:  # one crossing per step, each located alone (unless at once)
             step /= 2
             continue
         if _passes_start(start, first_direction, x, y, travelled, step):
             # the last stretch, up to the start, may still cross a triangle
-            for triangle in np.flatnonzero(np.sign(curve.areas(start)) != np.sign(areas)):
-                loop.points.append(_crossing(curve, x, direction, float(direction @ (start - x)), int(triangle)))
-                loop.crossings.append((len(loop.points) - 1, int(triangle)))
+            _add_crossings(loop, curve, x, direction, float(direction @ (start - x)),
+                           np.flatnonzero(np.sign(curve.areas(start)) != np.sign(areas)))
             loop.closed = True
             return loop
-        for triangle in changed:
-            loop.points.append(_crossing(curve, x, direction, step, int(triangle)))
-            loop.crossings.append((len(loop.points) - 1, int(triangle)))
+        _add_crossings(loop, curve, x, direction, step, changed)
         if new_orientation != orientation:
             loop.singular.append(len(loop.points) - 1)
         loop.points.append(y)
@@ -236,6 +235,25 @@ def followed_loop(curve: LinkageCurve, start: np.ndarray, chord: float, jump: fl
             step = min(step * 1.5, jump)
     loop.unfinished = f"more than {max_points} points"
     return loop
+
+
+def _leap(curve: LinkageCurve, x: np.ndarray, direction: np.ndarray) -> tuple[float, np.ndarray | None]:
+    """Across a singular configuration: where Newton's corrections fail for every short
+    step, the augmented Jacobian [J; tᵀ] is nearly singular (two branches of the curve
+    cross ahead, as in a change-point four-bar); longer steps along the tangent are
+    corrected from the far side, the first that lands with the tangent still pointing
+    ahead taken (the branch goes on straight through the crossing)."""
+    for step in LEAPS:
+        y = corrected(curve, x + step * direction, direction, direction @ x + step)
+        if y is not None and tangent(curve, y, direction)[0] @ direction > MAX_TURN:
+            return step, y
+    return LEAP_BELOW, None
+
+
+#: Below this step a failed correction tries the longer steps LEAPS (:func:`_leap`), and
+#: two triangles turning flat within one step are taken as flat at once.
+LEAP_BELOW = 1e-7
+LEAPS = (1e-6, 1e-5, 1e-4, 1e-3)
 
 
 def _passes_start(start: np.ndarray, first_direction: np.ndarray, x: np.ndarray, y: np.ndarray, travelled: float,
@@ -251,20 +269,38 @@ def _passes_start(start: np.ndarray, first_direction: np.ndarray, x: np.ndarray,
                 and along > 0)
 
 
-def _crossing(curve: LinkageCurve, x: np.ndarray, direction: np.ndarray, step: float, triangle: int) -> np.ndarray:
-    """The configuration between ``x`` and a step on where triangle ``triangle`` is flat:
-    Brent's method on the area along the step (each value a corrected point)."""
-    def point(along: float) -> np.ndarray:
-        found = corrected(curve, x + along * direction, direction, direction @ x + along)
-        return found if found is not None else x + along * direction
+def _add_crossings(loop: Loop, curve: LinkageCurve, x: np.ndarray, direction: np.ndarray, step: float,
+                   changed: np.ndarray) -> None:
+    """The crossings of the triangles ``changed`` between ``x`` and a step on, in order
+    along it, appended to the loop; triangles flat at one place (within 1e-9 of the
+    linkage's size: all joints in line at a change point) one crossing."""
+    located = sorted((_crossing(curve, x, direction, step, int(triangle)), int(triangle)) for triangle in changed)
+    previous = None
+    for along, triangle in located:
+        if previous is not None and abs(along - previous) < 1e-9:
+            loop.crossings[-1] = (loop.crossings[-1][0], (*loop.crossings[-1][1], triangle))
+            continue
+        loop.points.append(_on_step(curve, x, direction, along))
+        loop.crossings.append((len(loop.points) - 1, (triangle,)))
+        previous = along
 
+
+def _on_step(curve: LinkageCurve, x: np.ndarray, direction: np.ndarray, along: float) -> np.ndarray:
+    """The curve's point ``along`` the step from ``x`` (in the hyperplane normal to it)."""
+    found = corrected(curve, x + along * direction, direction, direction @ x + along)
+    return found if found is not None else x + along * direction
+
+
+def _crossing(curve: LinkageCurve, x: np.ndarray, direction: np.ndarray, step: float, triangle: int) -> float:
+    """How far along a step from ``x`` triangle ``triangle`` is flat: Brent's method on
+    its area along the step (each value a corrected point); the step's end where the
+    area only touches 0."""
     def area(along: float) -> float:
-        return float(curve.areas(point(along))[triangle])
+        return float(curve.areas(_on_step(curve, x, direction, along))[triangle])
 
-    low, high = 0.0, step
-    if area(low) * area(high) > 0:  # a touch, not a crossing: the step's end
-        return point(high)
-    return point(brentq(area, low, high, xtol=1e-15, rtol=4 * np.finfo(float).eps))
+    if area(0.0) * area(step) > 0:
+        return step
+    return brentq(area, 0.0, step, xtol=1e-15, rtol=4 * np.finfo(float).eps)
 
 
 def singular_point(curve: LinkageCurve, before: np.ndarray, after: np.ndarray) -> np.ndarray:

@@ -1,6 +1,8 @@
 """Pictures of a traced configuration space (thesis Figs. 6.6–6.8): the pieces in the plane
-of the parameters, one colour per sign vector, the branch points marked; and the coupler
-curves, the path of a tracer joint along every piece, in the same colours."""
+of the parameters, one colour per sign vector, the branch points marked; the coupler
+curves, the path of a tracer joint along every piece, in the same colours; and the same
+paths coloured by circuit, the parts of the motion the linkage cannot pass between
+without being taken apart."""
 
 from __future__ import annotations
 
@@ -42,13 +44,13 @@ def trace_figure(system: OneDofSystem, traced: Trace, tracers: list[str],
     triangles = eta_triangles or list(system.plan.free_sign_triangles)
     # one colour per sign vector of the plan (a row of its own with one parameter), the
     # same in both panels, labelled with it and the thesis's η over ``triangles``
-    keys = [(sign_index(piece.points[0], triangles), signs_text(piece.signs)) for piece in traced.pieces]
+    keys = [(sign_index(piece.middle, triangles), signs_text(piece.signs)) for piece in traced.pieces]
     rows = sorted(set(keys))
     colours = plt.get_cmap("tab10" if len(rows) <= 10 else "tab20")
     colour = {key: colours(n % colours.N) for n, key in enumerate(rows)}
     label = {key: f"η = {key[0]} ({key[1]})" for key in rows}
     styles = ["-", "--", ":", "-."]
-    figure, (space, paths) = plt.subplots(1, 2, figsize=(12, 5.5))
+    figure, (space, paths, by_circuit) = plt.subplots(1, 3, figsize=(17, 5.5))
     for piece, key in zip(traced.pieces, keys, strict=True):
         u = [point.parameters[names[0]] for point in piece.points]
         v = ([point.parameters[names[-1]] for point in piece.points] if len(names) > 1
@@ -86,8 +88,41 @@ def trace_figure(system: OneDofSystem, traced: Trace, tracers: list[str],
         paths.legend([Line2D([], [], color="black", linestyle=styles[n % len(styles)]) for n in range(len(tracers))],
                      tracers, fontsize=7, title="tracer", title_fontsize=7)
     fixed = fixed or system.scene.world
-    paths.plot([p[0] for p in fixed.values()], [p[1] for p in fixed.values()], "k^", ms=7)
-    paths.set_aspect("equal")
+    for axes in (paths, by_circuit):
+        axes.plot([p[0] for p in fixed.values()], [p[1] for p in fixed.values()], "k^", ms=7)
+        axes.set_aspect("equal")
     paths.set_title(f"coupler curves of {', '.join(tracers)} (fixed joints ▲)")
+    _draw_circuits(by_circuit, traced, tracers, styles)
     figure.tight_layout()
     return figure
+
+
+def _draw_circuits(axes, traced: Trace, tracers: list[str], styles: list[str]) -> None:
+    """The tracers' paths, one colour per circuit, its branch points as dots and the
+    singular configurations as crosses."""
+    import matplotlib.pyplot as plt
+
+    colours = plt.get_cmap("tab10" if len(traced.circuits) <= 10 else "tab20")
+    for number, circuit in enumerate(traced.circuits):
+        colour = colours(number % colours.N)
+        for n in circuit.pieces:
+            piece = traced.pieces[n]
+            points = list(piece.points) + ([piece.points[0]] if piece.closed else [])
+            for k, tracer in enumerate(tracers):
+                axes.plot([p.joints[tracer][0] for p in points], [p.joints[tracer][1] for p in points], color=colour,
+                          lw=1.2, linestyle=styles[k % len(styles)],
+                          label=f"circuit {number} ({_branches(len(circuit.pieces))})"
+                          if n == circuit.pieces[0] and k == 0 else None)
+        ends = [traced.pieces[traced.branch_points[b].pieces[0][0]].points[-1] for b in circuit.branch_points]
+        for tracer in tracers:
+            axes.plot([p.joints[tracer][0] for p in ends], [p.joints[tracer][1] for p in ends], "o", color=colour, ms=3)
+    for point in traced.singular_points:
+        for tracer in tracers:
+            axes.plot(*point.point.joints[tracer], "rx", ms=8)
+    if traced.circuits:
+        axes.legend(fontsize=7, title="circuit (branch points ●)", title_fontsize=7)
+    axes.set_title(f"{len(traced.circuits)} circuits: the same paths by circuit")
+
+
+def _branches(count: int) -> str:
+    return f"{count} branch" + ("es" if count != 1 else "")

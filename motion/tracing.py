@@ -54,16 +54,22 @@ class Piece:
     points: tuple[ConfigurationPoint, ...]
     closed: bool = False
 
+    @property
+    def middle(self) -> ConfigurationPoint:
+        """Its middle point: its ends are branch points, where a triangle is flat and its
+        sign is not the piece's."""
+        return self.points[len(self.points) // 2]
+
 
 @dataclass(frozen=True)
 class BranchPoint:
-    """Where a free-sign triangle (``flat``) is flat: the ends of two pieces (index, 0
-    for the first point or -1 for the last) that meet there, and the plan's parameters
-    there."""
+    """Where free-sign triangles (``flat``: one, or several where they turn flat at one
+    configuration) are flat: the ends of two pieces (index, 0 for the first point or -1
+    for the last) that meet there, and the plan's parameters there."""
 
     pieces: tuple[tuple[int, int], tuple[int, int]]
     parameters: dict[str, float]
-    flat: tuple[str, str, str] | None = None
+    flat: tuple[tuple[str, str, str], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -191,7 +197,7 @@ def _loop_pieces(system: OneDofSystem, curve: LinkageCurve, loop: Loop,
     points joining consecutive ones (module docstring)."""
     points = configurations_on_curve(system, curve, loop.points)
     cuts = [k for k, _ in loop.crossings]
-    triangles = [system.plan.free_sign_triangles[t] for _, t in loop.crossings]
+    triangles = [tuple(system.plan.free_sign_triangles[t] for t in flat) for _, flat in loop.crossings]
     if not cuts:
         return [Piece(_signs(points[len(points) // 2]), tuple(points), loop.closed)], []
     if loop.closed:  # from the first crossing round to it again

@@ -245,7 +245,7 @@ def test_the_command_lists_the_circuits(capsys, tmp_path):
     out = capsys.readouterr().out
     assert "4 circuits, 27 pieces in (s1,10, s3,10), 26 branch points, 0 singular configurations, " \
            "0 piece ends not joined" in out
-    assert "circuit 2: 1 branches (pieces 22), 0 branch points" in out
+    assert "circuit 2: 1 branch (pieces 22), 0 branch points" in out
     assert main(["trace", str(path), "--json"]) == 0
     result = json.loads(capsys.readouterr().out)
     assert len(result["circuits"]) == 4 and result["loose_ends"] == [] and result["unfinished"] == []
@@ -255,3 +255,29 @@ def test_the_command_lists_the_circuits(capsys, tmp_path):
 
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+@pytest.mark.parametrize(("kind", "lengths", "circuits", "singular"), [
+    ("crank-rocker", (7, 2, 6, 5), 2, 0), ("double-crank", (2, 6, 7, 5), 2, 0), ("double-rocker", (6, 5, 2, 7), 2, 0),
+    ("triple-rocker", (5, 3, 4, 7), 1, 0), ("change-point", (5, 2, 4, 3), 1, 1)])
+def test_four_bars_have_the_classical_circuits(kind, lengths, circuits, singular):
+    """Four-bars (frame, crank, coupler, rocker): a Grashof linkage (s + l < p + q) has two
+    circuits, the two assembly configurations it cannot pass between; a non-Grashof one
+    (a triple-rocker) one; at the change point (s + l = p + q) the two circuits meet at a
+    singular configuration, every joint in line, and are one (Chase and Mirth 1993)."""
+    from baranov.scene import scene_from_dict
+
+    frame, crank, coupler, rocker = lengths
+    system = one_dof_system(scene_from_dict({"ground": "frame", "links": [
+        {"name": "frame", "joints": {"P1": [0, 0], "P4": [frame, 0]}},
+        {"name": "crank", "joints": ["P1", "P2"], "squared_length": crank ** 2},
+        {"name": "coupler", "joints": ["P2", "P3"], "squared_length": coupler ** 2},
+        {"name": "rocker", "joints": ["P3", "P4"], "squared_length": rocker ** 2}]}))
+    traced = trace(system)
+    assert (len(traced.circuits), len(traced.singular_points)) == (circuits, singular)
+    assert traced.loose_ends == () and traced.unfinished == ()
+    if singular:
+        joints = traced.singular_points[0].point.joints
+        assert all(abs(y) < 1e-6 for _, y in joints.values())  # every joint on the frame's line
+    else:
+        assert assert_traced_once(system, traced, np.random.default_rng(1)) is None

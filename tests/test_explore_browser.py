@@ -168,7 +168,8 @@ def test_a_followed_piece_is_drawn_as_the_mode_it_passes_through(page_of):
     the linkage held there)."""
     page = page_of("stephenson-six-bar.json")
     page.wait_for_function("window.explorer.state.motion != null")
-    for index in (10, 30, 50):
+    count = len(page.evaluate("window.explorer.state.motion.pieces[2]")["inputs"])
+    for index in (count // 5, count // 2, 4 * count // 5):
         page.evaluate("k => window.explorer.follow(2, k)", index)
         page.evaluate("window.explorer.idle()")
         piece = page.evaluate("window.explorer.state.motion.pieces[2]")

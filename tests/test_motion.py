@@ -66,7 +66,7 @@ def test_traced_pieces_verify_and_do_not_jump(butterfly):
     for s16, eta in [(188.6855, 8), (122.0, 14), (98.9158, 0)]:
         start = next(p for p in configurations_at(system, 74.0) if abs(p.parameters["s1,6"] - s16) < 1e-3)
         assert any(_on_piece(_scaled(start, scale), piece, scale, 1 / 200)
-                   and sign_index(piece.points[len(piece.points) // 2], ETA) == eta
+                   and sign_index(piece.middle, ETA) == eta
                    for piece in traced.pieces)
 
 
@@ -81,7 +81,7 @@ def test_the_sign_combinations_of_table_6_1(butterfly):
     eleven. The traced pieces carry exactly those eleven η; a combination's curve may
     consist of several pieces (17 pieces in all), each a connected arc of it."""
     _, traced = butterfly
-    assert {sign_index(piece.points[len(piece.points) // 2], ETA) for piece in traced.pieces} == TABLE_6_1
+    assert {sign_index(piece.middle, ETA) for piece in traced.pieces} == TABLE_6_1
 
 
 def test_traced_pieces_hold_every_slice_configuration(butterfly):
@@ -751,7 +751,7 @@ def test_trace_pictures_name_every_colour_they_draw():
     system = one_dof_system(scene)
     traced = traced_with_tracer_points(scene, trace(system))
     figure = trace_figure(system, traced, ["C"])
-    space, paths = figure.axes
+    space, paths, _ = figure.axes
     labels = [tick.get_text() for tick in space.get_yticklabels()]
     assert sorted(label.split("(")[1].rstrip(")") for label in labels) == \
         sorted({signs_text(piece.signs) for piece in traced.pieces})
