@@ -8,8 +8,8 @@ Grübler chains are enumerated in :mod:`baranov.enumerate.grubler` and planned b
 from .configuration_space import ConfigurationPoint, OneDofSystem, configurations_at, one_dof_system, sign_index
 from .coupler_curves import CouplerCurveError, coupler_curve_degree
 from .exact_ranges import ExactRange, ExactRanges, RangeEnd, certified_pieces, exact_ranges
-from .tracing import BranchPoint, Piece, Trace, trace
+from .tracing import BranchPoint, Circuit, Piece, SingularPoint, Trace, circuit_of, trace
 
-__all__ = ["BranchPoint", "ConfigurationPoint", "CouplerCurveError", "ExactRange", "ExactRanges", "OneDofSystem", "Piece",
-           "RangeEnd", "Trace", "certified_pieces", "configurations_at", "coupler_curve_degree", "exact_ranges",
-           "one_dof_system", "sign_index", "trace"]
+__all__ = ["BranchPoint", "Circuit", "ConfigurationPoint", "CouplerCurveError", "ExactRange", "ExactRanges",
+           "OneDofSystem", "Piece", "RangeEnd", "SingularPoint", "Trace", "certified_pieces", "circuit_of",
+           "configurations_at", "coupler_curve_degree", "exact_ranges", "one_dof_system", "sign_index", "trace"]

@@ -287,6 +287,39 @@ def _circuits(loops: list[Loop], owners: list[int], branch_points: list[BranchPo
     return tuple(circuits)
 
 
+def circuit_of(traced: Trace, joints: dict[str, tuple[float, float]]) -> tuple[int, float]:
+    """The circuit of ``traced`` a configuration (joint name → place, the scene's joints)
+    lies on: the index of the circuit whose pieces pass nearest it, and that distance (the
+    largest over the joints, from the nearest traced point: at most about the chord
+    tolerance plus half a step for a configuration of the linkage). Two configurations
+    the linkage can move between without being taken apart have the same circuit. Cost:
+    linear in the traced points.
+
+    >>> from baranov.motion import one_dof_system, trace
+    >>> from baranov.scene import scene_from_dict
+    >>> four_bar = scene_from_dict({"ground": "frame", "links": [
+    ...     {"name": "frame", "joints": {"P1": [0, 0], "P4": [7, 0]}},
+    ...     {"name": "crank", "joints": ["P1", "P2"], "squared_length": 4},
+    ...     {"name": "coupler", "joints": ["P2", "P3"], "squared_length": 36},
+    ...     {"name": "rocker", "joints": ["P3", "P4"], "squared_length": 25}]})
+    >>> traced = trace(one_dof_system(four_bar))
+    >>> up = {"P1": (0, 0), "P2": (2, 0), "P3": (5.6, 4.8), "P4": (7, 0)}
+    >>> down = {"P1": (0, 0), "P2": (2, 0), "P3": (5.6, -4.8), "P4": (7, 0)}
+    >>> len(traced.circuits), circuit_of(traced, up)[0] != circuit_of(traced, down)[0]
+    (2, True)
+    """
+    names = sorted(joints)
+    target = np.array([joints[name] for name in names], float)
+    best = (-1, math.inf)
+    for number, circuit in enumerate(traced.circuits):
+        for n in circuit.pieces:
+            points = np.array([[point.joints[name] for name in names] for point in traced.pieces[n].points], float)
+            distance = float(np.linalg.norm(points - target, axis=2).max(axis=1).min())
+            if distance < best[1]:
+                best = (number, distance)
+    return best
+
+
 def _range(system: OneDofSystem, steps: int) -> tuple[float, float]:
     """The stretch of the first parameter where configurations exist, found on a coarse
     sweep of (0, upper] and widened by one coarse step each side (then clipped)."""
