@@ -154,11 +154,10 @@ def _grubler_cases():
     from baranov.enumerate.grubler import grubler_chains
 
     chains = [(links, n, chain) for links in (4, 6, 8) for n, chain in enumerate(grubler_chains(links))]
-    # all sixteen eight-bars together took 31.7 s beside the CI (the four two-distance ones 5-25 s each)
-    slow = {(8, 2), (8, 7)}  # 28 s and 20 s (2026-11-28): the two-distance eight-bars, in make test-slow
-    return [pytest.param(chain, seed, id=f"{links}-{n}-seed{seed}",
-                         marks=[pytest.mark.slow] if (links, n) in slow else [])
-            for links, n, chain in chains for seed in range(2 if links < 8 else 1)]
+    # the slowest, 8-2 and 8-7 (two distances), 3.5 s and 2.4 s alone (28 s and 20 s before
+    # the curve was followed in joint space)
+    return [pytest.param(chain, seed, id=f"{links}-{n}-seed{seed}") for links, n, chain in chains
+            for seed in range(2 if links < 8 else 1)]
 
 
 @pytest.mark.parametrize(("chain", "seed"), _grubler_cases())
@@ -489,9 +488,8 @@ def _with_a_crank(chain, rng) -> dict:
     raise AssertionError("no link with a crank pinned to it")
 
 
-@pytest.mark.slow  # 23 s (2026-11-28)
 def test_driven_double_butterfly_equals_the_rigidified_chains():
-    """d = 2 (Newton on the closure condition and the input): the double butterfly
+    """d = 2 (under 2 s; 23 s before the curve was followed in joint space): the double butterfly
     driven by the angle of P1P5 at P1 from P2, at six random angles within its range:
     the rigidified seven-link chains' modes, all and only."""
     import json
@@ -500,11 +498,11 @@ def test_driven_double_butterfly_equals_the_rigidified_chains():
     assert _driven_equals_rigid_solves(entries, np.random.default_rng(6), 6) > 0
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("index", range(16))
 def test_driven_eight_bars_equal_the_rigidified_chains(index):
     """Every eight-bar Grübler chain, a random integer configuration with a crank pinned
-    to the fixed link (measured: 0.4-25 s each, the four two-distance chains slowest)."""
+    to the fixed link (measured: 0.5-2.5 s each; 0.4-25 s before the curve was followed in
+    joint space)."""
     from baranov.enumerate.crosscheck import find_geng
     from baranov.enumerate.grubler import grubler_chains
 
