@@ -83,6 +83,12 @@ def run_trace(args: argparse.Namespace) -> int:
     traced = trace(system, steps=args.steps, chord=args.chord)
     exact = _exact_ranges(system, traced)
     driven = _driven(system, traced, driver, args.grid) if driver is not None else []
+    if driver is not None:
+        from baranov.motion.dead_points import dead_points
+
+        dead = dead_points(system, traced, driver)
+    else:
+        dead = []
     if scene.tracers:
         from baranov.motion.tracer_paths import driven_with_tracer_points, traced_with_tracer_points
 
@@ -101,9 +107,10 @@ def run_trace(args: argparse.Namespace) -> int:
     if args.animate is not None:
         _animate(args.animate, scene, traced, driven, tracers, driver)
     if args.json:
-        print(json.dumps(_as_json(args, scene, system, traced, triangles, degrees, driver, driven, exact), indent=1))
+        print(json.dumps(_as_json(args, scene, system, traced, triangles, degrees, driver, driven, exact, dead),
+                         indent=1))
     else:
-        _print_summary(args, system, traced, triangles, degrees, driver, driven, exact)
+        _print_summary(args, system, traced, triangles, degrees, driver, driven, exact, dead)
     return 0
 
 
@@ -175,7 +182,7 @@ def _eta(piece, triangles) -> int:
     return sign_index(piece.middle, triangles)
 
 
-def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, exact=None) -> dict:
+def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, exact=None, dead=()) -> dict:
     names = frozenset(tracer.name for tracer in scene.tracers)
     result = {
         "parameters": list(system.parameter_names),
@@ -201,12 +208,14 @@ def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, ex
     if args.degree:
         result["coupler_curve_degrees"] = degrees
     if driver is not None:
+        result["dead_points"] = [{"circuit": point.circuit, "value": point.value, "maximum": point.maximum,
+                                  **_point(point.point)} for point in dead]
         result["driven"] = [{"piece": branch.piece, "input": driver.name, "values": list(branch.values),
                              "points": [_point(point, names) for point in branch.points]} for branch in driven]
     return result
 
 
-def _print_summary(args, system, traced, triangles, degrees, driver, driven, exact=None) -> None:
+def _print_summary(args, system, traced, triangles, degrees, driver, driven, exact=None, dead=()) -> None:
     from .output import joint_lines
 
     noun = "circuit" if len(traced.circuits) == 1 else "circuits"
@@ -249,8 +258,21 @@ def _print_summary(args, system, traced, triangles, degrees, driver, driven, exa
             for value, point in zip(branch.values, branch.points, strict=True) if args.joints else ():
                 lines = joint_lines(point.joints, indent=8)
                 print(f"    {driver.name} = {value:.6g}{unit}:\n" + "\n".join(lines))
+        _print_dead_points(traced, driver, dead, unit)
     if degrees:
         print("coupler-curve degrees: " + ", ".join(f"{where} {degree}" for where, degree in degrees.items()))
+
+
+def _print_dead_points(traced, driver, dead, unit: str) -> None:
+    """Per circuit, the input's dead points and the branches they cut it into (Chase and
+    Mirth: none, one branch driven round in full)."""
+    for number in range(len(traced.circuits)):
+        here = [point for point in dead if point.circuit == number]
+        values = ", ".join(f"{'max' if point.maximum else 'min'} {point.value:.6g}{unit}" for point in here)
+        branches = max(len(here), 1)
+        noun = "dead point" if len(here) == 1 else "dead points"
+        print(f"  circuit {number}: {len(here)} {noun} of {driver.name}" + (f" ({values})" if here else "")
+              + f", {branches} branch{'es' if branches != 1 else ''} relative to it")
 
 
 def _listed(numbers) -> str:

@@ -7,9 +7,10 @@ Grübler chains are enumerated in :mod:`baranov.enumerate.grubler` and planned b
 
 from .configuration_space import ConfigurationPoint, OneDofSystem, configurations_at, one_dof_system, sign_index
 from .coupler_curves import CouplerCurveError, coupler_curve_degree
+from .dead_points import DeadPoint, dead_points
 from .exact_ranges import ExactRange, ExactRanges, RangeEnd, certified_pieces, exact_ranges
 from .tracing import BranchPoint, Circuit, Piece, SingularPoint, Trace, circuit_of, trace
 
-__all__ = ["BranchPoint", "Circuit", "ConfigurationPoint", "CouplerCurveError", "ExactRange", "ExactRanges",
+__all__ = ["BranchPoint", "Circuit", "ConfigurationPoint", "CouplerCurveError", "DeadPoint", "ExactRange", "ExactRanges",
            "OneDofSystem", "Piece", "RangeEnd", "SingularPoint", "Trace", "certified_pieces", "circuit_of",
-           "configurations_at", "coupler_curve_degree", "exact_ranges", "one_dof_system", "sign_index", "trace"]
+           "configurations_at", "coupler_curve_degree", "dead_points", "exact_ranges", "one_dof_system", "sign_index", "trace"]

@@ -86,11 +86,10 @@ def driven_motion(system: OneDofSystem, traced: Trace, driver: SceneInput, grid)
 
 def _with_extrema(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, piece: Piece) -> Piece:
     """``piece`` with the configuration at each local extremum of the input along it
-    added (a bounded scalar search along the chords on either side of the point where the
-    input turns, each value a point of the curve: :func:`~.continuation.on_chord`): a dead
-    point of the input (a four-bar rocker's extreme angle) lies between two traced
-    points, and the values between the higher one and the extremum would be missed (a
-    double-rocker's crank: 109.4633° traced, 109.4712° = arccos(−1/3) reached)."""
+    added (:func:`input_extremum`): a dead point of the input (a four-bar rocker's extreme
+    angle) lies between two traced points, and the values between the higher one and the
+    extremum would be missed (a double-rocker's crank: 109.4633° traced, 109.4712° =
+    arccos(−1/3) reached)."""
     points = list(piece.points)
     inputs = [input_value(driver, point) for point in points]
     steps = [_turned(driver, after - before) for before, after in zip(inputs, inputs[1:], strict=False)]
@@ -98,24 +97,35 @@ def _with_extrema(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput,
     for k in range(1, len(points) - 1):
         if steps[k - 1] * steps[k] >= 0:
             continue
-        sign = 1.0 if steps[k - 1] > 0 else -1.0  # a maximum: minimise −input
         ends = [curve.unknowns_of(points[n].joints) for n in (k - 1, k, k + 1)]
-
-        def at(along: float, ends=ends) -> np.ndarray | None:  # 0 to 1: the first chord; 1 to 2: the second
-            first = 0 if along < 1 else 1
-            return on_chord(curve, ends[first], ends[first + 1], along - first)
-
-        def negated(along: float, sign=sign, reference=inputs[k], at=at) -> float:
-            x = at(along)
-            return math.inf if x is None else -sign * _turned(driver, _input_at(system, curve, driver, x) - reference)
-
-        best = minimize_scalar(negated, bounds=(0.0, 2.0), method="bounded", options={"xatol": 1e-12})
-        x = at(best.x)
-        if x is not None and abs(best.x - 1.0) > 1e-12:
-            added.append((k, best.x > 1.0, _with_signs(configurations_on_curve(system, curve, [x])[0], piece.signs)))
+        along, x = input_extremum(curve, driver, ends, inputs[k], steps[k - 1] > 0)
+        if abs(along - 1.0) > 1e-12:
+            added.append((k, along > 1.0, _with_signs(configurations_on_curve(system, curve, [x])[0], piece.signs)))
     for k, later, point in reversed(added):
         points.insert(k + 1 if later else k, point)
     return Piece(piece.signs, tuple(points), piece.closed)
+
+
+def input_extremum(curve: LinkageCurve, driver: SceneInput, ends: list[np.ndarray], reference: float,
+                   maximum: bool) -> tuple[float, np.ndarray]:
+    """Where the input (``reference`` at the middle one of three neighbouring points
+    ``ends`` of a traced piece, as unknowns of ``curve``) is largest (``maximum``) or
+    smallest between them: a bounded scalar search over ``along`` from 0 to 2 (the first
+    chord, then the second), each value a point of the curve
+    (:func:`~.continuation.on_chord`), to 1e-12 of a chord. Returns ``along`` and the
+    curve's point there."""
+    def at(along: float) -> np.ndarray | None:
+        first = 0 if along < 1 else 1
+        return on_chord(curve, ends[first], ends[first + 1], along - first)
+
+    def negated(along: float) -> float:
+        x = at(along)
+        offset = math.inf if x is None else _turned(driver, _input_of(curve, driver, x) - reference)
+        return -offset if maximum else offset
+
+    best = minimize_scalar(negated, bounds=(0.0, 2.0), method="bounded", options={"xatol": 1e-12})
+    x = at(best.x)
+    return (best.x, x) if x is not None else (1.0, ends[1])
 
 
 def _same(first: ConfigurationPoint, second: ConfigurationPoint, tolerance: float = 1e-7) -> bool:
@@ -209,7 +219,7 @@ def _refined(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, befo
 
     def offset(along: float) -> float:
         x = on_chord(curve, first, last, along)
-        return math.inf if x is None else _turned(driver, _input_at(system, curve, driver, x) - target)
+        return math.inf if x is None else _turned(driver, _input_of(curve, driver, x) - target)
 
     try:
         along = brentq(offset, 0.0, 1.0, xtol=1e-14)
@@ -219,7 +229,7 @@ def _refined(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, befo
     return None if x is None else _with_signs(configurations_on_curve(system, curve, [x])[0], before.signs)
 
 
-def _input_at(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, x: np.ndarray) -> float:
+def _input_of(curve: LinkageCurve, driver: SceneInput, x: np.ndarray) -> float:
     """The input's value at unknowns ``x`` of the curve."""
     at = curve.positions(x)
     joints = {name: (at[name].real * curve.size, at[name].imag * curve.size) for name in driver.joints}

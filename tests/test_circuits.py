@@ -257,6 +257,18 @@ def test_the_command_lists_the_circuits(capsys, tmp_path):
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
+def _four_bar(frame: int, crank: int, coupler: int, rocker: int):
+    """The one-DOF system of a four-bar: frame P1 P4 on the x axis, crank P1 P2, coupler
+    P2 P3, rocker P3 P4."""
+    from baranov.scene import scene_from_dict
+
+    return one_dof_system(scene_from_dict({"ground": "frame", "links": [
+        {"name": "frame", "joints": {"P1": [0, 0], "P4": [frame, 0]}},
+        {"name": "crank", "joints": ["P1", "P2"], "squared_length": crank ** 2},
+        {"name": "coupler", "joints": ["P2", "P3"], "squared_length": coupler ** 2},
+        {"name": "rocker", "joints": ["P3", "P4"], "squared_length": rocker ** 2}]}))
+
+
 @pytest.mark.parametrize(("kind", "lengths", "circuits", "singular"), [
     ("crank-rocker", (7, 2, 6, 5), 2, 0), ("double-crank", (2, 6, 7, 5), 2, 0), ("double-rocker", (6, 5, 2, 7), 2, 0),
     ("triple-rocker", (5, 3, 4, 7), 1, 0), ("change-point", (5, 2, 4, 3), 1, 1)])
@@ -265,14 +277,7 @@ def test_four_bars_have_the_classical_circuits(kind, lengths, circuits, singular
     circuits, the two assembly configurations it cannot pass between; a non-Grashof one
     (a triple-rocker) one; at the change point (s + l = p + q) the two circuits meet at a
     singular configuration, every joint in line, and are one (Chase and Mirth 1993)."""
-    from baranov.scene import scene_from_dict
-
-    frame, crank, coupler, rocker = lengths
-    system = one_dof_system(scene_from_dict({"ground": "frame", "links": [
-        {"name": "frame", "joints": {"P1": [0, 0], "P4": [frame, 0]}},
-        {"name": "crank", "joints": ["P1", "P2"], "squared_length": crank ** 2},
-        {"name": "coupler", "joints": ["P2", "P3"], "squared_length": coupler ** 2},
-        {"name": "rocker", "joints": ["P3", "P4"], "squared_length": rocker ** 2}]}))
+    system = _four_bar(*lengths)
     traced = trace(system)
     assert (len(traced.circuits), len(traced.singular_points)) == (circuits, singular)
     assert traced.loose_ends == () and traced.unfinished == ()
@@ -281,3 +286,30 @@ def test_four_bars_have_the_classical_circuits(kind, lengths, circuits, singular
         assert all(abs(y) < 1e-6 for _, y in joints.values())  # every joint on the frame's line
     else:
         assert assert_traced_once(system, traced, np.random.default_rng(1)) is None
+
+
+def _degrees(cosine: float) -> float:
+    import math
+
+    return math.degrees(math.acos(cosine))
+
+
+@pytest.mark.parametrize(("lengths", "joints", "per_circuit", "extremes"), [
+    ((7, 2, 6, 5), ("P1", "P4", "P2"), [0, 0], []),  # crank-rocker, its crank turns round
+    ((7, 2, 6, 5), ("P4", "P1", "P3"), [2, 2], [_degrees(10 / 70), _degrees(58 / 70)]),  # its rocker: crank in line
+    ((2, 6, 7, 5), ("P1", "P4", "P2"), [0, 0], []),  # double-crank
+    ((6, 5, 2, 7), ("P1", "P4", "P2"), [2, 2], [_degrees(-1 / 3), _degrees(0.6)]),  # double-rocker
+    ((5, 3, 4, 7), ("P1", "P4", "P2"), [2], [_degrees(25 / 30)])])  # triple-rocker: between ±33.56°
+def test_dead_points_cut_circuits_into_branches(lengths, joints, per_circuit, extremes):
+    """Chase and Mirth's branches relative to an input: a four-bar's input is stationary
+    where the other two moving links are in line (law of cosines for the extreme angles);
+    each circuit with k > 0 dead points has k branches, a crank that turns round none."""
+    from baranov.motion.dead_points import dead_points
+    from baranov.scene import SceneInput
+
+    system = _four_bar(*lengths)
+    traced = trace(system)
+    found = dead_points(system, traced, SceneInput("input", "angle", joints))
+    assert [sum(point.circuit == n for point in found) for n in range(len(traced.circuits))] == per_circuit
+    assert sorted({round(abs(point.value), 6) for point in found}) == sorted(round(value, 6) for value in extremes)
+    assert all(abs(abs(point.value) - min(extremes, key=lambda e: abs(e - abs(point.value)))) < 1e-7 for point in found)
