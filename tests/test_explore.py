@@ -319,6 +319,7 @@ def test_the_traced_motion_passes_through_the_configurations_drawn():
     document = load_document(EXAMPLES / "four-bar-coupler-point.json")
     motion = traced_motion(document, {})
     assert motion["points"] == ["C"] and motion["loose_ends"] == 0
+    assert len(motion["circuits"]) == 2 and {piece["circuit"] for piece in motion["pieces"]} == {0, 1}  # Grashof
     assert all(len(piece["paths"]["C"]) == len(piece["inputs"]) for piece in motion["pieces"])
     frame = solve_frame(document, {"input crank": 45.0})
     u, v = motion["parameter_joints"]

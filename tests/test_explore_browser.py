@@ -149,6 +149,7 @@ def test_a_moving_linkage_shows_its_motion_and_follows_its_input(page_of):
     page.wait_for_function("window.explorer.state.motion != null")
     assert page.evaluate("document.querySelectorAll('#motion .piece').length") >= 1
     assert page.evaluate("document.querySelectorAll('#drawing .path').length") >= 1
+    assert page.inner_text("#motion-note").startswith("(2 circuits, 4 pieces")
     box = page.locator("#motion").bounding_box()
     page.mouse.click(box["x"] + 0.75 * box["width"], box["y"] + box["height"] / 2)  # the crank at 90°
     page.evaluate("window.explorer.idle()")

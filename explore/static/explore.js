@@ -334,7 +334,8 @@ function requestTrace() {
       const input = state.document.controls.find(c => c.name === motion.input);
       $("motion-input").textContent = input ? label(input) : motion.input;
       $("motion-parameter").textContent = motion.parameter;
-      $("motion-note").textContent = `(${motion.pieces.length} pieces, ${motion.branch_points} branch points` +
+      $("motion-note").textContent = `(${motion.circuits.length} circuit${motion.circuits.length === 1 ? "" : "s"}, ` +
+        `${motion.pieces.length} pieces, ${motion.branch_points} branch points` +
         (motion.loose_ends ? `, ${motion.loose_ends} piece ends not joined)` : ")");
       state.shownPoints = new Set(motion.points);
       state.follow = null;
