@@ -199,7 +199,7 @@ def _loop_pieces(system: OneDofSystem, curve: LinkageCurve, loop: Loop,
     cuts = [k for k, _ in loop.crossings]
     triangles = [tuple(system.plan.free_sign_triangles[t] for t in flat) for _, flat in loop.crossings]
     if not cuts:
-        return [Piece(_signs(points[len(points) // 2]), tuple(points), loop.closed)], []
+        return [Piece(_piece_signs(points), tuple(points), loop.closed)], []
     if loop.closed:  # from the first crossing round to it again
         spans = [(a, b) for a, b in zip(cuts, cuts[1:], strict=False)] + [(cuts[-1], cuts[0] + len(points))]
         joints = list(zip(range(len(cuts)), [*range(1, len(cuts)), 0], triangles[1:] + triangles[:1], strict=True))
@@ -209,7 +209,7 @@ def _loop_pieces(system: OneDofSystem, curve: LinkageCurve, loop: Loop,
     pieces = []
     for a, b in spans:
         stretch = [points[k % len(points)] for k in range(a, b + 1)]
-        signs = _signs(stretch[len(stretch) // 2]) if len(stretch) > 2 else _signs_between(stretch)
+        signs = _piece_signs(stretch)
         pieces.append(Piece(signs, tuple(AssemblyMode(p.parameters, signs, p.joints, p.max_residual) for p in stretch)))
     branch_points = [BranchPoint(((first + a, -1), (first + b, 0)), pieces[b].points[0].parameters, triangle)
                      for a, b, triangle in joints]
@@ -229,19 +229,19 @@ def configurations_on_curve(system: OneDofSystem, curve: LinkageCurve, points: l
         joints = {name: (value.real, value.imag) for name, value in zip(names, row, strict=True)}
         parameters = {name: (joints[u][0] - joints[v][0]) ** 2 + (joints[u][1] - joints[v][1]) ** 2
                       for name, (u, v) in zip(system.parameter_names, system.plan.parameters, strict=True)}
-        signs = tuple(int(s) for s in np.sign(np.where(np.abs(curve.areas(x)) < 1e-14, 0.0, curve.areas(x))))
+        areas = curve.areas(x)
+        signs = tuple(int(s) for s in np.sign(np.where(np.abs(areas) < 1e-14, 0.0, areas)))
         found.append(AssemblyMode(parameters, signs, joints, float(residual)))
     return found
 
 
-def _signs(point: ConfigurationPoint) -> tuple[int, ...]:
-    return point.signs
-
-
-def _signs_between(stretch: list[ConfigurationPoint]) -> tuple[int, ...]:
-    """The sign vector of a piece of two or three points (a short arc between crossings):
-    at each triangle, the sign that is not 0 among its points."""
-    return tuple(next((p.signs[k] for p in stretch if p.signs[k] != 0), 1) for k in range(len(stretch[0].signs)))
+def _piece_signs(stretch: list[ConfigurationPoint]) -> tuple[int, ...]:
+    """The sign vector of a piece: at each triangle, its sign at the point nearest the
+    piece's middle where it is not flat (the ends are branch points, flat)."""
+    middle = len(stretch) // 2
+    outward = sorted(range(len(stretch)), key=lambda k: abs(k - middle))
+    return tuple(next((stretch[k].signs[t] for k in outward if stretch[k].signs[t] != 0), 1)
+                 for t in range(len(stretch[0].signs)))
 
 
 def _singular_points(system: OneDofSystem, curve: LinkageCurve, loops: list[Loop],
