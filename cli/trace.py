@@ -63,7 +63,7 @@ def _triangles(text: str | None, default) -> list[tuple[str, str, str]]:
 
 def run_trace(args: argparse.Namespace) -> int:
     """Trace the scene's configuration space; print a summary, or JSON; draw it."""
-    from baranov.motion import one_dof_system, trace
+    from baranov.motion import dead_points, one_dof_system, trace
     from baranov.scene import load_scene
 
     from .main import UsageError, check_picture, write_picture
@@ -83,12 +83,7 @@ def run_trace(args: argparse.Namespace) -> int:
     traced = trace(system, steps=args.steps, chord=args.chord)
     exact = _exact_ranges(system, traced)
     driven = _driven(system, traced, driver, args.grid) if driver is not None else []
-    if driver is not None:
-        from baranov.motion.dead_points import dead_points
-
-        dead = dead_points(system, traced, driver)
-    else:
-        dead = []
+    dead = dead_points(system, traced, driver) if driver is not None else []  # in the scene's frame, before --fixed
     if scene.tracers:
         from baranov.motion.tracer_paths import driven_with_tracer_points, traced_with_tracer_points
 
@@ -216,6 +211,8 @@ def _as_json(args, scene, system, traced, triangles, degrees, driver, driven, ex
 
 
 def _print_summary(args, system, traced, triangles, degrees, driver, driven, exact=None, dead=()) -> None:
+    from baranov.motion.drawing import branches_text
+
     from .output import joint_lines
 
     noun = "circuit" if len(traced.circuits) == 1 else "circuits"
@@ -223,8 +220,7 @@ def _print_summary(args, system, traced, triangles, degrees, driver, driven, exa
           f"({', '.join(system.parameter_names)}), {len(traced.branch_points)} branch points, "
           f"{len(traced.singular_points)} singular configurations, {len(traced.loose_ends)} piece ends not joined")
     for number, circuit in enumerate(traced.circuits):
-        branches = f"{len(circuit.pieces)} branch" + ("es" if len(circuit.pieces) != 1 else "")
-        print(f"circuit {number}: {branches} (pieces {_listed(circuit.pieces)}), "
+        print(f"circuit {number}: {branches_text(len(circuit.pieces))} (pieces {_listed(circuit.pieces)}), "
               f"{len(circuit.branch_points)} branch points"
               + (f", singular configurations {_listed(circuit.singular_points)}" if circuit.singular_points else ""))
     for sentence in traced.unfinished:
@@ -266,13 +262,14 @@ def _print_summary(args, system, traced, triangles, degrees, driver, driven, exa
 def _print_dead_points(traced, driver, dead, unit: str) -> None:
     """Per circuit, the input's dead points and the branches they cut it into (Chase and
     Mirth: none, one branch driven round in full)."""
+    from baranov.motion.drawing import branches_text
+
     for number in range(len(traced.circuits)):
         here = [point for point in dead if point.circuit == number]
         values = ", ".join(f"{'max' if point.maximum else 'min'} {point.value:.6g}{unit}" for point in here)
-        branches = max(len(here), 1)
         noun = "dead point" if len(here) == 1 else "dead points"
         print(f"  circuit {number}: {len(here)} {noun} of {driver.name}" + (f" ({values})" if here else "")
-              + f", {branches} branch{'es' if branches != 1 else ''} relative to it")
+              + f", {branches_text(max(len(here), 1))} relative to it")
 
 
 def _listed(numbers) -> str:

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 from scipy.optimize import brentq
@@ -73,6 +74,11 @@ class LinkageCurve:
     def unknowns(self) -> int:
         return 2 * len(self.moving)
 
+    @cached_property
+    def columns(self) -> dict[str, int]:
+        """Each moving joint's first column among the unknowns (its x; its y follows)."""
+        return {joint: 2 * k for k, joint in enumerate(self.moving)}
+
     def positions(self, x: np.ndarray) -> dict[str, complex]:
         """Every joint's place (scaled) at unknowns ``x``."""
         placed = dict(self.fixed)
@@ -85,8 +91,7 @@ class LinkageCurve:
 
     def equations(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The equations' values at ``x`` and their Jacobian (rows: equations)."""
-        at = self.positions(x)
-        index = {joint: 2 * k for k, joint in enumerate(self.moving)}
+        at, index = self.positions(x), self.columns
         values = np.empty(self.unknowns - 1)
         jacobian = np.zeros((self.unknowns - 1, self.unknowns))
         row = 0
@@ -142,16 +147,15 @@ def linkage_curve(scene: Scene, triangles=()) -> LinkageCurve:
     return LinkageCurve(tuple(dict.fromkeys(moving)), fixed, tuple(distances), tuple(shapes), size, tuple(triangles))
 
 
-def tangent(curve: LinkageCurve, x: np.ndarray, previous: np.ndarray | None = None) -> tuple[np.ndarray, float, float]:
-    """The unit tangent at ``x`` (oriented along ``previous`` if given), the sign of the
-    augmented Jacobian's determinant det[J; tᵀ] and the Jacobian's smallest singular value
-    (its distance from a singular configuration)."""
+def tangent(curve: LinkageCurve, x: np.ndarray, previous: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+    """The unit tangent at ``x`` (oriented along ``previous`` if given) and the sign of the
+    augmented Jacobian's determinant det[J; tᵀ], which changes where the loop passes a
+    singular configuration."""
     _, jacobian = curve.equations(x)
-    _, singular, vt = np.linalg.svd(jacobian)
-    direction = vt[-1]
+    direction = np.linalg.svd(jacobian)[2][-1]
     if previous is not None and direction @ previous < 0:
         direction = -direction
-    return direction, float(np.sign(np.linalg.det(np.vstack([jacobian, direction])))), float(singular[-1])
+    return direction, float(np.sign(np.linalg.det(np.vstack([jacobian, direction]))))
 
 
 def corrected(curve: LinkageCurve, guess: np.ndarray, normal: np.ndarray, offset: float) -> np.ndarray | None:
@@ -193,7 +197,7 @@ def followed_loop(curve: LinkageCurve, start: np.ndarray, chord: float, jump: fl
     triangle is flat. Cost: a few small SVDs and solves per point; the points' number
     grows as the loop's length over √(chord · curvature). ``backwards``: the other way
     round."""
-    x, (direction, orientation, _) = start, tangent(curve, start)
+    x, (direction, orientation) = start, tangent(curve, start)
     if backwards:
         direction, orientation = -direction, -orientation
     first_direction, step, travelled = direction, jump / 8, 0.0
@@ -203,13 +207,13 @@ def followed_loop(curve: LinkageCurve, start: np.ndarray, chord: float, jump: fl
         if step < SMALLEST_STEP:
             loop.unfinished = f"the step fell below {SMALLEST_STEP:g} of the linkage's size"
             return loop
-        y = corrected(curve, x + step * direction, direction, direction @ x + step)
+        y = _ahead(curve, x, direction, step)
         if y is None and step < LEAP_BELOW:
             step, y = _leap(curve, x, direction)
         if y is None:
             step /= 2
             continue
-        new_direction, new_orientation, _ = tangent(curve, y, direction)
+        new_direction, new_orientation = tangent(curve, y, direction)
         turn, sagitta = float(new_direction @ direction), step * float(np.linalg.norm(new_direction - direction)) / 8
         if turn < MAX_TURN or sagitta > chord:
             step /= 2
@@ -244,7 +248,7 @@ def _leap(curve: LinkageCurve, x: np.ndarray, direction: np.ndarray) -> tuple[fl
     corrected from the far side, the first that lands with the tangent still pointing
     ahead taken (the branch goes on straight through the crossing)."""
     for step in LEAPS:
-        y = corrected(curve, x + step * direction, direction, direction @ x + step)
+        y = _ahead(curve, x, direction, step)
         if y is not None and tangent(curve, y, direction)[0] @ direction > MAX_TURN:
             return step, y
     return LEAP_BELOW, None
@@ -285,9 +289,15 @@ def _add_crossings(loop: Loop, curve: LinkageCurve, x: np.ndarray, direction: np
         previous = along
 
 
+def _ahead(curve: LinkageCurve, x: np.ndarray, direction: np.ndarray, along: float) -> np.ndarray | None:
+    """The curve's point ``along`` the unit ``direction`` from ``x``, in the hyperplane
+    normal to it (the predictor x + along · direction, corrected); None where Newton fails."""
+    return corrected(curve, x + along * direction, direction, direction @ x + along)
+
+
 def _on_step(curve: LinkageCurve, x: np.ndarray, direction: np.ndarray, along: float) -> np.ndarray:
-    """The curve's point ``along`` the step from ``x`` (in the hyperplane normal to it)."""
-    found = corrected(curve, x + along * direction, direction, direction @ x + along)
+    """:func:`_ahead`, or the predictor itself where Newton fails (Brent needs a value)."""
+    found = _ahead(curve, x, direction, along)
     return found if found is not None else x + along * direction
 
 
@@ -305,8 +315,9 @@ def _crossing(curve: LinkageCurve, x: np.ndarray, direction: np.ndarray, step: f
 
 def singular_point(curve: LinkageCurve, before: np.ndarray, after: np.ndarray) -> np.ndarray:
     """Where the augmented Jacobian's determinant changes sign between two neighbouring
-    points of a loop (bisection, 40 steps): a singular configuration of the linkage."""
-    _, orientation, _ = tangent(curve, before)
+    points of a loop (bisection, 40 steps): a singular configuration of the linkage. Every
+    tangent is oriented along the loop (from ``before`` to ``after``), so the signs compare."""
+    _, orientation = tangent(curve, before, after - before)
     low, high = before, after
     for _ in range(40):
         middle = (low + high) / 2
@@ -314,7 +325,7 @@ def singular_point(curve: LinkageCurve, before: np.ndarray, after: np.ndarray) -
         middle = corrected(curve, middle, direction, direction @ middle)
         if middle is None:
             break
-        _, sign, _ = tangent(curve, middle, direction)
+        _, sign = tangent(curve, middle, direction)
         low, high = (middle, high) if sign == orientation else (low, middle)
     return (low + high) / 2
 
@@ -337,3 +348,16 @@ def chord_error(curve: LinkageCurve, a: np.ndarray, b: np.ndarray) -> float:
     at its middle (scaled): an independent check of the step control."""
     found = on_chord(curve, a, b, 0.5)
     return math.inf if found is None else float(np.linalg.norm(found - (a + b) / 2))
+
+
+def distance_to_polyline(x: np.ndarray, points: np.ndarray, closed: bool = False) -> float:
+    """The distance from ``x`` to the polyline through ``points`` (rows; ``closed``: back
+    to the first). O(points)."""
+    points = np.asarray(points, float)
+    starts = points if closed else points[:-1]
+    if len(starts) == 0:
+        return float(np.linalg.norm(points[0] - x))
+    segment = np.roll(points, -1, axis=0) - points if closed else points[1:] - points[:-1]
+    along = np.clip(np.einsum("ij,ij->i", x - starts, segment)
+                    / np.maximum(np.einsum("ij,ij->i", segment, segment), 1e-300), 0, 1)
+    return float(np.min(np.linalg.norm(starts + along[:, None] * segment - x, axis=1)))

@@ -14,13 +14,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-
 from baranov.scene import SceneInput
 
 from .configuration_space import ConfigurationPoint, OneDofSystem
-from .continuation import LinkageCurve, linkage_curve
-from .driving import input_extremum, input_value
+from .continuation import linkage_curve
+from .driving import input_extremum, input_value, turning_points
 from .tracing import Trace, configurations_on_curve
 
 
@@ -35,81 +33,23 @@ class DeadPoint:
     point: ConfigurationPoint
 
 
-def loop_orders(traced: Trace, circuit: int) -> list[list[int]]:
-    """The pieces of a circuit as loops, each in order along it (a piece's end joined to
-    the next piece's start by a branch point); an unfinished loop's pieces as a path.
-    O(pieces · branch points)."""
-    members = traced.circuits[circuit].pieces
-    after = {point.pieces[0][0]: point.pieces[1][0] for point in traced.branch_points
-             if point.pieces[0][0] in members and point.pieces[0][1] == -1}
-    before = {value: key for key, value in after.items()}
-    loops, seen = [], set()
-    for start in members:
-        if start in seen:
-            continue
-        first = start  # a path's first piece; any piece of a loop
-        while first in before and before[first] != start:
-            first = before[first]
-        order, piece = [], first
-        while piece not in seen:
-            seen.add(piece)
-            order.append(piece)
-            piece = after.get(piece, piece)
-        loops.append(order)
-    return loops
-
-
 def dead_points(system: OneDofSystem, traced: Trace, driver: SceneInput) -> list[DeadPoint]:
     """Every dead point of ``driver`` on every circuit of ``traced`` (module docstring).
     Cost: per dead point a bounded scalar search of about 30 curve points."""
     curve = linkage_curve(system.scene, system.plan.free_sign_triangles)
     found = []
-    for number in range(len(traced.circuits)):
-        for order in loop_orders(traced, number):
+    for number, circuit in enumerate(traced.circuits):
+        for order in circuit.loops:
             if traced.pieces[order[0]].closed:
                 points, closed = list(traced.pieces[order[0]].points), True
             else:  # each piece up to the branch point where the next starts
                 points = [point for n in order for point in traced.pieces[n].points[:-1]]
-                closed = _joined(traced, order[-1], order[0])
+                closed = (order[0], 0) not in traced.loose_ends  # else an unfinished loop's path
                 if not closed:
                     points.append(traced.pieces[order[-1]].points[-1])
-            found += [DeadPoint(number, *extremum) for extremum in _extrema(system, curve, driver, points, closed)]
+            for k, value, maximum in turning_points(driver, points, closed):
+                ends = [curve.unknowns_of(points[n % len(points)].joints) for n in (k - 1, k, k + 1)]
+                _, x = input_extremum(curve, driver, ends, value, maximum)
+                point = configurations_on_curve(system, curve, [x])[0]
+                found.append(DeadPoint(number, input_value(driver, point), maximum, point))
     return found
-
-
-def _joined(traced: Trace, last: int, first: int) -> bool:
-    return any(point.pieces == ((last, -1), (first, 0)) for point in traced.branch_points)
-
-
-def _turn(driver: SceneInput, difference: float) -> float:
-    return (difference + 180.0) % 360.0 - 180.0 if driver.kind == "angle" else difference
-
-
-def _extrema(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, points: list[ConfigurationPoint],
-             closed: bool) -> list[tuple[float, bool, ConfigurationPoint]]:
-    """The input's local extrema along a polyline of the curve (closed: round to its
-    start), each refined on the curve."""
-    count = len(points)
-    if count < 3:
-        return []
-    values = [input_value(driver, point) for point in points]
-    steps = [_turn(driver, values[(k + 1) % count] - values[k]) for k in range(count if closed else count - 1)]
-    found = []
-    for k in range(count if closed else count - 1):
-        if k == 0 and not closed:
-            continue
-        before, after = steps[k - 1], steps[k]
-        if before * after >= 0 and not (before == 0 and after != 0):
-            continue
-        maximum = before > 0
-        ends = [curve.unknowns_of(points[n % count].joints) for n in (k - 1, k, k + 1)]
-        found.append(_refined(system, curve, driver, ends, values[k], maximum))
-    return found
-
-
-def _refined(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, ends: list[np.ndarray], reference: float,
-             maximum: bool) -> tuple[float, bool, ConfigurationPoint]:
-    """The extremum between the chords ends[0]–ends[1] and ends[1]–ends[2]."""
-    _, x = input_extremum(curve, driver, ends, reference, maximum)
-    point = configurations_on_curve(system, curve, [x])[0]
-    return input_value(driver, point), maximum, point

@@ -111,7 +111,7 @@ def _draw_circuits(axes, traced: Trace, tracers: list[str], styles: list[str]) -
             for k, tracer in enumerate(tracers):
                 axes.plot([p.joints[tracer][0] for p in points], [p.joints[tracer][1] for p in points], color=colour,
                           lw=1.2, linestyle=styles[k % len(styles)],
-                          label=f"circuit {number} ({_branches(len(circuit.pieces))})"
+                          label=f"circuit {number} ({branches_text(len(circuit.pieces))})"
                           if n == circuit.pieces[0] and k == 0 else None)
         ends = [traced.pieces[traced.branch_points[b].pieces[0][0]].points[-1] for b in circuit.branch_points]
         for tracer in tracers:
@@ -124,5 +124,6 @@ def _draw_circuits(axes, traced: Trace, tracers: list[str], styles: list[str]) -
     axes.set_title(f"{len(traced.circuits)} circuits: the same paths by circuit")
 
 
-def _branches(count: int) -> str:
+def branches_text(count: int) -> str:
+    """"1 branch", "4 branches": as the picture's legend and ``baranov trace`` say it."""
     return f"{count} branch" + ("es" if count != 1 else "")

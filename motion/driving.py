@@ -18,7 +18,7 @@ configuration is verified on the link dimensions (1e-8, relative) as the traced 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
@@ -91,19 +91,27 @@ def _with_extrema(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput,
     extremum would be missed (a double-rocker's crank: 109.4633° traced, 109.4712° =
     arccos(−1/3) reached)."""
     points = list(piece.points)
-    inputs = [input_value(driver, point) for point in points]
-    steps = [_turned(driver, after - before) for before, after in zip(inputs, inputs[1:], strict=False)]
     added = []
-    for k in range(1, len(points) - 1):
-        if steps[k - 1] * steps[k] >= 0:
-            continue
+    for k, value, maximum in turning_points(driver, points):
         ends = [curve.unknowns_of(points[n].joints) for n in (k - 1, k, k + 1)]
-        along, x = input_extremum(curve, driver, ends, inputs[k], steps[k - 1] > 0)
+        along, x = input_extremum(curve, driver, ends, value, maximum)
         if abs(along - 1.0) > 1e-12:
-            added.append((k, along > 1.0, _with_signs(configurations_on_curve(system, curve, [x])[0], piece.signs)))
+            added.append((k, along > 1.0, replace(configurations_on_curve(system, curve, [x])[0], signs=piece.signs)))
     for k, later, point in reversed(added):
         points.insert(k + 1 if later else k, point)
     return Piece(piece.signs, tuple(points), piece.closed)
+
+
+def turning_points(driver: SceneInput, points: list[ConfigurationPoint], closed: bool = False
+                   ) -> list[tuple[int, float, bool]]:
+    """Where the input turns back along a polyline of traced points (``closed``: round to
+    its start): (index, the input's value there, whether a maximum), the index between
+    the two steps of opposite sign. O(points)."""
+    count = len(points)
+    values = [input_value(driver, point) for point in points]
+    ends = range(count) if closed else range(1, count - 1)
+    steps = [_turned(driver, values[(k + 1) % count] - values[k]) for k in range(count)]
+    return [(k, values[k], steps[k - 1] > 0) for k in ends if steps[k - 1] * steps[k] < 0]
 
 
 def input_extremum(curve: LinkageCurve, driver: SceneInput, ends: list[np.ndarray], reference: float,
@@ -226,7 +234,7 @@ def _refined(system: OneDofSystem, curve: LinkageCurve, driver: SceneInput, befo
     except ValueError:  # no sign change: the input does not reach the value here
         return None
     x = on_chord(curve, first, last, along)
-    return None if x is None else _with_signs(configurations_on_curve(system, curve, [x])[0], before.signs)
+    return None if x is None else replace(configurations_on_curve(system, curve, [x])[0], signs=before.signs)
 
 
 def _input_of(curve: LinkageCurve, driver: SceneInput, x: np.ndarray) -> float:
@@ -234,10 +242,6 @@ def _input_of(curve: LinkageCurve, driver: SceneInput, x: np.ndarray) -> float:
     at = curve.positions(x)
     joints = {name: (at[name].real * curve.size, at[name].imag * curve.size) for name in driver.joints}
     return input_value(driver, ConfigurationPoint({}, (), joints, 0.0))
-
-
-def _with_signs(point: ConfigurationPoint, signs: tuple[int, ...]) -> ConfigurationPoint:
-    return ConfigurationPoint(point.parameters, tuple(signs), point.joints, point.max_residual)
 
 
 def followed(traced: Trace, driven: list[DrivenBranch], start: int) -> DrivenBranch:

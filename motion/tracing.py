@@ -34,15 +34,14 @@ two (4000 samples each); a circuit that lies between two neighbouring slices is 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from baranov.solvers.modes import AssemblyMode
 from baranov.solvers.verification import joint_residuals
 
 from .configuration_space import ConfigurationPoint, OneDofSystem, configurations_at
-from .continuation import LinkageCurve, Loop, followed_loop, linkage_curve, singular_point
+from .continuation import LinkageCurve, Loop, distance_to_polyline, followed_loop, linkage_curve, singular_point
 
 
 @dataclass(frozen=True)
@@ -85,12 +84,19 @@ class SingularPoint:
 @dataclass(frozen=True)
 class Circuit:
     """A connected component of the real configuration curve (module docstring): its
-    pieces (its branches) in order along its loops, the branch points joining them, and
-    the singular configurations on it (indices into :attr:`Trace.singular_points`)."""
+    loops, each the pieces (its branches) in order along it, the branch points joining
+    them, and the singular configurations on it (indices into :attr:`Trace.pieces`,
+    :attr:`Trace.branch_points`, :attr:`Trace.singular_points`). One loop, unless loops
+    meet at a singular configuration."""
 
-    pieces: tuple[int, ...]
+    loops: tuple[tuple[int, ...], ...]
     branch_points: tuple[int, ...]
     singular_points: tuple[int, ...] = ()
+
+    @property
+    def pieces(self) -> tuple[int, ...]:
+        """Its pieces, loop after loop."""
+        return tuple(n for loop in self.loops for n in loop)
 
 
 @dataclass(frozen=True)
@@ -126,8 +132,9 @@ def trace(system: OneDofSystem, steps: int = 400, jump: float = 0.02, chord: flo
     loops: list[Loop] = []
     for start in _starting_configurations(system, steps):
         x = curve.unknowns_of(start.joints)
-        if np.abs(curve.areas(x)).min(initial=1.0) < FLAT_START or any(_near_loop(x, loop, 2 * chord) for loop in loops):
-            # a loop is not started at a flat triangle: its crossing there would be met only once
+        # a loop is not started at a flat triangle: its crossing there would be met only once
+        if np.abs(curve.areas(x)).min(initial=1.0) < FLAT_START or any(
+                distance_to_polyline(x, loop.points, loop.closed) < 2 * chord for loop in loops):
             continue
         loops.append(_whole_loop(curve, x, chord, jump))
     pieces, branch_points, owners = [], [], []
@@ -178,19 +185,6 @@ def _whole_loop(curve: LinkageCurve, x: np.ndarray, chord: float, jump: float) -
     return Loop(points, crossings, singular, False, reasons)
 
 
-def _near_loop(x: np.ndarray, loop: Loop, within: float) -> bool:
-    """Whether ``x`` lies within ``within`` of the loop's polyline."""
-    points = np.array(loop.points)
-    ends = np.roll(points, -1, axis=0) if loop.closed else points[1:]
-    starts = points if loop.closed else points[:-1]
-    if len(starts) == 0:
-        return bool(np.linalg.norm(points[0] - x) < within)
-    segment = ends - starts
-    along = np.clip(np.einsum("ij,ij->i", x - starts, segment) / np.maximum(np.einsum("ij,ij->i", segment, segment),
-                                                                             1e-300), 0, 1)
-    return bool(np.min(np.linalg.norm(starts + along[:, None] * segment - x, axis=1)) < within)
-
-
 def _loop_pieces(system: OneDofSystem, curve: LinkageCurve, loop: Loop,
                  first: int) -> tuple[list[Piece], list[BranchPoint]]:
     """A loop cut into pieces at its crossings (numbered from ``first``), and the branch
@@ -210,7 +204,7 @@ def _loop_pieces(system: OneDofSystem, curve: LinkageCurve, loop: Loop,
     for a, b in spans:
         stretch = [points[k % len(points)] for k in range(a, b + 1)]
         signs = _piece_signs(stretch)
-        pieces.append(Piece(signs, tuple(AssemblyMode(p.parameters, signs, p.joints, p.max_residual) for p in stretch)))
+        pieces.append(Piece(signs, tuple(replace(point, signs=signs) for point in stretch)))
     branch_points = [BranchPoint(((first + a, -1), (first + b, 0)), pieces[b].points[0].parameters, triangle)
                      for a, b, triangle in joints]
     return pieces, branch_points
@@ -231,7 +225,7 @@ def configurations_on_curve(system: OneDofSystem, curve: LinkageCurve, points: l
                       for name, (u, v) in zip(system.parameter_names, system.plan.parameters, strict=True)}
         areas = curve.areas(x)
         signs = tuple(int(s) for s in np.sign(np.where(np.abs(areas) < 1e-14, 0.0, areas)))
-        found.append(AssemblyMode(parameters, signs, joints, float(residual)))
+        found.append(ConfigurationPoint(parameters, signs, joints, float(residual)))
     return found
 
 
@@ -279,11 +273,12 @@ def _circuits(loops: list[Loop], owners: list[int], branch_points: list[BranchPo
             group[root(other)] = root(loops_there[0])
     circuits = []
     for head in dict.fromkeys(root(n) for n in range(len(loops))):
-        members = [n for n in range(len(loops)) if root(n) == head]
-        pieces = tuple(n for n, owner in enumerate(owners) if owner in members)
+        members = tuple(tuple(n for n, owner in enumerate(owners) if owner == loop)
+                        for loop in range(len(loops)) if root(loop) == head)
+        pieces = {n for loop in members for n in loop}
         joined = tuple(k for k, point in enumerate(branch_points) if point.pieces[0][0] in pieces)
-        places = tuple(k for k, point in enumerate(singular) if set(point.pieces) & set(pieces))
-        circuits.append(Circuit(pieces, joined, places))
+        places = tuple(k for k, point in enumerate(singular) if set(point.pieces) & pieces)
+        circuits.append(Circuit(members, joined, places))
     return tuple(circuits)
 
 
@@ -295,13 +290,11 @@ def circuit_of(traced: Trace, joints: dict[str, tuple[float, float]]) -> tuple[i
     the linkage can move between without being taken apart have the same circuit. Cost:
     linear in the traced points.
 
+    >>> from pathlib import Path
     >>> from baranov.motion import one_dof_system, trace
-    >>> from baranov.scene import scene_from_dict
-    >>> four_bar = scene_from_dict({"ground": "frame", "links": [
-    ...     {"name": "frame", "joints": {"P1": [0, 0], "P4": [7, 0]}},
-    ...     {"name": "crank", "joints": ["P1", "P2"], "squared_length": 4},
-    ...     {"name": "coupler", "joints": ["P2", "P3"], "squared_length": 36},
-    ...     {"name": "rocker", "joints": ["P3", "P4"], "squared_length": 25}]})
+    >>> from baranov.scene import load_scene
+    >>> examples = Path(__file__).resolve().parents[1] / "examples"
+    >>> four_bar = load_scene(examples / "four-bar-coupler-point.json")  # frame 7, crank 2, coupler 6, rocker 5
     >>> traced = trace(one_dof_system(four_bar))
     >>> up = {"P1": (0, 0), "P2": (2, 0), "P3": (5.6, 4.8), "P4": (7, 0)}
     >>> down = {"P1": (0, 0), "P2": (2, 0), "P3": (5.6, -4.8), "P4": (7, 0)}

@@ -19,17 +19,11 @@ import numpy as np
 import pytest
 
 from baranov.motion import configurations_at, one_dof_system, trace
-from baranov.motion.continuation import chord_error, linkage_curve
+from baranov.motion.continuation import chord_error, distance_to_polyline, linkage_curve
+from baranov.scene import load_scene
 
-ISSUE_INSTANCE = {"links": [
-    {"name": "L0", "joints": ["P1", "P2"], "squared_length": 16},
-    {"name": "L1", "joints": ["P3", "P4"], "squared_length": 85},
-    {"name": "L2", "joints": ["P5", "P6"], "squared_length": 65},
-    {"name": "L3", "joints": ["P7", "P8"], "squared_length": 85},
-    {"name": "L4", "joints": {"P1": [-2, 1], "P3": [-4, 5], "P9": [-1, 1]}},
-    {"name": "L5", "joints": {"P2": [2, 1], "P5": [-5, 5], "P10": [6, -6]}},
-    {"name": "L6", "joints": {"P4": [5, 3], "P7": [-2, 5], "P10": [6, -6]}},
-    {"name": "L7", "joints": {"P6": [-6, -3], "P8": [5, -1], "P9": [-1, 1]}}], "ground": "L4"}
+#: Eight-bar 7 of issue 59, a random integer configuration.
+ISSUE_INSTANCE = Path(__file__).resolve().parents[1] / "examples" / "eight-bar-7.json"
 
 
 class _Components:
@@ -151,8 +145,8 @@ def _completed(system, curve, layer: np.ndarray, others: np.ndarray, value: floa
             gap = at[b] - at[a]
             row = np.zeros(curve.unknowns)
             for joint, sign in ((b, 2), (a, -2)):
-                if joint in curve.moving:
-                    k = 2 * curve.moving.index(joint)
+                if joint in curve.columns:
+                    k = curve.columns[joint]
                     row[k:k + 2] += sign * gap.real, sign * gap.imag
             residual = np.append(values, abs(gap) ** 2 - value / curve.size ** 2)
             if np.abs(residual).max() < 1e-14:
@@ -163,29 +157,19 @@ def _completed(system, curve, layer: np.ndarray, others: np.ndarray, value: floa
     return np.array(found).reshape(-1, curve.unknowns)
 
 
-def _distance_to_piece(x: np.ndarray, polyline: np.ndarray) -> float:
-    a, b = polyline[:-1], polyline[1:]
-    if len(a) == 0:
-        return float(np.linalg.norm(polyline[0] - x))
-    d = b - a
-    t = np.clip(np.einsum("ij,ij->i", x - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0, 1)
-    return float(np.min(np.linalg.norm(a + t[:, None] * d - x, axis=1)))
-
-
 def assert_traced_once(system, traced, rng: np.random.Generator, values: int = 12, chord: float = 1e-3) -> None:
     """No loose end, no unfinished loop; every configuration of ``values`` random slices
     on exactly one piece (within 2 · chord in joint space); every segment's arc within
     ``chord`` of it; as many circuits as :func:`slice_circuits` counts."""
     curve = linkage_curve(system.scene, system.plan.free_sign_triangles)
     assert traced.loose_ends == () and traced.unfinished == ()
-    polylines = [np.array([curve.unknowns_of(p.joints) for p in piece.points]
-                          + ([curve.unknowns_of(piece.points[0].joints)] if piece.closed else []))
-                 for piece in traced.pieces]
+    polylines = [np.array([curve.unknowns_of(p.joints) for p in piece.points]) for piece in traced.pieces]
     found = [p for value in rng.uniform(0, system.upper[0], values) for p in configurations_at(system, float(value))]
     assert found
     for point in found:
         x = curve.unknowns_of(point.joints)
-        on = [n for n, line in enumerate(polylines) if _distance_to_piece(x, line) < 2 * chord]
+        on = [n for n, line in enumerate(polylines)
+              if distance_to_polyline(x, line, traced.pieces[n].closed) < 2 * chord]
         if len(on) == 2:  # within the tolerance of a branch point, on the pieces meeting there
             ends = {end: polylines[end[0]][end[1]] for point in traced.branch_points for end in point.pieces}
             shared = [a for a in ends if a[0] == on[0] and any(b[0] == on[1] and np.allclose(ends[a], ends[b])
@@ -194,7 +178,8 @@ def assert_traced_once(system, traced, rng: np.random.Generator, values: int = 1
             on = [n for n in on if traced.pieces[n].signs == point.signs]
         assert len(on) == 1, (point.parameters, on)
         assert traced.pieces[on[0]].signs == point.signs
-    worst = max(chord_error(curve, a, b) for line in polylines for a, b in zip(line, line[1:], strict=False))
+    worst = max(chord_error(curve, a, b) for n, line in enumerate(polylines)
+                for a, b in zip(line, [*line[1:], *line[:1]] if traced.pieces[n].closed else line[1:], strict=False))
     assert worst <= chord, worst
     assert len(traced.circuits) == slice_circuits(system)
 
@@ -203,9 +188,7 @@ def test_the_issue_instance_is_traced_once():
     """Eight-bar 7 of issue 59 (a random integer configuration): before, 37 pieces, one
     loop of η 12 traced eleven times, 7 ends not joined. Now each loop once: four
     circuits (the slice count's), 27 pieces, every end joined."""
-    from baranov.scene import scene_from_dict
-
-    system = one_dof_system(scene_from_dict(ISSUE_INSTANCE))
+    system = one_dof_system(load_scene(ISSUE_INSTANCE))
     traced = trace(system)
     assert_traced_once(system, traced, np.random.default_rng(59))
     assert (len(traced.circuits), len(traced.pieces), len(traced.branch_points)) == (4, 27, 26)
@@ -235,12 +218,11 @@ def test_random_six_and_eight_bars_are_traced_once(links, index, seed):
     assert_traced_once(system, trace(system), rng)
 
 
-def test_the_command_lists_the_circuits(capsys, tmp_path):
+def test_the_command_lists_the_circuits(capsys):
     """`baranov trace` prints the circuits and their branches; --json lists them."""
     from baranov.cli.main import main
 
-    path = tmp_path / "eight-bar-7.json"
-    path.write_text(json.dumps(ISSUE_INSTANCE))
+    path = ISSUE_INSTANCE
     assert main(["trace", str(path)]) == 0
     out = capsys.readouterr().out
     assert "4 circuits, 27 pieces in (s1,10, s3,10), 26 branch points, 0 singular configurations, " \
@@ -253,8 +235,6 @@ def test_the_command_lists_the_circuits(capsys, tmp_path):
     assert main(["trace", str(path), "--chord", "0"]) == 2
     assert "--chord 0: between 1e-9 and 0.1" in capsys.readouterr().err
 
-
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
 def _four_bar(frame: int, crank: int, coupler: int, rocker: int):

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 
 from baranov.cli.main import main
 from baranov.motion import configurations_at, one_dof_system, sign_index, trace
+from baranov.motion.continuation import distance_to_polyline
 from baranov.scene import load_scene, scene_from_dict
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -28,13 +29,7 @@ def _on_piece(here: np.ndarray, piece, scale: np.ndarray, resolution: float) -> 
     """Whether ``here`` (parameters over their bounds) lies within ``resolution`` of the
     piece's polyline in the plane of the plan's parameters."""
     points = np.array([_scaled(p, scale) for p in piece.points])
-    if piece.closed:
-        points = np.vstack([points, points[:1]])
-    if len(points) == 1:
-        return bool(np.linalg.norm(points[0] - here) < resolution)
-    a, b = points[:-1], points[1:]
-    t = np.clip(np.einsum("ij,ij->i", here - a, b - a) / np.maximum(np.einsum("ij,ij->i", b - a, b - a), 1e-300), 0, 1)
-    return bool(np.min(np.linalg.norm(a + t[:, None] * (b - a) - here, axis=1)) < resolution)
+    return distance_to_polyline(here, points, piece.closed) < resolution
 
 
 @pytest.fixture(scope="module")
