@@ -80,7 +80,10 @@ def slider_chain_entry(job: tuple[str, tuple[str, ...], bool]) -> dict:
             if solutions == 2 ** auxiliaries * modes:
                 break
             special.append(solutions)
-        if len(special) == MSOLVE_CHECK_INSTANCES and len(set(special)) == 1 and special[0] > 2 ** auxiliaries * modes:
+        # None: msolve found a positive-dimensional solution set on that draw (a special
+        # instance that moves), which says nothing about the generic count
+        if (len(special) == MSOLVE_CHECK_INSTANCES and None not in special and len(set(special)) == 1
+                and special[0] > 2 ** auxiliaries * modes):
             return _plan_lost_modes(entry, [count // 2 ** auxiliaries for count in special])
         entry["msolve_solutions"] = solutions
         entry["msolve_agrees"] = solutions == 2 ** auxiliaries * modes

@@ -133,3 +133,18 @@ def test_a_plan_whose_saturations_remove_every_mode_is_not_used(sliders, modes):
     truss = baranov_trusses(9)[26]
     count, _, method = slider_chain_degree(truss, sliders)
     assert (count, method) == (modes, "msolve")
+
+
+def test_a_check_instance_of_positive_dimension_is_kept_as_special(monkeypatch):
+    """msolve's check of a catalog count can meet a drawn instance whose solution set has
+    positive dimension (its count is None). The entry keeps the plan's count, says msolve
+    did not agree, and lists the special draws; it is not taken for "the plan lost modes"
+    (the catalog's regeneration at 9 links stopped on a TypeError there)."""
+    from baranov.catalog import slider_chains as module
+
+    monkeypatch.setattr(module, "msolve_solution_count_modulo", lambda scene, prime: (None, 0))
+    graph6 = next(iter_objects(REPO / "catalog" / "trusses-5.jsonl"))["link_graph6"]
+    entry = module.slider_chain_entry((graph6, ("P1",), True))
+    assert entry["assembly_modes"] is not None and entry["method"] != "msolve"
+    assert entry["msolve_solutions"] is None and entry["msolve_agrees"] is False
+    assert entry["msolve_special_instances"] == [None] * module.MSOLVE_CHECK_INSTANCES
