@@ -471,9 +471,10 @@ def _parametrization_modulo(variables: list[str], polynomials: list[dict], prime
     return output
 
 
-#: The linear form and the eliminating polynomial's coefficients (lowest degree first) in
-#: msolve's output over F_p: ``[…variables…], [linear form], [1, [[degree, [c_0, …]], …``.
-_ELIMINATING = re.compile(r"\],\s*\[([-\d,\s]*)\],\s*\[1,\s*\[\[(\d+),\s*\[([-\d,\s]*)\]")
+#: The variables (in msolve's order), the linear form and the eliminating polynomial's
+#: coefficients (lowest degree first) in msolve's output over F_p:
+#: ``['x0', …], [linear form], [1, [[degree, [c_0, …]], …``.
+_ELIMINATING = re.compile(r"\[([^\[\]]*)\],\s*\[([-\d,\s]*)\],\s*\[1,\s*\[\[(\d+),\s*\[([-\d,\s]*)\]")
 
 
 def eliminating_polynomial_modulo(scene: Scene, pair: tuple[str, str], prime: int,
@@ -506,12 +507,15 @@ def eliminating_polynomial_of(variables: list[str], polynomials: list[dict], pri
     found = _ELIMINATING.search(output)
     if found is None or not output.lstrip().startswith("[0"):
         return None
-    form = [int(c) for c in found.group(1).split(",")]
-    if form != [0] * (len(variables) - 1) + [1]:
+    names = [name.strip().strip("'\"") for name in found.group(1).split(",")]
+    form = [int(c) for c in found.group(2).split(",")]
+    # msolve moves a variable that does not separate the solutions away from the last place
+    # (the 11/N1 double-root instance: s0 and x1 swapped), so the form is read against its order
+    if form != [0] * (len(variables) - 1) + [1] or names[-1] != variables[-1]:
         return None  # s does not separate the solutions
-    coefficients = [int(c) for c in found.group(3).split(",")]
-    if len(coefficients) != int(found.group(2)) + 1:
-        raise RuntimeError(f"msolve output: an eliminating polynomial of degree {found.group(2)} with "
+    coefficients = [int(c) for c in found.group(4).split(",")]
+    if len(coefficients) != int(found.group(3)) + 1:
+        raise RuntimeError(f"msolve output: an eliminating polynomial of degree {found.group(3)} with "
                            f"{len(coefficients)} coefficients")
     return flint.nmod_poly(coefficients, prime)
 

@@ -178,3 +178,22 @@ def test_exact_and_msolve_agree_mode_for_mode_on_200_random_instances():
     with multiprocessing.get_context("spawn").Pool(2) as pool:
         failures = [message for message in pool.imap_unordered(_mode_for_mode, tasks) if message]
     assert not failures, "\n".join(failures)
+
+
+@needs_msolve
+def test_eliminating_polynomial_only_where_s_separates():
+    """msolve moves a last variable that does not separate the solutions away from the
+    last place in its output (its variable list says so) and eliminates for another: its
+    polynomial is then not s's. Read against the input's order, the 11/N1 double-root
+    adversarial instance took x1's polynomial for s's (no root shared with the plan's)."""
+    from baranov.solvers.msolve import eliminating_polynomial_of
+
+    prime = 1073741789
+    x_squared_is_one = {("x", "x"): Fraction(1), (): Fraction(-1)}
+    y_is_x_plus_two = {("y",): Fraction(1), ("x",): Fraction(-1), (): Fraction(-2)}
+    s_is_x_squared = {("s",): Fraction(1), ("x", "x"): Fraction(-1)}  # one s at both solutions
+    assert eliminating_polynomial_of(["x", "y", "s"], [x_squared_is_one, y_is_x_plus_two, s_is_x_squared],
+                                     prime) is None
+    s_is_three_x = {("s",): Fraction(1), ("x",): Fraction(-3)}  # s = ±3: s² − 9
+    assert eliminating_polynomial_of(["x", "y", "s"], [x_squared_is_one, y_is_x_plus_two, s_is_three_x],
+                                     prime).coeffs() == [prime - 9, 0, 1]

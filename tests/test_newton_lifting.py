@@ -20,6 +20,7 @@ from baranov.solvers import solve
 from baranov.solvers.exact import coupling_two, msolve_images, newton_lifting
 from baranov.solvers.exact.characteristic import exact_plan
 from baranov.solvers.exact.coupling_two import PLANE, genuine_curves, shared_curves
+from baranov.solvers.exact.lifting_by_primes import lifted_from_images
 from baranov.solvers.exact.modular import candidate_images, lifted_characteristic_polynomial
 from baranov.solvers.exact.msolve_images import characteristic_by_msolve
 from baranov.solvers.exact.newton_lifting import candidate_by_newton
@@ -139,21 +140,27 @@ def _adversarial(index: int, kind: str, number: int, seed: int = 2611):
 
 
 @needs_msolve
-def test_msolve_images_lift_by_primes_where_newton_does_not_apply():
-    """9/N28 drawn with a mode at a domain edge: the curves meet non-transversally, so
-    Newton's iteration yields nothing; the polynomial is lifted from msolve's images by
-    the Chinese remainder theorem (1.8 s for the whole solve, against 18 s by the
-    resultants' images), holds the plan's own image, and the exact backend lists
+@pytest.mark.parametrize("index, kind, number, seed", [(27, "domain-edge", 0, 2611), (1, "coincident", 1, 62)])
+def test_the_part_newton_does_not_lift_is_lifted_by_primes(index, kind, number, seed):
+    """9/N28 drawn with a mode at a domain edge, 9/N2 with two joints at one point: at one
+    root of msolve's image the curves meet non-transversally, so Newton's iteration on the
+    whole image yields nothing. The image is split (shape_position_split): Newton's
+    iteration lifts the rest of it, and the one root left over is lifted by the Chinese
+    remainder theorem over msolve's images divided by the lifted part. The product is
+    the polynomial that msolve's images alone give by primes (other primes: an
+    independent lifting), holds the plan's own image, and the exact backend lists
     msolve's modes, certified."""
-    scene, plan = _adversarial(27, "domain-edge", 0)
+    scene, plan = _adversarial(index, kind, number, seed)
     curves = _curves(scene, plan)
     image = next(msolve_images.msolve_images(scene, plan))
-    assert list(newton_lifting.newton_lifts(curves, image)) == []
+    assert next(newton_lifting.newton_lifts(curves, image), None) is None
+    good, _, rest = newton_lifting.shape_position_split(curves, image)
+    assert rest.degree() == 1 and good * rest == image
     lifted = characteristic_by_msolve(scene, plan, curves)
-    assert lifted is not None and lifted.degree() == image.degree() == 58
+    assert lifted == lifted_from_images(msolve_images.msolve_images(scene, plan, seed=7))
     assert msolve_images.holds_the_plans_image(scene, plan, lifted, seed=5)
     exact, oracle = solve(scene, method="exact"), solve(scene, method="msolve")
-    assert exact.certificate.complete and len(exact.assembly_modes) == 4
+    assert exact.certificate.complete
     assert same_modes(scene, exact.assembly_modes, oracle.assembly_modes)
 
 
@@ -184,3 +191,17 @@ def test_a_slider_chain_lifts_from_msolve_images_when_its_first_parameter_is_a_d
     assert with_msolve.polynomial == without.polynomial and with_msolve.polynomial.degree() == 22
     slider_first = dataclasses.replace(plan, parameters=(("P1", "P8"), *plan.parameters[1:]))
     assert not msolve_images.msolve_images_apply(scene, slider_first)
+
+
+@needs_msolve
+def test_the_plans_own_images_split_where_msolve_gives_none():
+    """9/N2 drawn at a double root: s does not separate the Cartesian solutions, so msolve
+    gives no image of s's polynomial; the plan's own images are lifted by Newton's
+    iteration where the curves' common points are simple and in shape position, the
+    rest with the saturated part by primes. The candidate is the one the resultants'
+    images give by primes alone."""
+    scene, plan = _adversarial(1, "double-root", 0, 62)
+    assert next(msolve_images.msolve_images(scene, plan)) is None
+    curves = _curves(scene, plan)
+    by_newton = candidate_by_newton(scene, plan, curves)
+    assert by_newton is not None and by_newton == lifted_characteristic_polynomial(scene, plan, saturated=False)

@@ -68,15 +68,26 @@ def _over_q(polynomial: FieldPolynomial) -> flint.fmpq_poly:
     return flint.fmpq_poly([c[0] for c in polynomial])
 
 
+class ZeroDivisor(ZeroDivisionError):
+    """An element of R[u]/(modulus) with no inverse: it shares ``factor`` (monic, a proper
+    factor of the modulus) with the modulus, so it vanishes at the roots of ``factor``
+    only. A caller can split the modulus there and go on with each part (dynamic
+    evaluation: Della Dora, Dicrescenzo, Duval, EUROCAL 1985)."""
+
+    def __init__(self, factor):
+        super().__init__("a leading coefficient is a zero divisor modulo a reducible polynomial")
+        self.factor = factor
+
+
 def _inverse(element, modulus):
     """1/element in R[u]/(modulus) (``fmpq_poly`` or ``nmod_poly``). For an irreducible
-    modulus (a field) every non-zero element has one; otherwise ZeroDivisionError where
+    modulus (a field) every non-zero element has one; otherwise :class:`ZeroDivisor` where
     ``element`` shares a factor with the modulus (it vanishes at some of its roots only)."""
     if modulus.degree() == 1 and isinstance(modulus, flint.fmpq_poly):
         return flint.fmpq_poly([1 / element[0]])
     gcd, inverse, _ = element.xgcd(modulus)
     if gcd.degree() != 0:
-        raise ZeroDivisionError("a leading coefficient is a zero divisor modulo a reducible polynomial")
+        raise ZeroDivisor(gcd)
     return inverse / gcd[0] if isinstance(modulus, flint.fmpq_poly) else inverse * pow(int(gcd[0]), -1, modulus.modulus())
 
 
@@ -124,17 +135,18 @@ def gcd_over_field(first: FieldPolynomial, second: FieldPolynomial, field: flint
 def gcd_modulo(first: FieldPolynomial, second: FieldPolynomial, modulus) -> FieldPolynomial:
     """The monic gcd of two polynomials in v over R[u]/(``modulus``), R = Q (``fmpq_poly``)
     or F_p (``nmod_poly``), by Euclid's algorithm; [] if both are zero. Over a reducible
-    modulus this is the gcd at every root of it at once, and ZeroDivisionError is raised
+    modulus this is the gcd at every root of it at once, and :class:`ZeroDivisor` is raised
     where the remainder sequence differs between roots (a leading coefficient vanishing at
     some roots only).
 
     >>> p = 101
     >>> modulus = flint.nmod_poly([-2, 0, 1], p) * flint.nmod_poly([-3, 1], p)   # u² = 2 or u = 3
     >>> u = flint.nmod_poly([0, 1], p)
-    >>> gcd_modulo([-u, u**0], [-2 * u**0, u * 0, u**0], modulus)   # v - u, v² - 2: common at u² = 2 only
+    >>> # v - u and v² - 2 have a common point above u² = 2 only
+    >>> gcd_modulo([-u, u**0], [-2 * u**0, u * 0, u**0], modulus)   # doctest: +IGNORE_EXCEPTION_DETAIL
     Traceback (most recent call last):
     ...
-    ZeroDivisionError: a leading coefficient is a zero divisor modulo a reducible polynomial
+    ZeroDivisor: a leading coefficient is a zero divisor modulo a reducible polynomial
     >>> gcd_modulo([-u, u**0], [-u * u, u * 0, u**0], modulus)   # v - u and v² - u²
     [100*x, 1]
     """

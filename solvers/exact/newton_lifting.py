@@ -48,7 +48,7 @@ from baranov.scene import Scene
 
 from ..progress import report_stage
 from .characteristic import ExactMethodError, radical_tower
-from .fibers import gcd_modulo
+from .fibers import ZeroDivisor, _inverse, gcd_modulo
 from .lifting_by_primes import (
     MOST_BITS,
     chinese_remainder,
@@ -87,6 +87,60 @@ def second_coordinate(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.
     except ZeroDivisionError:
         return None
     return -common[0] if len(common) == 2 else None
+
+
+def shape_position_split(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_poly) -> tuple[
+        flint.nmod_poly, flint.nmod_poly, flint.nmod_poly]:
+    """(good, Q, rest): ``characteristic`` = good · rest modulo its prime, where above every
+    root of good the two curves have one common point, v = Q(u), and meet there
+    transversally (their Jacobian is invertible), so that Newton's iteration lifts good
+    and Q (:func:`newton_lifts`); rest holds the other roots (two modes above one value
+    of u, a mode where the curves are tangent or singular). The gcd of the curves in v is
+    taken modulo the whole polynomial, which is split wherever a leading coefficient
+    vanishes at some of its roots only (:class:`~baranov.solvers.exact.fibers.ZeroDivisor`,
+    dynamic evaluation). For a lucky prime good and rest are the images of factors over
+    Q: the roots they hold are told apart by polynomial conditions over Q.
+
+    >>> from baranov.solvers.exact.coupling_two import PLANE
+    >>> u, v = PLANE.gens()
+    >>> p = 101
+    >>> # v = u² and v² = u⁴ + u² − 2: common points above u² = 2 (one each) and u = ±1 (none)
+    >>> good, second, rest = shape_position_split([v - u**2, (v - u**2) * (v + u**2) + u**2 - 2],
+    ...                                           flint.nmod_poly([-2, 0, 1], p) * flint.nmod_poly([-1, 0, 1], p))
+    >>> good, second, rest
+    (x^2 + 99, 2, x^2 + 100)
+    """
+    prime = characteristic.modulus()
+    columns = [[flint.nmod_poly([int(c) for c in column.coeffs()], prime) for column in _columns(curve)]
+               for curve in curves]
+    pending, parts, rest = [characteristic], [], flint.nmod_poly([1], prime)
+    while pending:
+        modulus = pending.pop()
+        if modulus.degree() < 1:
+            continue
+        try:
+            common = gcd_modulo(*columns, modulus)
+        except ZeroDivisor as split:  # the remainder sequences differ between its roots
+            pending += [split.factor, modulus // split.factor]
+            continue
+        if len(common) == 2:
+            parts.append((modulus, -common[0]))
+        else:
+            rest *= modulus
+    good, second = flint.nmod_poly([1], prime), flint.nmod_poly([0], prime)
+    for modulus, coordinate in parts:  # Q by the Chinese remainder theorem over F_p[u]
+        second += good * ((coordinate - second) * _inverse(good % modulus, modulus) % modulus)
+        good *= modulus
+    ring = flint.fmpz_mod_poly_ctx(prime)
+    parts_of = [_parts(_columns(curve)) for curve in curves]
+    if good.degree() > 0:
+        (u1, v1, u2, v2), _ = _jacobian(parts_of, ring, _integer(good), _integer(second), flint.fmpz_poly([0]))
+        singular = flint.nmod_poly([int(c) for c in ((u1 * v2 - v1 * u2) % ring(_integer(good))).gcd(
+            ring(_integer(good))).coeffs()], prime)
+        if singular.degree() > 0:  # the curves meet non-transversally there
+            good, rest = good // singular, rest * singular
+            second = second % good
+    return good, second, rest
 
 
 def _powers(second, modulus, count: int) -> tuple[list, object]:
@@ -150,13 +204,15 @@ def _newton_step(parts: list, characteristic, second, inverse, precision: int):
     return _integer(new_characteristic), _integer(new_second), _integer(inverse)
 
 
-def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_poly) -> Iterator[list[Fraction]]:
+def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_poly,
+                 second: flint.nmod_poly | None = None) -> Iterator[list[Fraction]]:
     """Candidates for the monic polynomial over Q whose image modulo the prime is
     ``characteristic``, lifted along the common points of the two ``curves`` (module
     docstring): after each Newton step whose rational reconstruction succeeds, its
     coefficients, lowest first (a too low precision can reconstruct wrongly: callers check
     each candidate at another prime). Nothing where the points are not simple common
-    points in shape position modulo the prime.
+    points in shape position modulo the prime. ``second``: Q modulo ``characteristic`` if
+    known (:func:`shape_position_split`), else computed (:func:`second_coordinate`).
 
     >>> from baranov.solvers.exact.coupling_two import PLANE
     >>> u, v = PLANE.gens()
@@ -172,7 +228,8 @@ def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_
     if characteristic.degree() < 1:
         yield [Fraction(1)]
         return
-    second = second_coordinate(curves, characteristic)
+    if second is None:
+        second = second_coordinate(curves, characteristic)
     if second is None:
         return
     parts = [_parts(_columns(curve)) for curve in curves]
@@ -261,12 +318,14 @@ def candidate_by_newton(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mp
     """The candidate polynomial of a coupling-2 ``plan`` over Z (primitive, leading
     coefficient positive), as :func:`~baranov.solvers.exact.modular.lifted_characteristic_polynomial`
     with ``saturated=False`` returns it, from its characteristic part P and the small rest
-    E that saturations remove. P is lifted by Newton's iteration along the genuine
-    ``curves`` from the first prime and accepted when it reduces to the second prime's
-    image; E is made of :func:`known_extraneous_factors` matching the first prime's image,
-    or else lifted by primes, and accepted when it reduces to a further prime's image.
-    Every prime after the first checks P again. None where Newton's iteration does not
-    apply or a check fails (the caller then lifts by primes)."""
+    E that saturations remove. The part G of P whose roots are simple common points of
+    the genuine ``curves`` in shape position (:func:`shape_position_split`: all of P on a
+    generic instance) is lifted by Newton's iteration from the first prime and accepted
+    when its image divides the second prime's image of P; the rest of the candidate,
+    E and P/G, is made of :func:`known_extraneous_factors` matching the first prime's
+    image, or else lifted by primes, and accepted when it reduces to a further prime's
+    image. Every prime after the first checks G again. None where no root is a simple
+    point in shape position or a check fails (the caller then lifts by primes)."""
     rng = random.Random(seed)
     lifts: Iterator[list[Fraction]] | None = None
     characteristic: list[Fraction] | None = None
@@ -279,21 +338,24 @@ def candidate_by_newton(scene: Scene, plan: Plan, curves: Sequence[flint.fmpz_mp
             candidate, image = candidate_images(scene, plan, prime, seed)
         except ExactMethodError:
             continue
-        rest = candidate / image
         if lifts is None:
-            degrees, lifts = (candidate.degree(), image.degree()), newton_lifts(curves, image)
-            first = next(lifts, None)
+            # the roots that are not simple common points in shape position join the rest E
+            good, coordinate, _ = shape_position_split(curves, image)
+            degrees, lifts = (candidate.degree(), image.degree()), newton_lifts(curves, good, coordinate)
+            first = next(lifts, None) if good.degree() > 0 else None
             if first is None:
-                return None  # not simple points in shape position: no need for a second prime
+                return None  # no simple points in shape position: no need for a second prime
             lifts = chain([first], lifts)
+            rest = candidate / good
             extraneous = extraneous_from_factors(rest, known_extraneous_factors(scene, plan, curves))
         elif (candidate.degree(), image.degree()) != degrees:
             return None  # an unlucky prime, or an unlucky first one
         else:
             if characteristic is None:  # the first lift that this prime confirms
-                characteristic = next((lift for lift in lifts if reduced_modulo(lift, prime) == image), None)
-            if characteristic is None or reduced_modulo(characteristic, prime) != image:
+                characteristic = next((lift for lift in lifts if (image % reduced_modulo(lift, prime)).is_zero()), None)
+            if characteristic is None or not (image % reduced_modulo(characteristic, prime)).is_zero():
                 return None
+            rest = candidate / reduced_modulo(characteristic, prime)
             if extraneous is None:
                 reconstructed = [rational_reconstruction(r, modulus) for r in residues]
                 extraneous = None if None in reconstructed else reconstructed
