@@ -146,9 +146,22 @@ def square_free_parts(polynomials) -> list:
     """The distinct non-constant square-free factors of ``polynomials`` (flint
     ``factor_squarefree``): only their zeros matter here, and norms are often high powers
     of small polynomials — the denominators' norms on an 11-link coupling-2 truss have
-    degree (353, 329) in all, their parts (8, 12), (6, 4), (1, 0), (0, 1)."""
-    parts = []
+    degree (353, 329) in all, their parts (8, 12), (6, 4), (1, 0), (0, 1). The parts found
+    so far are divided out of each polynomial first, as often as they divide: a later
+    norm often holds an earlier one's part to a high power (a nine-link slider chain's
+    second denominator norm, (120, 120) = (24, 24)² · (12, 12)⁶ with the (12, 12) of the
+    first: 0.61 s → 0.31 s), and exact divisions cost less than the square-free
+    factorisation of the whole."""
+    parts: list = []
     for polynomial in polynomials:
+        for part in parts:
+            while not polynomial.is_constant():
+                quotient, remainder = divmod(polynomial, part)
+                if not remainder.is_zero():
+                    break
+                polynomial = quotient
+        if polynomial.is_constant():
+            continue
         for part, _ in polynomial.factor_squarefree()[1]:
             if not part.is_constant() and part not in parts:
                 parts.append(part)
