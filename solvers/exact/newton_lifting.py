@@ -109,8 +109,12 @@ def shape_position_split(curves: Sequence[flint.fmpz_mpoly], characteristic: fli
     ...                                           flint.nmod_poly([-2, 0, 1], p) * flint.nmod_poly([-1, 0, 1], p))
     >>> good, second, rest
     (x^2 + 99, 2, x^2 + 100)
+    >>> shape_position_split([v - u, v + u], flint.nmod_poly([0, 0, 1], p))   # u²: not square-free
+    (1, 0, x^2)
     """
     prime = characteristic.modulus()
+    if characteristic.gcd(characteristic.derivative()).degree() > 0:  # images are square-free; else no split
+        return flint.nmod_poly([1], prime), flint.nmod_poly([0], prime), characteristic
     columns = [[flint.nmod_poly([int(c) for c in column.coeffs()], prime) for column in _columns(curve)]
                for curve in curves]
     pending, parts, rest = [characteristic], [], flint.nmod_poly([1], prime)
