@@ -66,6 +66,7 @@ from .characteristic import (
 )
 from .coupling_two import characteristic_polynomial_two, common_points
 from .fibers import Fiber
+from .roots import complex_roots
 
 #: A branch is a candidate at a real root when its closure residual's ball there contains
 #: 0 and is narrower than this (relative; the configuration is then verified to 1e-8 on
@@ -235,7 +236,7 @@ def _undecided_factors(scene: Scene, plan: Plan, polynomial: CharacteristicPolyn
     for factor, coincident in polynomial.degenerate:
         if meeting_known and factor.degree() == 1 and factor.coeffs()[0] == 0:
             continue
-        real = [float(root.real.mid()) for root, _ in factor.complex_roots() if root.imag == 0 and root.real >= 0]
+        real = [float(root.real.mid()) for root, _ in complex_roots(factor) if root.imag == 0 and root.real >= 0]
         if real and not coincident:
             gaps.append(f"a factor of degree {factor.degree()} with real roots near "
                         f"{name} = {real[0]:.6g} could not be decided at {TEST_BITS[-1]} bits")
@@ -283,7 +284,7 @@ def modes_at_real_roots(scene: Scene, plan: Plan, polynomial: CharacteristicPoly
             found: dict[int, list[AssemblyMode]] = {}
             for bits in ROOT_BITS if fibers is None else ROOT_BITS_TWO:
                 flint.ctx.prec = bits
-                roots = sorted((root.real for root, _ in factor.complex_roots() if root.imag == 0),
+                roots = sorted((root.real for root, _ in complex_roots(factor) if root.imag == 0),
                                key=lambda r: float(r.mid()))
                 if undecided is None:
                     undecided = {index: every_branch for index in range(len(roots))}

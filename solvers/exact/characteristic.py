@@ -52,6 +52,7 @@ from baranov.scene.sliders import axis_unit, axis_units
 from ..coincidence import slider_plan_undefined, solvable_plan
 from ..modes import SolverError
 from ..placement import slider_geometry
+from .roots import complex_roots
 
 #: Precisions (bits) of the genuineness test of a factor, tried in turn.
 TEST_BITS = (256, 1024, 4096)
@@ -200,7 +201,7 @@ class CharacteristicPolynomial:
         configuration, thesis §3.3.3) or a double root of two branches' conditions. The
         factors are distinct and irreducible, so no two share a root."""
         roots = [(root.real, multiplicity) for factor, multiplicity in self.factors
-                 for root, _ in factor.complex_roots() if root.imag == 0]
+                 for root, _ in complex_roots(factor) if root.imag == 0]
         return sorted(roots, key=lambda item: float(item[0].mid()))
 
     def to_dict(self) -> dict:
@@ -575,7 +576,7 @@ def _is_genuine(factor: flint.fmpz_poly, scene: Scene, plan: Plan) -> bool | fro
     try:
         for bits in TEST_BITS:
             flint.ctx.prec = bits
-            root = factor.complex_roots()[0][0]
+            root = complex_roots(factor)[0][0]
             still, coincident = [], set()
             for signs, residuals, _, pair in residuals_on_branches(scene, plan, (root,), undecided):
                 if residuals is None:  # a base distance's ball contains 0: try more bits

@@ -49,6 +49,7 @@ from .msolve_images import characteristic_by_msolve
 from .newton_lifting import candidate_by_newton
 from .plane_factoring import PLANE, factors_over_q, plane_factors, plane_polynomial
 from .resultant import coefficients_in_v, resultant_by_primes
+from .roots import complex_roots
 
 
 def branch_solves(scene: Scene, plan: Plan, values: Sequence[flint.acb], conditions: Sequence[int],
@@ -335,7 +336,7 @@ def _factor_is_genuine(fiber: Fiber, scene: Scene, plan: Plan) -> bool | frozens
         return False
 
     def points() -> list | None:
-        roots = [root for root, _ in fiber.field.complex_roots()]
+        roots = [root for root, _ in complex_roots(fiber.field)]
         if scene.sliders:  # a slider plan's residuals decide at real points only (_some_point_solves)
             roots = sorted(roots, key=lambda root: not root.imag.contains(0))
         return common_points(fiber, roots[0])

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import flint
 
 from .resultant import coefficients_in_v
+from .roots import complex_roots
 
 #: A polynomial in v over K: its coefficients (``fmpq_poly`` in u reduced modulo f),
 #: lowest degree first, without top zeros; [] is the zero polynomial.
@@ -256,7 +257,7 @@ def common_fiber(curves: Sequence[flint.fmpz_mpoly], field: flint.fmpz_poly) -> 
         try:
             for bits in ISOLATION_BITS:
                 flint.ctx.prec = bits
-                root = field.complex_roots()[0][0]
+                root = complex_roots(field)[0][0]
                 for first, second in (columns, columns[::-1]):
                     if isolated_roots(first, root) is not None:
                         return Fiber(field, columns=(first, second))
