@@ -48,7 +48,7 @@ from baranov.scene import Scene
 
 from ..progress import report_stage
 from .characteristic import ExactMethodError, radical_tower
-from .fibers import ZeroDivisor, _inverse, gcd_modulo
+from .fibers import ZeroDivisor, gcd_modulo
 from .lifting_by_primes import (
     MOST_BITS,
     chinese_remainder,
@@ -132,13 +132,14 @@ def shape_position_split(curves: Sequence[flint.fmpz_mpoly], characteristic: fli
         else:
             rest *= modulus
     good, second = flint.nmod_poly([1], prime), flint.nmod_poly([0], prime)
-    for modulus, coordinate in parts:  # Q by the Chinese remainder theorem over F_p[u]
-        second += good * ((coordinate - second) * _inverse(good % modulus, modulus) % modulus)
+    for modulus, coordinate in parts:  # Q by the Chinese remainder theorem over F_p[u] (coprime parts)
+        _, inverse, _ = (good % modulus).xgcd(modulus)
+        second += good * ((coordinate - second) * inverse % modulus)
         good *= modulus
-    ring = flint.fmpz_mod_poly_ctx(prime)
-    parts_of = [_parts(_columns(curve)) for curve in curves]
     if good.degree() > 0:
-        (u1, v1, u2, v2), _ = _jacobian(parts_of, ring, _integer(good), _integer(second), flint.fmpz_poly([0]))
+        ring = flint.fmpz_mod_poly_ctx(prime)
+        (u1, v1, u2, v2), _ = _jacobian([_parts(_columns(curve)) for curve in curves], ring, _integer(good),
+                                        _integer(second), flint.fmpz_poly([0]))
         singular = flint.nmod_poly([int(c) for c in ((u1 * v2 - v1 * u2) % ring(_integer(good))).gcd(
             ring(_integer(good))).coeffs()], prime)
         if singular.degree() > 0:  # the curves meet non-transversally there
