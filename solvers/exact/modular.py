@@ -142,6 +142,23 @@ def norm_factors(polynomial, tower: RadicalTower) -> list[tuple[object, int]]:
     return [(norm, 1), *contents]
 
 
+def divided_out(polynomial, factor) -> tuple[object, int]:
+    """``polynomial`` divided by ``factor`` as often as it divides exactly, and how often
+    (flint polynomials of any ring with ``divmod``).
+
+    >>> x = flint.fmpz_poly([0, 1])
+    >>> divided_out((x + 1) ** 3 * (x - 2), x + 1)
+    (x + (-2), 3)
+    """
+    multiplicity = 0
+    while not polynomial.is_constant():
+        quotient, remainder = divmod(polynomial, factor)
+        if not remainder.is_zero():
+            break
+        polynomial, multiplicity = quotient, multiplicity + 1
+    return polynomial, multiplicity
+
+
 def square_free_parts(polynomials) -> list:
     """The distinct non-constant square-free factors of ``polynomials`` (flint
     ``factor_squarefree``): only their zeros matter here, and norms are often high powers
@@ -155,11 +172,7 @@ def square_free_parts(polynomials) -> list:
     parts: list = []
     for polynomial in polynomials:
         for part in parts:
-            while not polynomial.is_constant():
-                quotient, remainder = divmod(polynomial, part)
-                if not remainder.is_zero():
-                    break
-                polynomial = quotient
+            polynomial, _ = divided_out(polynomial, part)
         if polynomial.is_constant():
             continue
         for part, _ in polynomial.factor_squarefree()[1]:

@@ -70,25 +70,6 @@ def _columns(curve: flint.fmpz_mpoly) -> list[flint.fmpz_poly]:
             for terms in coefficients_in_v(curve)]
 
 
-def second_coordinate(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_poly) -> flint.nmod_poly | None:
-    """Q with v = Q(u) at the common point of the two curves above every root of
-    ``characteristic`` (modulo its prime), or None where some root has no single common
-    point, or the curves' remainder sequence differs between roots.
-
-    >>> from baranov.solvers.exact.coupling_two import PLANE
-    >>> u, v = PLANE.gens()
-    >>> second_coordinate([v - u**2, v + u - 2], flint.nmod_poly([-2, 1, 1], 101))   # u² + u - 2
-    100*x + 2
-    """
-    prime = characteristic.modulus()
-    try:
-        common = gcd_modulo(*([flint.nmod_poly([int(c) for c in column.coeffs()], prime) for column in _columns(curve)]
-                              for curve in curves), characteristic)
-    except ZeroDivisionError:
-        return None
-    return -common[0] if len(common) == 2 else None
-
-
 def shape_position_split(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_poly) -> tuple[
         flint.nmod_poly, flint.nmod_poly, flint.nmod_poly]:
     """(good, Q, rest): ``characteristic`` = good · rest modulo its prime, where above every
@@ -217,7 +198,7 @@ def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_
     coefficients, lowest first (a too low precision can reconstruct wrongly: callers check
     each candidate at another prime). Nothing where the points are not simple common
     points in shape position modulo the prime. ``second``: Q modulo ``characteristic`` if
-    known (:func:`shape_position_split`), else computed (:func:`second_coordinate`).
+    known (:func:`shape_position_split`), else computed by it.
 
     >>> from baranov.solvers.exact.coupling_two import PLANE
     >>> u, v = PLANE.gens()
@@ -234,9 +215,9 @@ def newton_lifts(curves: Sequence[flint.fmpz_mpoly], characteristic: flint.nmod_
         yield [Fraction(1)]
         return
     if second is None:
-        second = second_coordinate(curves, characteristic)
-    if second is None:
-        return
+        _, second, rest = shape_position_split(curves, characteristic)
+        if rest.degree() > 0:
+            return
     parts = [_parts(_columns(curve)) for curve in curves]
     ring = flint.fmpz_mod_poly_ctx(prime)
     lift = [_integer(characteristic), _integer(second), flint.fmpz_poly([0])]

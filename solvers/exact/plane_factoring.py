@@ -23,7 +23,7 @@ from collections.abc import Iterable
 
 import flint
 
-from .modular import random_prime
+from .modular import divided_out, random_prime
 
 #: The bivariate ring of the two parameters (u = first plan parameter, v = second).
 PLANE = flint.fmpz_mpoly_ctx.get(("u", "v"), "lex")
@@ -73,12 +73,7 @@ def plane_factors(polynomial: flint.fmpz_mpoly, known: Iterable[flint.fmpz_mpoly
     """
     rest, factors = polynomial, []
     for candidate in known:
-        multiplicity = 0
-        while not rest.is_constant():
-            quotient, remainder = divmod(rest, candidate)
-            if not remainder.is_zero():
-                break
-            rest, multiplicity = quotient, multiplicity + 1
+        rest, multiplicity = divided_out(rest, candidate)
         if multiplicity:
             factors.append((candidate, multiplicity))
     if rest.is_constant():
